@@ -1,0 +1,30 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/**
+ * @file coons.h
+ * @brief libcoons: Coons curves, patches and bodies, their boundary meshes,
+ *        and the model files that describe them. The one header users include.
+ *
+ * Rules that hold for the whole API (see libcoons(3)):
+ * - Every fallible function returns a ::coons_status (0 = ::COONS_OK, errors
+ *   negative) and fills the caller-owned ::coons_error given as its last
+ *   argument, which may be NULL. Nothing is printed, nothing exits.
+ * - Constructors deep-copy their inputs. Everything returned belongs to the
+ *   caller and is released with its own coons_X_free(), which accepts NULL.
+ *   `const` pointers returned by accessors are borrowed views, valid until
+ *   the owning object is freed. The caller never free()s library memory.
+ * - Objects are immutable after construction; there is no global mutable
+ *   state apart from the allocator (coons_set_allocator()), so concurrent
+ *   calls on the same objects from many threads are safe.
+ */
+#ifndef COONS_H
+#define COONS_H
+
+#include "coons/version.h"
+#include "coons/types.h"
+#include "coons/curve.h"
+#include "coons/patch.h"
+#include "coons/body.h"
+#include "coons/model.h"
+#include "coons/mesh.h"
+
+#endif

@@ -1,0 +1,150 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/**
+ * @file coons/body.h
+ * @brief Trivariate bodies over (u,v,w) in [0,1]^3 (seed 000): Coons body 0
+ *        (8 points), body 1 (12 edge curves), body 2 (6 boundary patches),
+ *        Bezier and B-spline/NURBS volumes.
+ *
+ * Constructors deep-copy their inputs; the body belongs to the caller and is
+ * released with coons_body_free(). Bodies are immutable: any number of
+ * threads may evaluate one body at once.
+ *
+ * Index conventions (model format): corner P_ijk of body 0 is corners[4i+2j+k].
+ * Body 1 edges are ordered u00 u01 u10 u11 (uJK = C(u,J,K)), v00 v01 v10 v11
+ * (vIK = C(I,v,K)), w00 w01 w10 w11 (wIJ = C(I,J,w)). Body 2 faces are
+ * ordered u0 u1 (X_I(v,w) = C(I,v,w), patch (s,t) = (v,w)), v0 v1
+ * (Y_J(u,w), (s,t) = (u,w)), w0 w1 (Z_K(u,v), (s,t) = (u,v)).
+ * Volume points are points[((i*nv + j)*nw + k)*3], i along u.
+ */
+#ifndef COONS_BODY_H
+#define COONS_BODY_H
+
+#include "coons/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum coons_body_type {
+    COONS_BODY_BODY0 = 0,
+    COONS_BODY_BODY1,
+    COONS_BODY_BODY2,
+    COONS_BODY_BEZIER,
+    COONS_BODY_BSPLINE
+} coons_body_type;
+
+/** Body 1 edge indices. */
+enum {
+    COONS_EDGE_U00 = 0, COONS_EDGE_U01, COONS_EDGE_U10, COONS_EDGE_U11,
+    COONS_EDGE_V00, COONS_EDGE_V01, COONS_EDGE_V10, COONS_EDGE_V11,
+    COONS_EDGE_W00, COONS_EDGE_W01, COONS_EDGE_W10, COONS_EDGE_W11
+};
+
+/** Body 2 face indices (also the faces of any body's boundary). */
+enum {
+    COONS_FACE_U0 = 0, COONS_FACE_U1, COONS_FACE_V0, COONS_FACE_V1,
+    COONS_FACE_W0, COONS_FACE_W1
+};
+
+/**
+ * Coons body 0: trilinear interpolation T(P_ijk; u,v,w) of 8 points
+ * (seed 000 section 2.2); with ::COONS_BLEND_CUBIC the blends 1-x, x are
+ * replaced by f(x), 1-f(x).
+ */
+COONS_EXPORT coons_status coons_body_body0(const double corners[8][3], coons_blend blend,
+                                           coons_body **out, coons_error *err);
+
+/**
+ * Coons body 1 from 12 edge curves (seed 000 section 2.3):
+ * C1 = sum of the three bilinear blends of edge curves - 2 T(C_ijk).
+ * The three edges meeting at each corner must meet within `tol`
+ * (::COONS_TOL_DEFAULT: 1e-9 of the control box diagonal); the corner used
+ * is their average.
+ * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (names the corner and the
+ *         distance), ::COONS_E_INVALID, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_body1(const coons_curve *const edges[12], coons_blend blend,
+                                           double tol, coons_body **out, coons_error *err);
+
+/**
+ * Coons body 2 from 6 boundary patches (seed 000 section 2.4):
+ * C2 = D - C1 - T, with C1 and T built from the faces' shared boundary
+ * curves (each edge point the average of the two faces that carry it).
+ * Faces must agree parametrically along their 12 shared edges within
+ * `tol`, checked at sample points along each edge.
+ * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (names the edge, the parameter
+ *         and the distance), ::COONS_E_INVALID, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_body2(const coons_patch *const faces[6], coons_blend blend,
+                                           double tol, coons_body **out, coons_error *err);
+
+/** Tensor-product Bezier volume; n[0..2] >= 2 points along u, v, w. */
+COONS_EXPORT coons_status coons_body_bezier(const double *points, const size_t n[3],
+                                            coons_body **out, coons_error *err);
+
+/**
+ * Tensor-product B-spline / NURBS volume of degrees degree[0..2].
+ * @param[in] knots   three pointers, each NULL (clamped uniform) or n[d]+degree[d]+1 values
+ * @param[in] weights NULL or n[0]*n[1]*n[2] values > 0, indexed like the points
+ */
+COONS_EXPORT coons_status coons_body_bspline(const int degree[3], const double *points,
+                                             const size_t n[3], const double *const knots[3],
+                                             const double *weights, coons_body **out,
+                                             coons_error *err);
+
+/** Deep copy. */
+COONS_EXPORT coons_status coons_body_copy(const coons_body *b, coons_body **out,
+                                          coons_error *err);
+
+/** Releases a body; NULL is a harmless no-op. */
+COONS_EXPORT void coons_body_free(coons_body *b);
+
+COONS_EXPORT coons_body_type coons_body_get_type(const coons_body *b);
+
+/** Point F(u,v,w), parameters clamped to [0,1]. */
+COONS_EXPORT void coons_body_eval(const coons_body *b, double u, double v, double w,
+                                  double out[3]);
+
+/**
+ * Point and Jacobian: jac[r][c] = d x_r / d q_c with q = (u, v, w), so
+ * the columns are d/du, d/dv, d/dw. Returns det(jac).
+ */
+COONS_EXPORT double coons_body_eval_jacobian(const coons_body *b, double u, double v, double w,
+                                             double out[3], double jac[3][3]);
+
+/**
+ * Evaluates the body on the grid u[0..nu-1] x v[0..nv-1] x w[0..nw-1] into
+ * out[((i*nv + j)*nw + k)*3]. Basis, blend and boundary values are computed
+ * once per parameter line; no allocation per point. A grid with one of
+ * nu, nv, nw equal to 1 samples a boundary face.
+ * @return ::COONS_OK, ::COONS_E_NOMEM (scratch), ::COONS_E_LIMIT (sizes overflow).
+ */
+COONS_EXPORT coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t nu,
+                                               const double *v, size_t nv, const double *w,
+                                               size_t nw, double *out, coons_error *err);
+
+/** Box of the body's control data (corners, curve or patch control points, net). */
+COONS_EXPORT void coons_body_control_bbox(const coons_body *b, double lo[3], double hi[3]);
+
+/**
+ * Volume of the body, the integral of det J over the unit cube, by
+ * tensor Gauss-Legendre quadrature on a grid of cells refined until two
+ * successive estimates differ by less than `rel_tol` (relative) or
+ * `max_cells` per direction is reached.
+ * @return ::COONS_OK, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_volume(const coons_body *b, double rel_tol,
+                                            double *volume, coons_error *err);
+
+/**
+ * Smallest det J over an (n+1)^3 sampling of the unit cube (n >= 1), and
+ * where it was found. A negative value means the body folds over itself.
+ */
+COONS_EXPORT coons_status coons_body_min_jacobian(const coons_body *b, unsigned n,
+                                                  double *min_det, double where[3],
+                                                  coons_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,156 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/**
+ * @file coons/patch.h
+ * @brief Patches over (s,t) in [0,1]^2: bilinear, ruled, Coons (linear and
+ *        cubic blend), Hermite-blended Coons with tangent ribbons and twists
+ *        (seed 001), Bezier and B-spline/NURBS surfaces.
+ *
+ * Constructors deep-copy their inputs (a patch holds copies of its curves);
+ * the result belongs to the caller and is released with coons_patch_free().
+ * Patches are immutable: concurrent evaluation is safe.
+ *
+ * Boundary curves are given in the order of the model format:
+ * index ::COONS_T0 = x(s,0), ::COONS_T1 = x(s,1), ::COONS_S0 = x(0,t),
+ * ::COONS_S1 = x(1,t). Where two curves give the same corner, the patch uses
+ * their average (model format, "Consistency").
+ */
+#ifndef COONS_PATCH_H
+#define COONS_PATCH_H
+
+#include "coons/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum coons_patch_type {
+    COONS_PATCH_BILINEAR = 0,
+    COONS_PATCH_RULED,
+    COONS_PATCH_COONS,
+    COONS_PATCH_HERMITE_COONS,
+    COONS_PATCH_BEZIER,
+    COONS_PATCH_BSPLINE
+} coons_patch_type;
+
+/** Indices of the four boundary curves of a Coons patch. */
+enum { COONS_T0 = 0, COONS_T1 = 1, COONS_S0 = 2, COONS_S1 = 3 };
+
+/** Twist vectors of a Hermite Coons patch (seed 001 section 1.2.2). */
+typedef enum coons_twist {
+    COONS_TWIST_ZERO = 0,  /**< Ferguson: all four twists zero (default) */
+    COONS_TWIST_ADINI,     /**< the twist of the bilinearly blended Coons patch */
+    COONS_TWIST_BESSEL,    /**< single patch: the cell twist X00-X10-X01+X11 */
+    COONS_TWIST_EXPLICIT   /**< the four given vectors */
+} coons_twist;
+
+/**
+ * Consistency tolerance argument of constructors that check that curves
+ * meet: a value > 0 is an absolute distance; 0 means 1e-9 times the
+ * diagonal of the bounding box of the inputs' control points.
+ */
+#define COONS_TOL_DEFAULT 0.0
+
+/** Bilinear patch from corners X00, X10, X01, X11 (Xab = x(s=a, t=b)). */
+COONS_EXPORT coons_status coons_patch_bilinear(const double corners[4][3], coons_patch **out,
+                                               coons_error *err);
+
+/** Ruled surface x(s,t) = (1-t) c0(s) + t c1(s) (seed 001 eq. 1.2). */
+COONS_EXPORT coons_status coons_patch_ruled(const coons_curve *c0, const coons_curve *c1,
+                                            coons_patch **out, coons_error *err);
+
+/**
+ * Coons patch of four boundary curves (seed 001 eq. 1.8/1.11), with
+ * linear blending or the cubic blend f(t) = 1 - 3t^2 + 2t^3.
+ * @param[in] boundary curves indexed ::COONS_T0 .. ::COONS_S1
+ * @param[in] tol      corner tolerance (see ::COONS_TOL_DEFAULT)
+ * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (a corner where the two curves
+ *         do not meet: the message names the corner and the distance),
+ *         ::COONS_E_INVALID, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_patch_coons(const coons_curve *const boundary[4],
+                                            coons_blend blend, double tol,
+                                            coons_patch **out, coons_error *err);
+
+/** Options of coons_patch_hermite_coons(). Initialise with ::COONS_HERMITE_OPTIONS_INIT. */
+typedef struct coons_hermite_options {
+    unsigned version;                 /**< ::COONS_HERMITE_OPTIONS_VERSION */
+    const coons_curve *cross[4];      /**< all NULL, or x_t(s,0), x_t(s,1), x_s(0,t), x_s(1,t) */
+    coons_twist twist;                /**< how the corner twists are found */
+    double twists[4][3];              /**< explicit x_st(0,0), x_st(1,0), x_st(0,1), x_st(1,1) */
+    double tol;                       /**< consistency tolerance, see ::COONS_TOL_DEFAULT */
+} coons_hermite_options;
+
+#define COONS_HERMITE_OPTIONS_VERSION 1
+#define COONS_HERMITE_OPTIONS_INIT \
+    {COONS_HERMITE_OPTIONS_VERSION, {0, 0, 0, 0}, COONS_TWIST_ZERO, {{0}}, COONS_TOL_DEFAULT}
+
+/**
+ * Bicubically blended (Hermite) Coons patch, seed 001 eq. 1.13-1.15:
+ * x = h_c + h_d - h_cd with the cubic Hermite basis H0..H3.
+ *
+ * Corner points and corner tangents come from the boundary curves; twists
+ * from `opts->twist`. Without cross curves each cross-boundary tangent is
+ * the ribbon of seed 001 eq. 1.16 built from the corner tangents and twists.
+ * Given cross curves must agree with the corner tangents within `tol`.
+ * @param[in] opts NULL for the defaults (no cross curves, zero twists)
+ * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE, ::COONS_E_INVALID, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
+                                                    const coons_hermite_options *opts,
+                                                    coons_patch **out, coons_error *err);
+
+/**
+ * Tensor-product Bezier surface; points[(i*nt + j)*3], i along s (ns >= 2
+ * points), j along t (nt >= 2).
+ */
+COONS_EXPORT coons_status coons_patch_bezier(const double *points, size_t ns, size_t nt,
+                                             coons_patch **out, coons_error *err);
+
+/**
+ * Tensor-product B-spline or NURBS surface of degrees (ps, pt).
+ * @param[in] knots_s,knots_t NULL for clamped uniform knots (each may be
+ *            NULL independently), else ns+ps+1 and nt+pt+1 values
+ * @param[in] weights NULL, or ns*nt values > 0 indexed like the points
+ */
+COONS_EXPORT coons_status coons_patch_bspline(int ps, int pt, const double *points, size_t ns,
+                                              size_t nt, const double *knots_s,
+                                              const double *knots_t, const double *weights,
+                                              coons_patch **out, coons_error *err);
+
+/** Deep copy. */
+COONS_EXPORT coons_status coons_patch_copy(const coons_patch *p, coons_patch **out,
+                                           coons_error *err);
+
+/** Releases a patch; NULL is a harmless no-op. */
+COONS_EXPORT void coons_patch_free(coons_patch *p);
+
+COONS_EXPORT coons_patch_type coons_patch_get_type(const coons_patch *p);
+
+/** Point at (s,t), parameters clamped to [0,1]. */
+COONS_EXPORT void coons_patch_eval(const coons_patch *p, double s, double t, double out[3]);
+
+/**
+ * Point and partial derivatives. order 0: out[0] = x. order 1 adds
+ * out[1] = x_s, out[2] = x_t. order 2 adds out[3] = x_ss, out[4] = x_st,
+ * out[5] = x_tt. out must hold 1, 3 or 6 vectors.
+ */
+COONS_EXPORT void coons_patch_eval_derivs(const coons_patch *p, double s, double t, int order,
+                                          double out[][3]);
+
+/**
+ * Evaluates the patch on the tensor grid s[0..ns-1] x t[0..nt-1] into
+ * out[(i*nt + j)*3]. Basis and blending values are computed once per
+ * parameter line.
+ * @return ::COONS_OK or ::COONS_E_NOMEM (scratch memory).
+ */
+COONS_EXPORT coons_status coons_patch_eval_grid(const coons_patch *p, const double *s,
+                                                size_t ns, const double *t, size_t nt,
+                                                double *out, coons_error *err);
+
+/** Box of the patch's control data (its curves' or net's control points), used to scale tolerances. */
+COONS_EXPORT void coons_patch_control_bbox(const coons_patch *p, double lo[3], double hi[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

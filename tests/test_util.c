@@ -1,0 +1,55 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+#include <math.h>
+#include <stdlib.h>
+
+#include "test_util.h"
+
+void assert_near_impl(double a, double b, double eps, const char *ea, const char *eb,
+                      const char *file, int line)
+{
+    if (!(fabs(a - b) <= eps)) {
+        print_error("%s:%d: %s = %.17g, %s = %.17g, |diff| = %.3g > %.3g\n", file, line, ea,
+                       a, eb, b, fabs(a - b), eps);
+        _fail(file, line);
+    }
+}
+
+void assert_vec3_near_impl(const double *a, const double *b, double eps, const char *ea,
+                           const char *eb, const char *file, int line)
+{
+    for (int i = 0; i < 3; i++) {
+        if (!(fabs(a[i] - b[i]) <= eps)) {
+            print_error("%s:%d: %s = (%.17g, %.17g, %.17g) vs %s = (%.17g, %.17g, %.17g), "
+                           "component %d differs by %.3g > %.3g\n",
+                           file, line, ea, a[0], a[1], a[2], eb, b[0], b[1], b[2], i,
+                           fabs(a[i] - b[i]), eps);
+            _fail(file, line);
+        }
+    }
+}
+
+static long g_fail_after = -1;
+static long g_count = 0;
+
+static void *t_malloc(size_t n)
+{
+    if (g_fail_after >= 0 && g_count++ >= g_fail_after) return NULL;
+    return malloc(n);
+}
+static void *t_realloc(void *p, size_t n)
+{
+    if (g_fail_after >= 0 && g_count++ >= g_fail_after) return NULL;
+    return realloc(p, n);
+}
+
+void coons_test_fail_after(long n)
+{
+    g_fail_after = n;
+    g_count = 0;
+    if (n < 0)
+        coons_set_allocator(NULL, NULL, NULL);
+    else
+        coons_set_allocator(t_malloc, t_realloc, free);
+}
+
+long coons_test_alloc_count(void) { return g_count; }
