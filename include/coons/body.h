@@ -33,6 +33,9 @@ typedef enum coons_body_type {
     COONS_BODY_BSPLINE
 } coons_body_type;
 
+/** Largest number of control points (product of the three counts) of a tensor volume. */
+#define COONS_MAX_BODY_POINTS 16777216
+
 /** Body 1 edge indices. */
 enum {
     COONS_EDGE_U00 = 0, COONS_EDGE_U01, COONS_EDGE_U10, COONS_EDGE_U11,
@@ -116,8 +119,14 @@ COONS_EXPORT double coons_body_eval_jacobian(const coons_body *b, double u, doub
  * Evaluates the body on the grid u[0..nu-1] x v[0..nv-1] x w[0..nw-1] into
  * out[((i*nv + j)*nw + k)*3]. Basis, blend and boundary values are computed
  * once per parameter line; no allocation per point. A grid with one of
- * nu, nv, nw equal to 1 samples a boundary face.
- * @return ::COONS_OK, ::COONS_E_NOMEM (scratch), ::COONS_E_LIMIT (sizes overflow).
+ * nu, nv, nw equal to 1 samples a boundary face. Parameters need not be
+ * sorted and are clamped to [0,1]. Each point is computed from its own
+ * (u,v,w) only, by the same operations whatever the rest of the grid, so
+ * two grids that share a parameter triple give bitwise-equal points there
+ * (seams of face grids weld exactly). Agrees with coons_body_eval() to
+ * rounding, not bitwise.
+ * @return ::COONS_OK, ::COONS_E_NOMEM (scratch), ::COONS_E_LIMIT (sizes overflow),
+ *         ::COONS_E_INVALID (NULL arrays with non-zero sizes).
  */
 COONS_EXPORT coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t nu,
                                                const double *v, size_t nv, const double *w,
@@ -129,16 +138,22 @@ COONS_EXPORT void coons_body_control_bbox(const coons_body *b, double lo[3], dou
 /**
  * Volume of the body, the integral of det J over the unit cube, by
  * tensor Gauss-Legendre quadrature on a grid of cells refined until two
- * successive estimates differ by less than `rel_tol` (relative) or
- * `max_cells` per direction is reached.
- * @return ::COONS_OK, ::COONS_E_NOMEM.
+ * successive estimates differ by less than `rel_tol` (relative; <= 0 means
+ * 1e-9) or 32 cells per direction are reached (the last estimate is then
+ * returned). The volume is signed: negative for a left-handed body
+ * (det J < 0), and folded regions count with their sign.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL arguments).
  */
 COONS_EXPORT coons_status coons_body_volume(const coons_body *b, double rel_tol,
                                             double *volume, coons_error *err);
 
 /**
  * Smallest det J over an (n+1)^3 sampling of the unit cube (n >= 1), and
- * where it was found. A negative value means the body folds over itself.
+ * where it was found (`where` may be NULL; the first lattice point in
+ * (u,v,w) lexicographic order on ties). A negative value means the body
+ * folds over itself (or is left-handed everywhere: compare with the sign of
+ * coons_body_volume()).
+ * @return ::COONS_OK, ::COONS_E_INVALID (n = 0), ::COONS_E_LIMIT (n > 2^20).
  */
 COONS_EXPORT coons_status coons_body_min_jacobian(const coons_body *b, unsigned n,
                                                   double *min_det, double where[3],

@@ -1,0 +1,198 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * Coons body 1 (seed 000 section 2.3) from the 12 edge curves C(u,j,k),
+ * C(i,v,k), C(i,j,w):
+ *   C1 = sum_ij a_i(u) a_j(v) C(i,j,w) + sum_ik a_i(u) a_k(w) C(i,v,k)
+ *      + sum_jk a_j(v) a_k(w) C(u,j,k) - 2 T(C_ijk; u,v,w),
+ * (a_0, a_1) the linear or cubic blend. The seed asks the three edges at a
+ * corner to share the point C_ijk; within the tolerance we use their
+ * average (model format, "Consistency").
+ * Edge e: u-edges 0 + 2j + k, v-edges 4 + 2i + k, w-edges 8 + 2i + j.
+ */
+#include "body_impl.h"
+
+coons_status coons_body_body1(const coons_curve *const edges[12], coons_blend blend, double tol,
+                              coons_body **out, coons_error *err)
+{
+    *out = NULL;
+    if (!edges) return coons__error_set(err, COONS_E_INVALID, "body1: edges are NULL");
+    if (blend != COONS_BLEND_LINEAR && blend != COONS_BLEND_CUBIC)
+        return coons__error_set(err, COONS_E_INVALID, "body1: unknown blend %d", (int)blend);
+    if (!(tol >= 0.0) || !isfinite(tol))
+        return coons__error_set(err, COONS_E_INVALID, "body1: tolerance %g is not >= 0", tol);
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    for (int e = 0; e < 12; e++) {
+        if (!edges[e])
+            return coons__error_set(err, COONS_E_INVALID, "body1: edge %s is NULL",
+                                    coons__body_edge_name(e));
+        double a[3], c[3];
+        coons_curve_control_bbox(edges[e], a, c);
+        bbox_add(lo, hi, a);
+        bbox_add(lo, hi, c);
+    }
+    double eps = coons__tolerance(tol, bbox_diag(lo, hi));
+    double corner[8][3];
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 2; k++) {
+                int id[3] = {2 * j + k, 4 + 2 * i + k, 8 + 2 * i + j};
+                double t[3] = {i, j, k}, p[3][3];
+                for (int s = 0; s < 3; s++) coons_curve_eval(edges[id[s]], t[s], p[s]);
+                for (int s = 0; s < 3; s++) {
+                    double dist = v3_dist(p[s], p[(s + 1) % 3]);
+                    if (!(dist <= eps))
+                        return coons__error_set(
+                            err, COONS_E_INCOMPATIBLE,
+                            "body1: corner C%d%d%d (u=%d,v=%d,w=%d): edges %s and %s differ by "
+                            "%.6g (tolerance %.3g)",
+                            i, j, k, i, j, k, coons__body_edge_name(id[s]),
+                            coons__body_edge_name(id[(s + 1) % 3]), dist, eps);
+                }
+                double *c = corner[4 * i + 2 * j + k];
+                for (int r = 0; r < 3; r++) c[r] = (p[0][r] + p[1][r] + p[2][r]) / 3.0;
+            }
+    coons_body *b;
+    coons_status rc = coons__body_alloc(COONS_BODY_BODY1, blend, &b, err);
+    if (rc) return rc;
+    for (int e = 0; e < 12; e++) {
+        if ((rc = coons_curve_copy(edges[e], &b->edge[e], err))) {
+            coons_body_free(b);
+            return rc;
+        }
+    }
+    for (int c = 0; c < 8; c++) v3_copy(b->corner[c], corner[c]);
+    v3_copy(b->lo, lo);
+    v3_copy(b->hi, hi);
+    *out = b;
+    return COONS_OK;
+}
+
+/* Edge value (and derivative if dv is not NULL). */
+static void edge_at(const coons_curve *c, double t, double p[3], double *dv)
+{
+    double r[2][3];
+    coons_curve_eval_derivs(c, t, dv ? 1 : 0, r);
+    v3_copy(p, r[0]);
+    if (dv) v3_copy(dv, r[1]);
+}
+
+void coons__body1_eval(const coons_body *b, double u, double v, double w, double out[3],
+                       double d[3][3])
+{
+    double bu[4], bv[4], bw[4];
+    coons__blend(b->blend, u, 1, bu);
+    coons__blend(b->blend, v, 1, bv);
+    coons__blend(b->blend, w, 1, bw);
+    double t[3], dt[3][3];
+    coons__trilinear(b->corner, bu, bv, bw, t, d ? dt : NULL);
+    v3_scale(out, t, -2.0);
+    if (d)
+        for (int q = 0; q < 3; q++) v3_scale(d[q], dt[q], -2.0);
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++) {
+            double p[3], dp[3];
+            /* w-edge C(x,y,w): blends a_x(u) a_y(v) */
+            edge_at(b->edge[8 + 2 * x + y], w, p, d ? dp : NULL);
+            v3_axpy(out, bu[x] * bv[y], p);
+            if (d) {
+                v3_axpy(d[0], bu[2 + x] * bv[y], p);
+                v3_axpy(d[1], bu[x] * bv[2 + y], p);
+                v3_axpy(d[2], bu[x] * bv[y], dp);
+            }
+            /* v-edge C(x,v,y): blends a_x(u) a_y(w) */
+            edge_at(b->edge[4 + 2 * x + y], v, p, d ? dp : NULL);
+            v3_axpy(out, bu[x] * bw[y], p);
+            if (d) {
+                v3_axpy(d[0], bu[2 + x] * bw[y], p);
+                v3_axpy(d[1], bu[x] * bw[y], dp);
+                v3_axpy(d[2], bu[x] * bw[2 + y], p);
+            }
+            /* u-edge C(u,x,y): blends a_x(v) a_y(w) */
+            edge_at(b->edge[2 * x + y], u, p, d ? dp : NULL);
+            v3_axpy(out, bv[x] * bw[y], p);
+            if (d) {
+                v3_axpy(d[0], bv[x] * bw[y], dp);
+                v3_axpy(d[1], bv[2 + x] * bw[y], p);
+                v3_axpy(d[2], bv[x] * bw[2 + y], p);
+            }
+        }
+}
+
+/*
+ * Grid. With H_j(w) = sum_i a_i(u) C(i,j,w) (per u, along w) and
+ * P_k = sum_i a_i(u) C(i,v,k) + sum_j a_j(v) (C(u,j,k) - 2 sum_i a_i(u) C_ijk)
+ * (per (u,v)), every point of a w-line is
+ *   C1 = a_0(v) H_0(w) + a_1(v) H_1(w) + a_0(w) P_0 + a_1(w) P_1.
+ */
+coons_status coons__body1_grid(const coons_body *b, const double *u, size_t nu,
+                               const double *v, size_t nv, const double *w, size_t nw,
+                               double *out, coons_error *err)
+{
+    size_t total = 0;
+    /* bw (2), Cw (12), H (6) per w; Cv (12) per v; Cu (12) and bu (2) per u */
+    if (!coons__size_addmul(&total, nw, 20) || !coons__size_addmul(&total, nv, 12) ||
+        !coons__size_addmul(&total, nu, 14))
+        return coons__error_set(err, COONS_E_LIMIT, "body1 grid: scratch size overflows");
+    double *s = coons__malloc_array(total, sizeof(double));
+    if (!s) return coons__error_nomem(err);
+    double *bw = s, *Cw = bw + 2 * nw, *H = Cw + 12 * nw, *Cv = H + 6 * nw, *Cu = Cv + 12 * nv,
+           *bu = Cu + 12 * nu;
+    /* Cw[(2i+j)*3nw + 3k]: C(i,j,w_k); Cv[(2i+k)*3nv + 3j]: C(i,v_j,k);
+     * Cu[(2j+k)*3nu + 3i]: C(u_i,j,k). */
+    for (size_t k = 0; k < nw; k++) {
+        double t[4], x = clamp01(w[k]);
+        coons__blend(b->blend, x, 0, t);
+        bw[2 * k] = t[0];
+        bw[2 * k + 1] = t[1];
+        for (int e = 0; e < 4; e++) coons_curve_eval(b->edge[8 + e], x, Cw + e * 3 * nw + 3 * k);
+    }
+    for (size_t j = 0; j < nv; j++) {
+        double x = clamp01(v[j]);
+        for (int e = 0; e < 4; e++) coons_curve_eval(b->edge[4 + e], x, Cv + e * 3 * nv + 3 * j);
+    }
+    for (size_t i = 0; i < nu; i++) {
+        double t[4], x = clamp01(u[i]);
+        coons__blend(b->blend, x, 0, t);
+        bu[2 * i] = t[0];
+        bu[2 * i + 1] = t[1];
+        for (int e = 0; e < 4; e++) coons_curve_eval(b->edge[e], x, Cu + e * 3 * nu + 3 * i);
+    }
+    const double(*c)[3] = b->corner;
+    for (size_t i = 0; i < nu; i++) {
+        double a0 = bu[2 * i], a1 = bu[2 * i + 1];
+        for (int j = 0; j < 2; j++) {
+            const double *c0 = Cw + (size_t)j * 3 * nw, *c1 = Cw + (size_t)(2 + j) * 3 * nw;
+            double *h = H + (size_t)j * 3 * nw;
+            for (size_t m = 0; m < 3 * nw; m++) h[m] = a0 * c0[m] + a1 * c1[m];
+        }
+        double tu[4][3]; /* sum_i a_i(u) C_ijk at 2j+k */
+        double cu[4][3]; /* C(u_i,j,k) at 2j+k */
+        for (int jk = 0; jk < 4; jk++)
+            for (int r = 0; r < 3; r++) {
+                tu[jk][r] = a0 * c[jk][r] + a1 * c[4 + jk][r];
+                cu[jk][r] = Cu[jk * 3 * nu + 3 * i + r];
+            }
+        for (size_t j = 0; j < nv; j++) {
+            double t[4];
+            coons__blend(b->blend, clamp01(v[j]), 0, t);
+            double b0 = t[0], b1 = t[1], P[2][3];
+            for (int k = 0; k < 2; k++)
+                for (int r = 0; r < 3; r++)
+                    P[k][r] = a0 * Cv[k * 3 * nv + 3 * j + r] +
+                              a1 * Cv[(2 + k) * 3 * nv + 3 * j + r] +
+                              b0 * (cu[k][r] - 2.0 * tu[k][r]) +
+                              b1 * (cu[2 + k][r] - 2.0 * tu[2 + k][r]);
+            const double *h0 = H, *h1 = H + 3 * nw;
+            double *o = out + (i * nv + j) * nw * 3;
+            for (size_t k = 0; k < nw; k++) {
+                double w0 = bw[2 * k], w1 = bw[2 * k + 1];
+                for (int r = 0; r < 3; r++)
+                    o[3 * k + r] = b0 * h0[3 * k + r] + b1 * h1[3 * k + r] + w0 * P[0][r] +
+                                   w1 * P[1][r];
+            }
+        }
+    }
+    coons__free(s);
+    return COONS_OK;
+}

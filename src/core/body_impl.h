@@ -1,0 +1,75 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* The body record and the per-type entry points, shared by the body*.c
+ * files only (seed 000 section 2). Internal. */
+#ifndef COONS_BODY_IMPL_H
+#define COONS_BODY_IMPL_H
+
+#include "basis.h"
+
+struct coons_body {
+    coons_body_type type;
+    coons_blend blend;
+    /* Corners C_ijk of T, index 4i+2j+k: body 0 the given points, body 1
+     * and body 2 the average of the sources that meet there. */
+    double corner[8][3];
+    coons_curve *edge[12]; /* body 1, in the order of body.h */
+    coons_patch *face[6];  /* body 2, in the order of body.h */
+    /* Tensor volumes (Bezier = B-spline with knots 0^(n) 1^(n)). */
+    int deg[3];
+    size_t n[3];
+    double *pts;      /* n0*n1*n2 Cartesian points, i along u */
+    double *knots[3]; /* n[d] + deg[d] + 1 values each */
+    double *w;        /* weights or NULL */
+    double lo[3], hi[3]; /* control box */
+};
+
+/* Allocates a zeroed record of the given type. */
+coons_status coons__body_alloc(coons_body_type type, coons_blend blend, coons_body **out,
+                               coons_error *err);
+
+/* T(c; u,v,w) from blend pairs bu, bv, bw (coons__blend(kind, t, 1, b)
+ * layout: b[0], b[1] the weights of the 0 and 1 sides, b[2], b[3] their
+ * derivatives) and,
+ * if d is not NULL, its three partials d[0] = d/du, d[1] = d/dv, d[2] = d/dw. */
+void coons__trilinear(const double c[8][3], const double bu[4], const double bv[4],
+                      const double bw[4], double out[3], double d[3][3]);
+
+/* *acc += n*k unless that overflows (then returns 0 and leaves *acc). */
+static inline int coons__size_addmul(size_t *acc, size_t n, size_t k)
+{
+    if (k && n > (SIZE_MAX - *acc) / k) return 0;
+    *acc += n * k;
+    return 1;
+}
+
+/* Name of an edge ("u00" .. "w11") or a face ("u0" .. "w1"). */
+const char *coons__body_edge_name(int e);
+const char *coons__body_face_name(int f);
+
+/* Per-type point (+ partials if d is not NULL: d[q] = dF/dq). Parameters
+ * are already clamped. */
+void coons__body0_eval(const coons_body *b, double u, double v, double w, double out[3],
+                       double d[3][3]);
+void coons__body1_eval(const coons_body *b, double u, double v, double w, double out[3],
+                       double d[3][3]);
+void coons__body2_eval(const coons_body *b, double u, double v, double w, double out[3],
+                       double d[3][3]);
+void coons__tensor_eval(const coons_body *b, double u, double v, double w, double out[3],
+                        double d[3][3]);
+
+/* Per-type grids: parameters are given as given (the callee clamps),
+ * sizes are non-zero and nu*nv*nw*3 does not overflow. */
+coons_status coons__body0_grid(const coons_body *b, const double *u, size_t nu,
+                               const double *v, size_t nv, const double *w, size_t nw,
+                               double *out, coons_error *err);
+coons_status coons__body1_grid(const coons_body *b, const double *u, size_t nu,
+                               const double *v, size_t nv, const double *w, size_t nw,
+                               double *out, coons_error *err);
+coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
+                               const double *v, size_t nv, const double *w, size_t nw,
+                               double *out, coons_error *err);
+coons_status coons__tensor_grid(const coons_body *b, const double *u, size_t nu,
+                                const double *v, size_t nv, const double *w, size_t nw,
+                                double *out, coons_error *err);
+
+#endif
