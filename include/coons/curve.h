@@ -111,14 +111,15 @@ COONS_EXPORT void coons_curve_free(coons_curve *c);
 /** The type the curve was built as. */
 COONS_EXPORT coons_curve_type coons_curve_get_type(const coons_curve *c);
 
-/** Point at t (t is clamped to [0,1]). */
+/** Point at t (t is clamped to [0,1]; a NaN t counts as 0). */
 COONS_EXPORT void coons_curve_eval(const coons_curve *c, double t, double out[3]);
 
 /**
  * Point and derivatives at t: out[0] = C(t), out[1] = C'(t) (if order >= 1),
  * out[2] = C''(t) (if order >= 2). order is 0, 1 or 2. Derivatives are with
  * respect to the normalised parameter t in [0,1]; at a knot the right-hand
- * derivative is returned, except at t = 1.
+ * derivative is returned, except at t = 1. t is clamped to [0,1] (NaN
+ * counts as 0), so no t makes it fail.
  */
 COONS_EXPORT void coons_curve_eval_derivs(const coons_curve *c, double t, int order,
                                           double out[][3]);

@@ -52,6 +52,7 @@ coons_status coons__knots_make(int p, size_t ncp, const double *given, const cha
         }
         k[i] = given[i];
     }
+    /* Messages quote given[], never k[]: k is freed before the message is made. */
     size_t run = 1;
     for (size_t i = 1; i < nk; i++) {
         run = (k[i] == k[i - 1]) ? run + 1 : 1;
@@ -60,14 +61,14 @@ coons_status coons__knots_make(int p, size_t ncp, const double *given, const cha
             return coons__error_set(err, COONS_E_INVALID,
                                     "%s: knot value %.17g is repeated more than degree+1 = %d "
                                     "times",
-                                    what, k[i], p + 1);
+                                    what, given[i], p + 1);
         }
     }
     if (!(k[p] < k[ncp])) {
         coons__free(k);
         return coons__error_set(err, COONS_E_INVALID,
                                 "%s: empty domain: knots[%d] = knots[%zu] = %.17g", what, p, ncp,
-                                k[p]);
+                                given[p]);
     }
     *out = k;
     return COONS_OK;

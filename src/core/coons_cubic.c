@@ -14,6 +14,16 @@
 #include "basis.h"
 #include "curve_impl.h"
 
+/* Compared by value, not memcmp: -0 and 0 are the same coordinate (a model
+ * file may well write "-0"), and the rule is about repeated points. */
+static int repeats_first_three(const double *points, size_t count)
+{
+    const double *tail = points + 3 * (count - 3);
+    for (int i = 0; i < 9; i++)
+        if (!(points[i] == tail[i])) return 0;
+    return 1;
+}
+
 coons_status coons_curve_coons_cubic(const double *points, size_t count, int closed,
                                      coons_curve **out, coons_error *err)
 {
@@ -29,8 +39,7 @@ coons_status coons_curve_coons_cubic(const double *points, size_t count, int clo
                                 COONS_MAX_CURVE_POINTS);
     if (!coons__all_finite(points, 3 * count))
         return coons__error_set(err, COONS_E_INVALID, "coons-cubic: a point is not finite");
-    if (closed && count >= 6 &&
-        memcmp(points, points + 3 * (count - 3), 9 * sizeof(double)) == 0)
+    if (closed && count >= 6 && repeats_first_three(points, count))
         return coons__error_set(err, COONS_E_INVALID,
                                 "closed coons-cubic: the last three points repeat the first "
                                 "three; give the %zu distinct points only",

@@ -79,7 +79,8 @@ static inline double bbox_diag(const double lo[3], const double hi[3])
     return v3_dist(lo, hi);
 }
 
-static inline double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
+/* NaN maps to 0: a parameter must never reach an integer conversion as NaN. */
+static inline double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
 
 /* All values of an array finite? */
 int coons__all_finite(const double *a, size_t n);
