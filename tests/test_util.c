@@ -30,26 +30,38 @@ void assert_vec3_near_impl(const double *a, const double *b, double eps, const c
 
 static long g_fail_after = -1;
 static long g_count = 0;
+static long g_live = 0;
 
 static void *t_malloc(size_t n)
 {
     if (g_fail_after >= 0 && g_count++ >= g_fail_after) return NULL;
-    return malloc(n);
+    void *p = malloc(n);
+    if (p) g_live++;
+    return p;
 }
 static void *t_realloc(void *p, size_t n)
 {
     if (g_fail_after >= 0 && g_count++ >= g_fail_after) return NULL;
-    return realloc(p, n);
+    void *q = realloc(p, n);
+    if (q && !p) g_live++;
+    return q;
+}
+static void t_free(void *p)
+{
+    if (p) g_live--;
+    free(p);
 }
 
 void coons_test_fail_after(long n)
 {
     g_fail_after = n;
     g_count = 0;
+    g_live = 0;
     if (n < 0)
         coons_set_allocator(NULL, NULL, NULL);
     else
-        coons_set_allocator(t_malloc, t_realloc, free);
+        coons_set_allocator(t_malloc, t_realloc, t_free);
 }
 
 long coons_test_alloc_count(void) { return g_count; }
+long coons_test_live_allocs(void) { return g_live; }

@@ -32,5 +32,8 @@ void assert_vec3_near_impl(const double *a, const double *b, double eps, const c
  * through the library's hooks fails; n < 0 disables. Installs itself. */
 void coons_test_fail_after(long n);
 long coons_test_alloc_count(void);
+/* Blocks allocated minus blocks freed through the hooks since the last
+ * coons_test_fail_after(n >= 0): 0 after a call that cleaned up. */
+long coons_test_live_allocs(void);
 
 #endif

@@ -50,11 +50,20 @@ typedef enum coons_twist {
  */
 #define COONS_TOL_DEFAULT 0.0
 
-/** Bilinear patch from corners X00, X10, X01, X11 (Xab = x(s=a, t=b)). */
+/** Largest control net (ns*nt points) a B-spline surface accepts (guards allocation). */
+#define COONS_MAX_PATCH_POINTS 1000000
+
+/**
+ * Bilinear patch from corners X00, X10, X01, X11 (Xab = x(s=a, t=b)).
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL or non-finite), ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_patch_bilinear(const double corners[4][3], coons_patch **out,
                                                coons_error *err);
 
-/** Ruled surface x(s,t) = (1-t) c0(s) + t c1(s) (seed 001 eq. 1.2). */
+/**
+ * Ruled surface x(s,t) = (1-t) c0(s) + t c1(s) (seed 001 eq. 1.2).
+ * @return ::COONS_OK, ::COONS_E_INVALID (a NULL curve), ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_patch_ruled(const coons_curve *c0, const coons_curve *c1,
                                             coons_patch **out, coons_error *err);
 
@@ -91,9 +100,23 @@ typedef struct coons_hermite_options {
  * Corner points and corner tangents come from the boundary curves; twists
  * from `opts->twist`. Without cross curves each cross-boundary tangent is
  * the ribbon of seed 001 eq. 1.16 built from the corner tangents and twists.
- * Given cross curves must agree with the corner tangents within `tol`.
- * @param[in] opts NULL for the defaults (no cross curves, zero twists)
- * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE, ::COONS_E_INVALID, ::COONS_E_NOMEM.
+ * Given cross curves must agree with the corner tangents within `tol`
+ * (cross.t0(0) = s0'(0), cross.t0(1) = s1'(0), cross.s0(0) = t0'(0),
+ * cross.s0(1) = t1'(0), and likewise at the far corners).
+ *
+ * Twists: ZERO, ADINI (x_st(a,b) = [s1'(b) - s0'(b)] + [t1'(a) - t0'(a)]
+ * - (X00 - X10 - X01 + X11)), BESSEL (the cell twist X00 - X10 - X01 + X11
+ * at all four corners of a single patch) or EXPLICIT. The patch takes the
+ * given cross tangents exactly (x_t(s,0) = cross.t0(s), ...) when the
+ * twists are compatible with them (x_st(0,0) = cross.t0'(0) = cross.s0'(0),
+ * and so on); otherwise x_t(s,0) differs from cross.t0(s) by
+ * H1(s) [cross.s0'(0) - x_st(0,0)] + H2(s) [cross.s1'(0) - x_st(1,0)].
+ * @param[in] opts NULL for the defaults (no cross curves, zero twists);
+ *                 `version` must be ::COONS_HERMITE_OPTIONS_VERSION; cross
+ *                 curves are all four or none.
+ * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (a corner point, or a cross
+ *         curve against a corner tangent: the message names the corner),
+ *         ::COONS_E_INVALID, ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
                                                     const coons_hermite_options *opts,
@@ -102,6 +125,8 @@ COONS_EXPORT coons_status coons_patch_hermite_coons(const coons_curve *const bou
 /**
  * Tensor-product Bezier surface; points[(i*nt + j)*3], i along s (ns >= 2
  * points), j along t (nt >= 2).
+ * @return ::COONS_OK, ::COONS_E_INVALID, ::COONS_E_LIMIT (a degree above
+ *         ::COONS_MAX_DEGREE), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_patch_bezier(const double *points, size_t ns, size_t nt,
                                              coons_patch **out, coons_error *err);
@@ -111,6 +136,11 @@ COONS_EXPORT coons_status coons_patch_bezier(const double *points, size_t ns, si
  * @param[in] knots_s,knots_t NULL for clamped uniform knots (each may be
  *            NULL independently), else ns+ps+1 and nt+pt+1 values
  * @param[in] weights NULL, or ns*nt values > 0 indexed like the points
+ *            (points stay Cartesian, never pre-multiplied)
+ * @return ::COONS_OK, ::COONS_E_INVALID (degrees outside 1..::COONS_MAX_DEGREE,
+ *         too few points, bad knots or weights, non-finite values),
+ *         ::COONS_E_LIMIT (more than ::COONS_MAX_PATCH_POINTS points),
+ *         ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_patch_bspline(int ps, int pt, const double *points, size_t ns,
                                               size_t nt, const double *knots_s,
@@ -126,13 +156,15 @@ COONS_EXPORT void coons_patch_free(coons_patch *p);
 
 COONS_EXPORT coons_patch_type coons_patch_get_type(const coons_patch *p);
 
-/** Point at (s,t), parameters clamped to [0,1]. */
+/** Point at (s,t), parameters clamped to [0,1] (NaN counts as 0). */
 COONS_EXPORT void coons_patch_eval(const coons_patch *p, double s, double t, double out[3]);
 
 /**
  * Point and partial derivatives. order 0: out[0] = x. order 1 adds
  * out[1] = x_s, out[2] = x_t. order 2 adds out[3] = x_ss, out[4] = x_st,
- * out[5] = x_tt. out must hold 1, 3 or 6 vectors.
+ * out[5] = x_tt. out must hold 1, 3 or 6 vectors. Exact for every type
+ * (NURBS by the quotient rule); at an interior knot the right-hand
+ * derivative is returned, as for curves.
  */
 COONS_EXPORT void coons_patch_eval_derivs(const coons_patch *p, double s, double t, int order,
                                           double out[][3]);
@@ -140,8 +172,11 @@ COONS_EXPORT void coons_patch_eval_derivs(const coons_patch *p, double s, double
 /**
  * Evaluates the patch on the tensor grid s[0..ns-1] x t[0..nt-1] into
  * out[(i*nt + j)*3]. Basis and blending values are computed once per
- * parameter line.
- * @return ::COONS_OK or ::COONS_E_NOMEM (scratch memory).
+ * parameter line (O(ns + nt) curve evaluations), so a grid costs little
+ * more than its ns*nt sums; the values are bitwise those of
+ * coons_patch_eval(). One scratch allocation per call.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL arrays with ns, nt > 0),
+ *         ::COONS_E_NOMEM (scratch memory).
  */
 COONS_EXPORT coons_status coons_patch_eval_grid(const coons_patch *p, const double *s,
                                                 size_t ns, const double *t, size_t nt,

@@ -1,0 +1,190 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * Bicubically blended (Hermite) Coons patch, seed 001 section 1.2.1:
+ * x = h_c + h_d - h_cd (eq. 1.13, 1.14, 1.15) with the cubic Hermite basis
+ * H0..H3. Seed 001's (u,v) are our (s,t).
+ *
+ * Corner points are the averaged boundary corners; corner tangents come
+ * from the boundary curves (x_s(0,0) = t0'(0), x_t(0,0) = s0'(0), ...),
+ * twists from the option (section 1.2.2: Ferguson/zero, Adini, Bessel,
+ * explicit). Missing cross-boundary tangents are the ribbons of eq. 1.16,
+ * e.g. x_t(s,0) = x_t(0,0) H0(s) + x_st(0,0) H1(s) + x_st(1,0) H2(s) +
+ * x_t(1,0) H3(s), which is row/column of the eq. 1.15 matrix blended by H:
+ * such a ribbon cancels against h_cd exactly (see hermite_sline).
+ */
+#include <string.h>
+
+#include "basis.h"
+#include "patch_impl.h"
+
+static const char *const cross_name[4] = {"t0", "t1", "s0", "s1"};
+
+coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
+                                       const coons_hermite_options *opts, coons_patch **out,
+                                       coons_error *err)
+{
+    if (!out) return coons__error_set(err, COONS_E_INVALID, "hermite-coons patch: out is NULL");
+    *out = NULL;
+    const coons_hermite_options defaults = COONS_HERMITE_OPTIONS_INIT;
+    if (!opts) opts = &defaults;
+    if (opts->version != COONS_HERMITE_OPTIONS_VERSION)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "hermite-coons patch: options version %u, expected %d",
+                                opts->version, COONS_HERMITE_OPTIONS_VERSION);
+    if ((int)opts->twist < (int)COONS_TWIST_ZERO || (int)opts->twist > (int)COONS_TWIST_EXPLICIT)
+        return coons__error_set(err, COONS_E_INVALID, "hermite-coons patch: unknown twist %d",
+                                (int)opts->twist);
+    if (opts->twist == COONS_TWIST_EXPLICIT)
+        for (int k = 0; k < 4; k++)
+            if (!v3_finite(opts->twists[k]))
+                return coons__error_set(err, COONS_E_INVALID,
+                                        "hermite-coons patch: twist x_st(%d,%d) is not finite",
+                                        k & 1, k >> 1);
+    int ncross = 0;
+    for (int k = 0; k < 4; k++) ncross += opts->cross[k] != NULL;
+    if (ncross != 0 && ncross != 4)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "hermite-coons patch: give all four cross curves or none "
+                                "(%d given)",
+                                ncross);
+
+    double X[4][3], tol;
+    coons_status rc = coons__patch_corners(boundary, opts->tol, X, &tol, err);
+    if (rc) return rc;
+
+    /* Corner tangents, index a + 2b like the corners. */
+    double xs[4][3], xt[4][3], r[2][3];
+    for (int k = 0; k < 4; k++) {
+        int a = k & 1, b = k >> 1;
+        coons_curve_eval_derivs(boundary[b ? COONS_T1 : COONS_T0], (double)a, 1, r);
+        v3_copy(xs[k], r[1]);
+        coons_curve_eval_derivs(boundary[a ? COONS_S1 : COONS_S0], (double)b, 1, r);
+        v3_copy(xt[k], r[1]);
+    }
+
+    if (ncross) {
+        /* cross t0/t1 = x_t(s,b) at s = 0,1; cross s0/s1 = x_s(a,t) at t = 0,1. */
+        static const char *const tname[4] = {"s0'(0)", "s1'(0)", "s0'(1)", "s1'(1)"};
+        static const char *const sname[4] = {"t0'(0)", "t0'(1)", "t1'(0)", "t1'(1)"};
+        for (int c = 0; c < 4; c++) {
+            for (int e = 0; e < 2; e++) {
+                int k = c < 2 ? e + 2 * c : (c - 2) + 2 * e;
+                const double *want = c < 2 ? xt[k] : xs[k];
+                double got[3];
+                coons_curve_eval(opts->cross[c], (double)e, got);
+                double d = v3_dist(got, want);
+                if (!(d <= tol))
+                    return coons__error_set(
+                        err, COONS_E_INCOMPATIBLE,
+                        "corner (s=%d,t=%d): cross %s(%d) and the boundary tangent %s are "
+                        "%g apart (tolerance %g)",
+                        k & 1, k >> 1, cross_name[c], e, c < 2 ? tname[k] : sname[k], d, tol);
+            }
+        }
+    }
+
+    double tw[4][3] = {{0}};
+    double cell[3];
+    v3_sub(cell, X[0], X[1]);
+    v3_sub(cell, cell, X[2]);
+    v3_add(cell, cell, X[3]);
+    for (int k = 0; k < 4; k++) {
+        int a = k & 1, b = k >> 1;
+        switch (opts->twist) {
+        case COONS_TWIST_ADINI: {
+            /* [s1'(b) - s0'(b)] + [t1'(a) - t0'(a)] - cell: the x_st of eq. 1.11 */
+            double ds[3], dt[3];
+            v3_sub(ds, xt[1 + 2 * b], xt[2 * b]);
+            v3_sub(dt, xs[2 + a], xs[a]);
+            v3_add(tw[k], ds, dt);
+            v3_sub(tw[k], tw[k], cell);
+            break;
+        }
+        case COONS_TWIST_BESSEL: v3_copy(tw[k], cell); break;
+        case COONS_TWIST_EXPLICIT: v3_copy(tw[k], opts->twists[k]); break;
+        default: break;
+        }
+    }
+
+    coons_patch *p = NULL;
+    if ((rc = coons__patch_alloc(COONS_PATCH_HERMITE_COONS, &p, err))) return rc;
+    p->n = 4;
+    p->twist = opts->twist;
+    for (int k = 0; k < 4 && !rc; k++) {
+        rc = coons_curve_copy(boundary[k], &p->curve[k], err);
+        if (!rc && ncross) rc = coons_curve_copy(opts->cross[k], &p->cross[k], err);
+    }
+    if (rc) {
+        coons_patch_free(p);
+        return rc;
+    }
+    memcpy(p->corner, X, sizeof X);
+    /* eq. 1.15: rows x(0,.), x_s(0,.), x_s(1,.), x(1,.); columns
+     * .(.,0), ._t(.,0), ._t(.,1), .(.,1). */
+    const double *rows[4][4] = {
+        {X[0], xt[0], xt[2], X[2]},
+        {xs[0], tw[0], tw[2], xs[2]},
+        {xs[1], tw[1], tw[3], xs[3]},
+        {X[1], xt[1], xt[3], X[3]},
+    };
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) v3_copy(p->M[i][j], rows[i][j]);
+    *out = p;
+    return COONS_OK;
+}
+
+static void line_curve(coons__pline *L, int m, const coons_curve *c, double x, int order)
+{
+    double r[3][3];
+    coons_curve_eval_derivs(c, x, order, r);
+    for (int d = 0; d <= order; d++) v3_copy(coons__lv(L, d, m), r[d]);
+}
+
+void coons__hermite_sline(const coons_patch *p, double s, int order, coons__pline *L)
+{
+    memset(L, 0, sizeof *L);
+    L->n = 4;
+    L->order = order;
+    double H[12];
+    coons__hermite_basis(s, order, H);
+    /* Tv = t0(s), x_t(s,0), x_t(s,1), t1(s); W = Tv - H(s) M. Without cross
+     * curves the middle two Tv are the ribbons H(s) M[.][1..2] of eq. 1.16
+     * and W is zero there. */
+    line_curve(L, 0, p->curve[COONS_T0], s, order);
+    line_curve(L, 3, p->curve[COONS_T1], s, order);
+    if (p->cross[0]) {
+        line_curve(L, 1, p->cross[0], s, order);
+        line_curve(L, 2, p->cross[1], s, order);
+    }
+    for (int d = 0; d <= order; d++) {
+        for (int i = 0; i < 4; i++) L->b[d][i] = H[4 * d + i];
+        for (int m = 0; m < 4; m++) {
+            if (!p->cross[0] && (m == 1 || m == 2)) continue;
+            for (int i = 0; i < 4; i++) v3_axpy(coons__lv(L, d, m), -H[4 * d + i], p->M[i][m]);
+        }
+    }
+}
+
+void coons__hermite_tline(const coons_patch *p, double t, int order, coons__pline *L)
+{
+    memset(L, 0, sizeof *L);
+    L->n = 4;
+    L->order = order;
+    double H[12];
+    coons__hermite_basis(t, order, H);
+    /* Sv = s0(t), x_s(0,t), x_s(1,t), s1(t); ribbons x_s(a,t) = M[1 or 2][.] H(t). */
+    line_curve(L, 0, p->curve[COONS_S0], t, order);
+    line_curve(L, 3, p->curve[COONS_S1], t, order);
+    if (p->cross[2]) {
+        line_curve(L, 1, p->cross[2], t, order);
+        line_curve(L, 2, p->cross[3], t, order);
+    }
+    for (int d = 0; d <= order; d++) {
+        for (int j = 0; j < 4; j++) L->b[d][j] = H[4 * d + j];
+        if (!p->cross[2])
+            for (int j = 0; j < 4; j++) {
+                v3_axpy(coons__lv(L, d, 1), H[4 * d + j], p->M[1][j]);
+                v3_axpy(coons__lv(L, d, 2), H[4 * d + j], p->M[2][j]);
+            }
+    }
+}
