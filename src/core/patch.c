@@ -57,7 +57,7 @@ coons_status coons_patch_copy(const coons_patch *p, coons_patch **out, coons_err
         if (p->curve[k]) rc = coons_curve_copy(p->curve[k], &d->curve[k], err);
         if (!rc && p->cross[k]) rc = coons_curve_copy(p->cross[k], &d->cross[k], err);
     }
-    if (!rc && p->pts) rc = coons__tensor_copy(p, d, err);
+    if (!rc && p->pts) rc = coons__surface_copy(p, d, err);
     if (rc) {
         coons_patch_free(d);
         return rc;
@@ -137,7 +137,7 @@ void coons_patch_eval_derivs(const coons_patch *p, double s, double t, int order
     s = coons__param01(s);
     t = coons__param01(t);
     if (p->pts) {
-        coons__tensor_eval(p, s, t, order, out);
+        coons__surface_eval(p, s, t, order, out);
         return;
     }
     coons__pline S, T;
@@ -186,7 +186,7 @@ coons_status coons_patch_eval_grid(const coons_patch *p, const double *s, size_t
     if (ns == 0 || nt == 0) return COONS_OK;
     if (!s || !t || !out)
         return coons__error_set(err, COONS_E_INVALID, "patch grid: NULL parameter or output array");
-    if (p->pts) return coons__tensor_grid(p, s, ns, t, nt, out, err);
+    if (p->pts) return coons__surface_grid(p, s, ns, t, nt, out, err);
 
     double *cache = coons__malloc_array(nt, TLINE_DOUBLES * sizeof(double));
     if (!cache) return coons__error_nomem(err);

@@ -69,10 +69,10 @@ void coons__hermite_sline(const coons_patch *p, double s, int order, coons__plin
 void coons__hermite_tline(const coons_patch *p, double t, int order, coons__pline *L);
 
 /* Tensor-product surfaces (tensor_surface.c). */
-void coons__tensor_eval(const coons_patch *p, double s, double t, int order, double out[][3]);
-coons_status coons__tensor_grid(const coons_patch *p, const double *s, size_t ns,
+void coons__surface_eval(const coons_patch *p, double s, double t, int order, double out[][3]);
+coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t ns,
                                 const double *t, size_t nt, double *out, coons_error *err);
-coons_status coons__tensor_copy(const coons_patch *p, coons_patch *d, coons_error *err);
+coons_status coons__surface_copy(const coons_patch *p, coons_patch *d, coons_error *err);
 
 /* Parameter clamped to [0,1]; NaN gives 0 (evaluators cannot fail). */
 static inline double coons__param01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }

@@ -43,7 +43,7 @@ static inline void sum_rows(int dim, int deg, const double *N, const double *P, 
     for (int c = 0; c < dim; c++) R[c] = acc[c];
 }
 
-void coons__tensor_eval(const coons_patch *p, double s, double t, int order, double out[][3])
+void coons__surface_eval(const coons_patch *p, double s, double t, int order, double out[][3])
 {
     const int ps = p->ps, pt = p->pt, dim = p->pw ? 4 : 3;
     const double *P = p->pw ? p->pw : p->pts;
@@ -96,7 +96,7 @@ void coons__tensor_eval(const coons_patch *p, double s, double t, int order, dou
 
 _Static_assert(_Alignof(size_t) <= _Alignof(double), "size_t packed after doubles");
 
-coons_status coons__tensor_grid(const coons_patch *p, const double *s, size_t ns,
+coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t ns,
                                 const double *t, size_t nt, double *out, coons_error *err)
 {
     const int ps = p->ps, pt = p->pt, dim = p->pw ? 4 : 3;
@@ -142,7 +142,7 @@ coons_status coons__tensor_grid(const coons_patch *p, const double *s, size_t ns
     return COONS_OK;
 }
 
-coons_status coons__tensor_copy(const coons_patch *p, coons_patch *d, coons_error *err)
+coons_status coons__surface_copy(const coons_patch *p, coons_patch *d, coons_error *err)
 {
     size_t n = p->ns * p->nt;
     d->pts = coons__memdup(p->pts, 3 * n, sizeof(double));
