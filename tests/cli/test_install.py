@@ -1,0 +1,204 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Installs the build into a temporary prefix and uses it as a client would.
+
+tests/api/consumer.c (includes only <coons.h>, checks values it computes
+itself) is built against the installed files
+  (a) with `pkg-config --cflags --libs coons` and the shared library,
+  (b) with `pkg-config --static` against libcoons.a,
+  (c) with a CMake project using find_package(coons) and coons::coons /
+      coons::coons_static (and once more with OpenMesh's CMake package
+      hidden, so the static target's plain-name dependencies are used),
+and each executable is run. Also checks that the shared library exports
+only coons_* symbols, its soname, the installed headers, man pages and
+CMake version file.
+
+Usage: test_install.py --bin <coons2stl> --src <source dir> --build <build dir>
+"""
+import argparse
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+PASSED = 0
+FAILED = 0
+
+
+def check(name, ok, detail=""):
+    global PASSED, FAILED
+    if ok:
+        PASSED += 1
+        print(f"ok   {name}")
+    else:
+        FAILED += 1
+        print(f"FAIL {name}" + (f"\n{detail}" if detail else ""))
+    return ok
+
+
+def run(cmd, env=None, cwd=None):
+    """Runs cmd; returns (returncode, combined output)."""
+    p = subprocess.run(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True)
+    return p.returncode, p.stdout
+
+
+def cache_value(build, key):
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as f:
+            for line in f:
+                m = re.match(rf"^{re.escape(key)}:[A-Z]+=(.*)$", line.strip())
+                if m:
+                    return m.group(1)
+    except OSError:
+        pass
+    return None
+
+
+def header_version(build):
+    with open(os.path.join(build, "include", "coons", "version.h")) as f:
+        text = f.read()
+    parts = [int(re.search(rf"#define COONS_VERSION_{k} (\d+)", text).group(1))
+             for k in ("MAJOR", "MINOR", "PATCH")]
+    return parts
+
+
+def needed(exe):
+    rc, out = run(["readelf", "-d", exe])
+    return re.findall(r"\(NEEDED\)\s+Shared library: \[([^\]]+)\]", out) if rc == 0 else []
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", default="")
+    ap.add_argument("--src", required=True)
+    ap.add_argument("--build", required=True)
+    args = ap.parse_args()
+    src, build = os.path.abspath(args.src), os.path.abspath(args.build)
+    consumer = os.path.join(src, "tests", "api", "consumer.c")
+    cc = os.environ.get("CC", "cc")
+    cflags = ["-std=c11", "-Wall", "-Wextra", "-Wpedantic", "-Werror"]
+    major, minor, patch = header_version(build)
+
+    tmp = tempfile.mkdtemp(prefix="coons-install-")
+    try:
+        prefix = os.path.join(tmp, "prefix")
+        rc, out = run(["cmake", "--install", build, "--prefix", prefix])
+        if not check("cmake --install", rc == 0, out):
+            return
+        libs = glob.glob(os.path.join(prefix, "lib*", "**", "libcoons.so"), recursive=True)
+        if not check("libcoons.so installed", len(libs) == 1, str(libs)):
+            return
+        libdir = os.path.dirname(libs[0])
+        check("libcoons.a installed", os.path.isfile(os.path.join(libdir, "libcoons.a")))
+
+        # Headers: the umbrella, every public header and the generated ones.
+        inc = os.path.join(prefix, "include")
+        want = ["coons.h"] + [os.path.join("coons", os.path.basename(h)) for h in
+                              glob.glob(os.path.join(src, "include", "coons", "*.h"))]
+        want += [os.path.join("coons", "version.h"), os.path.join("coons", "export.h")]
+        missing = [h for h in want if not os.path.isfile(os.path.join(inc, h))]
+        check("public headers installed", not missing, f"missing: {missing}")
+
+        # Man pages: every page of man/manN lands in share/man/manN.
+        pages = glob.glob(os.path.join(src, "man", "man[0-9]", "*.[0-9]"))
+        mandir = cache_value(build, "CMAKE_INSTALL_MANDIR") or "share/man"
+        missing = [p for p in pages if not os.path.isfile(os.path.join(
+            prefix, mandir, os.path.basename(os.path.dirname(p)), os.path.basename(p)))]
+        check(f"{len(pages)} man pages installed", not missing, f"missing: {missing}")
+
+        # Soname: the major version (STYLE item 13).
+        rc, out = run(["readelf", "-d", libs[0]])
+        check(f"soname is libcoons.so.{major}", f"[libcoons.so.{major}]" in out, out)
+
+        # Only coons_* is exported (STYLE item 14), from the build and the install.
+        for lib in (os.path.join(build, "src", "libcoons.so"), libs[0]):
+            rc, out = run(["nm", "-D", "--defined-only", lib])
+            syms = [ln.split()[-1] for ln in out.splitlines() if ln.strip()]
+            bad = [s for s in syms if not s.startswith("coons_")]
+            check(f"{os.path.relpath(lib, tmp if lib.startswith(tmp) else build)} exports "
+                  f"only coons_* ({len(syms)} symbols)",
+                  rc == 0 and syms and not bad, f"rc={rc} foreign: {bad[:20]}")
+
+        pcdirs = sorted({os.path.dirname(p) for p in glob.glob(
+            os.path.join(prefix, "**", "coons.pc"), recursive=True)})
+        if not check("coons.pc installed", len(pcdirs) == 1, str(pcdirs)):
+            return
+        env = dict(os.environ, PKG_CONFIG_PATH=pcdirs[0])
+        rc, ver = run(["pkg-config", "--modversion", "coons"], env=env)
+        check("pkg-config --modversion", ver.strip() == f"{major}.{minor}.{patch}", ver)
+
+        # (a) shared, through pkg-config.
+        rc, flags = run(["pkg-config", "--cflags", "--libs", "coons"], env=env)
+        exe = os.path.join(tmp, "consumer_shared")
+        rc, out = run([cc] + cflags + [consumer, "-o", exe] + flags.split())
+        if check("(a) build with pkg-config --cflags --libs", rc == 0, flags + out):
+            check("(a) executable needs libcoons.so", f"libcoons.so.{major}" in needed(exe))
+            renv = dict(os.environ, LD_LIBRARY_PATH=libdir)
+            rc, out = run([exe], env=renv)
+            check("(a) run", rc == 0, out)
+
+        # (b) static, through pkg-config --static: -lcoons would pick the .so,
+        # so ask the linker for the archive by name.
+        rc, flags = run(["pkg-config", "--static", "--cflags", "--libs", "coons"], env=env)
+        sflags = ["-l:libcoons.a" if f == "-lcoons" else f for f in flags.split()]
+        exe = os.path.join(tmp, "consumer_static")
+        rc, out = run([cc] + cflags + [consumer, "-o", exe] + sflags)
+        if check("(b) build with pkg-config --static", rc == 0, flags + out):
+            check("(b) executable does not need libcoons.so",
+                  not any(n.startswith("libcoons") for n in needed(exe)), str(needed(exe)))
+            rc, out = run([exe])
+            check("(b) run", rc == 0, out)
+
+        # (c) CMake: find_package(coons) -> coons::coons, coons::coons_static.
+        proj = os.path.join(tmp, "cmake-consumer")
+        os.makedirs(proj)
+        with open(os.path.join(proj, "CMakeLists.txt"), "w") as f:
+            f.write(f"""cmake_minimum_required(VERSION 3.18)
+project(consumer C)
+# SameMajorVersion: the next major must not be accepted.
+find_package(coons {major + 1} CONFIG QUIET)
+if(coons_FOUND)
+  message(FATAL_ERROR "find_package(coons {major + 1}) accepted version ${{coons_VERSION}}")
+endif()
+find_package(coons {major}.{minor} CONFIG REQUIRED)
+if(NOT coons_VERSION STREQUAL "{major}.{minor}.{patch}")
+  message(FATAL_ERROR "coons_VERSION is ${{coons_VERSION}}")
+endif()
+add_executable(consumer_shared {consumer})
+target_link_libraries(consumer_shared PRIVATE coons::coons)
+add_executable(consumer_static {consumer})
+target_link_libraries(consumer_static PRIVATE coons::coons_static)
+""")
+        gen = ["-G", "Ninja"] if shutil.which("ninja") else []
+        for variant, extra in (("", []),
+                               (" without OpenMesh's package",
+                                ["-DCMAKE_DISABLE_FIND_PACKAGE_OpenMesh=ON"])):
+            bdir = os.path.join(tmp, "cmake-build" + ("-noom" if extra else ""))
+            rc, out = run(["cmake", "-S", proj, "-B", bdir, "-DCMAKE_PREFIX_PATH=" + prefix,
+                           "-DCMAKE_C_FLAGS=" + " ".join(cflags)] + gen + extra)
+            if not check(f"(c) configure with find_package(coons){variant}", rc == 0, out):
+                continue
+            targets = ["consumer_shared", "consumer_static"] if not extra else ["consumer_static"]
+            rc, out = run(["cmake", "--build", bdir, "--target"] + targets)
+            if not check(f"(c) build {' '.join(targets)}{variant}", rc == 0, out):
+                continue
+            for t in targets:
+                exe = os.path.join(bdir, t)
+                is_static = t.endswith("static")
+                check(f"(c) {t} links libcoons {'statically' if is_static else 'shared'}",
+                      any(n.startswith("libcoons") for n in needed(exe)) != is_static,
+                      str(needed(exe)))
+                rc, out = run([exe])  # the shared one finds the library via its RPATH
+                check(f"(c) run {t}{variant}", rc == 0, out)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
+    print(f"{PASSED} passed, {FAILED} failed")
+    sys.exit(1 if FAILED else 0)
