@@ -96,30 +96,15 @@ void coons__surface_eval(const coons_patch *p, double s, double t, int order, do
 
 _Static_assert(_Alignof(size_t) <= _Alignof(double), "size_t packed after doubles");
 
-coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t ns,
-                                const double *t, size_t nt, double *out, coons_error *err)
+/* The grid for a constant dim (3: polynomial, 4: homogeneous), so that
+ * sum_rows unrolls; same sums in the same order as coons__surface_eval. */
+static inline void grid_lines(int dim, const coons_patch *p, const double *P, const double *s,
+                              size_t ns, size_t nt, const double *Nt, const size_t *ft,
+                              double *R, double *out)
 {
-    const int ps = p->ps, pt = p->pt, dim = p->pw ? 4 : 3;
-    const double *P = p->pw ? p->pw : p->pts;
-    const size_t q1 = (size_t)pt + 1, nct = p->nt;
-    /* Scratch: t-basis per grid column, one s-combined net column per
-     * control column, and the first t-index per grid column. */
-    size_t nd = 0;
-    if (nt > SIZE_MAX / q1 || nct > SIZE_MAX / 4) return coons__error_nomem(err);
-    nd = nt * q1;
-    if (nd > SIZE_MAX - nct * 4) return coons__error_nomem(err);
-    nd += nct * (size_t)dim;
-    size_t bytes_d = nd * sizeof(double);
-    if (nd > SIZE_MAX / sizeof(double) || nt > (SIZE_MAX - bytes_d) / sizeof(size_t))
-        return coons__error_nomem(err);
-    double *scratch = coons__malloc(bytes_d + nt * sizeof(size_t));
-    if (!scratch) return coons__error_nomem(err);
-    double *Nt = scratch, *R = scratch + nt * q1;
-    size_t *ft = (size_t *)(void *)(scratch + nd);
-
-    for (size_t j = 0; j < nt; j++) ft[j] = basis(p, 1, coons__param01(t[j]), 0, Nt + j * q1);
+    const int ps = p->ps, pt = p->pt;
+    const size_t q1 = (size_t)pt + 1, nct = p->nt, stride = nct * (size_t)dim;
     double Ns[MAXB];
-    size_t stride = nct * (size_t)dim;
     for (size_t i = 0; i < ns; i++) {
         size_t fs = basis(p, 0, coons__param01(s[i]), 0, Ns);
         const double *row = P + fs * stride;
@@ -138,6 +123,33 @@ coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t n
             }
         }
     }
+}
+
+
+coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t ns,
+                                const double *t, size_t nt, double *out, coons_error *err)
+{
+    const int pt = p->pt, dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    const size_t q1 = (size_t)pt + 1, nct = p->nt;
+    /* Scratch: t-basis per grid column, one s-combined net column per
+     * control column, and the first t-index per grid column. */
+    /* nct * 4 doubles is small (the net passed COONS_MAX_PATCH_POINTS);
+     * only nt can overflow the byte count. */
+    const size_t per_col = q1 * sizeof(double) + sizeof(size_t);
+    const size_t fixed = nct * 4 * sizeof(double);
+    if (nt > (SIZE_MAX - fixed) / per_col) return coons__error_nomem(err);
+    const size_t nd = nt * q1 + nct * (size_t)dim, bytes_d = nd * sizeof(double);
+    double *scratch = coons__malloc(bytes_d + nt * sizeof(size_t));
+    if (!scratch) return coons__error_nomem(err);
+    double *Nt = scratch, *R = scratch + nt * q1;
+    size_t *ft = (size_t *)(void *)(scratch + nd);
+
+    for (size_t j = 0; j < nt; j++) ft[j] = basis(p, 1, coons__param01(t[j]), 0, Nt + j * q1);
+    if (dim == 3)
+        grid_lines(3, p, P, s, ns, nt, Nt, ft, R, out);
+    else
+        grid_lines(4, p, P, s, ns, nt, Nt, ft, R, out);
     coons__free(scratch);
     return COONS_OK;
 }
