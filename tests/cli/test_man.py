@@ -149,7 +149,9 @@ def main():
     missing = sorted(exported_functions(src) - documented_functions(man3))
     check(f"every COONS_EXPORT function has .Fn/.Fo in man3 "
           f"({len(exported_functions(src))} functions)", not missing,
-          "undocumented: " + ", ".join(missing))
+          "undocumented: " + ", ".join(missing) +
+          "\n  -> add each to man/man3/libcoons.3: its prototype (.Ft/.Fo/.Fa/.Fc) in"
+          "\n     SYNOPSIS and a .It Fn entry in its family under DESCRIPTION")
     stale = sorted(f for f in documented_functions(man3) - exported_functions(src)
                    if f.startswith("coons_") and "_X_" not in f)
     check("man3 documents no function the headers lack", not stale,
