@@ -171,7 +171,8 @@ COONS_EXPORT void coons_patch_eval_derivs(const coons_patch *p, double s, double
 
 /**
  * Evaluates the patch on the tensor grid s[0..ns-1] x t[0..nt-1] into
- * out[(i*nt + j)*3]. Basis and blending values are computed once per
+ * out[(i*nt + j)*3] (out holds 3*ns*nt doubles); parameters are clamped as
+ * in coons_patch_eval(). Basis and blending values are computed once per
  * parameter line (O(ns + nt) curve evaluations), so a grid costs little
  * more than its ns*nt sums; the values are bitwise those of
  * coons_patch_eval(). One scratch allocation per call.
@@ -182,7 +183,11 @@ COONS_EXPORT coons_status coons_patch_eval_grid(const coons_patch *p, const doub
                                                 size_t ns, const double *t, size_t nt,
                                                 double *out, coons_error *err);
 
-/** Box of the patch's control data (its curves' or net's control points), used to scale tolerances. */
+/**
+ * Box of the patch's control data, used to scale tolerances: the corners
+ * (bilinear), the control points of the boundary curves (ruled, Coons,
+ * Hermite Coons; not the cross curves, which carry tangents) or the net.
+ */
 COONS_EXPORT void coons_patch_control_bbox(const coons_patch *p, double lo[3], double hi[3]);
 
 #ifdef __cplusplus
