@@ -26,5 +26,6 @@
 #include "coons/body.h"
 #include "coons/model.h"
 #include "coons/mesh.h"
+#include "coons/csg.h"
 
 #endif

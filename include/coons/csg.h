@@ -1,0 +1,111 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/**
+ * @file coons/csg.h
+ * @brief Repair and union of body shells into valid solids (CGAL layer).
+ *
+ * A body's solid is the set of points around which its boundary surface has
+ * a non-zero winding number (model format, "Solids and outputs"). A sampled
+ * shell of a folded body crosses itself; these functions return the
+ * boundary of the solid it bounds, and of the union of several solids.
+ *
+ * Method (one exact pass): all shells are put into one triangle soup over
+ * CGAL's exact-constructions kernel, exactly-degenerate triangles are
+ * dropped, the soup is autorefined (every intersection becomes a mesh edge),
+ * the refined surface is cut into patches along the intersection curves,
+ * and each patch is classified by exact ray casting: it is kept when the
+ * winding numbers on its two sides (per body) make exactly one side belong to
+ * a solid, and it is oriented towards the other side. Coincident patches
+ * (bodies sharing a face) are classified together, so shared faces vanish.
+ * The result is rounded to doubles once, and the rounded mesh is checked
+ * again for self-intersections with exact predicates; a rounding that
+ * creates an intersection is an error, never a silent result.
+ *
+ * Available only when libcoons is built with CGAL (GPL-3.0-or-later);
+ * otherwise every function returns ::COONS_E_UNSUPPORTED.
+ * Memory of the C++ layer is not allocated through coons_set_allocator().
+ */
+#ifndef COONS_CSG_H
+#define COONS_CSG_H
+
+#include "coons/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * Progress callback: `stage` names the step ("autorefine", "classify",
+ * "check", ...), `fraction` in [0,1] is the share of all work done. Called
+ * from the calling thread; must not call back into the library.
+ */
+typedef void (*coons_progress_fn)(void *userdata, const char *stage, double fraction);
+
+/** Options of coons_mesh_solidify(). Initialise with ::COONS_CSG_OPTIONS_INIT. */
+typedef struct coons_csg_options {
+    unsigned version;           /**< ::COONS_CSG_OPTIONS_VERSION */
+    int unite;                  /**< nonzero: unite all parts into one solid */
+    const char *name;           /**< name of the united part (NULL: "union") */
+    coons_progress_fn progress; /**< NULL: no progress reports */
+    void *userdata;             /**< passed to progress */
+    int inject_failure;         /**< testing: nonzero makes the CGAL step throw */
+} coons_csg_options;
+
+#define COONS_CSG_OPTIONS_VERSION 1
+#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 0, 0, 0, 0}
+
+/** What coons_mesh_solidify() found and did. */
+typedef struct coons_csg_report {
+    size_t triangles_in;        /**< triangles of the input */
+    size_t degenerate_dropped;  /**< zero-area triangles dropped */
+    size_t intersecting_pairs;  /**< self-intersecting triangle pairs found in the input */
+    size_t parts_in;            /**< input parts (bodies) */
+    size_t groups;              /**< groups of parts whose bounding boxes overlap */
+    size_t passed_through;      /**< parts that needed no Boolean work */
+    size_t patches;             /**< patches classified by ray casting */
+    size_t patches_kept;        /**< of which kept */
+    size_t triangles_out;       /**< triangles of the result */
+    size_t rounding_merged;     /**< vertices merged by rounding to double */
+    int closed;                 /**< the result has no border edge */
+    size_t nonmanifold_edges;   /**< edges with more than two faces in the result */
+} coons_csg_report;
+
+/**
+ * Turns the parts of `in` (closed shells, one per body, possibly crossing
+ * themselves or each other) into valid solids: each part repaired on its
+ * own (`opts->unite` = 0), or all united into one part. Parts whose
+ * bounding boxes meet nothing else and that do not cross themselves pass
+ * through unchanged.
+ * @param[in]  opts   NULL for ::COONS_CSG_OPTIONS_INIT
+ * @param[out] out    the new mesh (caller frees)
+ * @param[out] report may be NULL
+ * @return ::COONS_OK; ::COONS_E_CSG when CGAL cannot complete (the message
+ *         names the parts and the reason); ::COONS_E_UNSUPPORTED without
+ *         CGAL; ::COONS_E_NOMEM; ::COONS_E_INTERNAL.
+ */
+COONS_EXPORT coons_status coons_mesh_solidify(const coons_mesh *in, const coons_csg_options *opts,
+                                              coons_mesh **out, coons_csg_report *report,
+                                              coons_error *err);
+
+/**
+ * Counts pairs of triangles of `m` that intersect other than along shared
+ * edges or at shared vertices (CGAL's does_self_intersect, exact
+ * predicates on the double coordinates).
+ * @return ::COONS_OK, ::COONS_E_UNSUPPORTED without CGAL, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs,
+                                                        coons_error *err);
+
+/**
+ * As coons_mesh_self_intersections(), after rounding every coordinate to
+ * float32 as binary STL stores it.
+ */
+COONS_EXPORT coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                              coons_error *err);
+
+/** 1 when the library was built with CGAL (repair and union available). */
+COONS_EXPORT int coons_csg_available(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

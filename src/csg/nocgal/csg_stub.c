@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Built when libcoons is configured without CGAL: repair and union are not
+ * available, and say so. */
+#include "coons_internal.h"
+
+static coons_status unavailable(coons_error *err)
+{
+    return coons__error_set(err, COONS_E_UNSUPPORTED,
+                            "repair and union need CGAL: this libcoons was built with "
+                            "COONS_WITH_CGAL=OFF");
+}
+
+coons_status coons_mesh_solidify(const coons_mesh *in, const coons_csg_options *opts,
+                                 coons_mesh **out, coons_csg_report *report, coons_error *err)
+{
+    (void)in;
+    (void)opts;
+    (void)report;
+    *out = NULL;
+    return unavailable(err);
+}
+
+coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
+{
+    (void)m;
+    *pairs = 0;
+    return unavailable(err);
+}
+
+coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                 coons_error *err)
+{
+    (void)m;
+    *pairs = 0;
+    return unavailable(err);
+}
+
+int coons_csg_available(void) { return 0; }
