@@ -35,6 +35,7 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <cmath>
@@ -57,7 +58,6 @@ typedef CGAL::Exact_predicates_exact_constructions_kernel EK;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel IK;
 typedef EK::Point_3 EPoint;
 typedef CGAL::Surface_mesh<EPoint> EMesh;
-typedef CGAL::Surface_mesh<IK::Point_3> IMesh;
 typedef EMesh::Face_index EFace;
 typedef EMesh::Vertex_index EVert;
 
@@ -109,42 +109,78 @@ struct BodyVisitor : PMP::Corefinement::Default_visitor<EMesh> {
     void after_subface_created(EFace f, EMesh &) { (*body)[f] = *parent; }
 };
 
-// Builds a halfedge mesh from triangles, keeping each triangle's
-// orientation: a triangle that cannot join the connected surface (a
-// non-manifold edge or vertex) gets vertices of its own.
-template <class Mesh, class MakePoint>
-void build_mesh(Mesh &m, size_t nv, const uint32_t *tri, size_t nt, MakePoint make_point,
-                size_t *dropped)
+// Is e (in the plane of v, c, d) in the closed angle c-v-d, off v?
+bool in_wedge(const IK::Point_3 &v, const IK::Point_3 &c, const IK::Point_3 &d,
+              const IK::Point_3 &e)
 {
-    typedef typename Mesh::Vertex_index V;
-    std::vector<V> vs(nv);
-    std::vector<typename Mesh::Point> pts;
-    pts.reserve(nv);
-    for (size_t i = 0; i < nv; i++) {
-        pts.push_back(make_point(i));
-        vs[i] = m.add_vertex(pts.back());
-    }
-    for (size_t t = 0; t < nt; t++) {
-        uint32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-        if (a == b || b == c || a == c || CGAL::collinear(pts[a], pts[b], pts[c])) {
-            if (dropped) (*dropped)++;
-            continue;
-        }
-        if (m.add_face(vs[a], vs[b], vs[c]) == Mesh::null_face()) {
-            V x = m.add_vertex(pts[a]), y = m.add_vertex(pts[b]), z = m.add_vertex(pts[c]);
-            m.add_face(x, y, z);
-        }
-    }
+    CGAL::Orientation o1 = CGAL::coplanar_orientation(v, c, d, e);
+    CGAL::Orientation o2 = CGAL::coplanar_orientation(v, d, c, e);
+    if (o1 == CGAL::NEGATIVE || o2 == CGAL::NEGATIVE) return false;
+    if (o1 == CGAL::COLLINEAR) return (e - v) * (c - v) > 0;
+    if (o2 == CGAL::COLLINEAR) return (e - v) * (d - v) > 0;
+    return true;
 }
 
+// Two triangles of a soup given by vertex indices intersect other than in
+// what their shared indices allow (a shared edge, a shared vertex)?
+bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const uint32_t *t)
+{
+    int shared = 0, si[3] = {-1, -1, -1}, ti[3] = {-1, -1, -1};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (s[i] == t[j]) {
+                si[shared] = i;
+                ti[shared] = j;
+                shared++;
+            }
+    const IK::Point_3 &a = P[s[0]], &b = P[s[1]], &c = P[s[2]];
+    const IK::Point_3 &d = P[t[0]], &e = P[t[1]], &f = P[t[2]];
+    if (shared == 0) return CGAL::do_intersect(IK::Triangle_3(a, b, c), IK::Triangle_3(d, e, f));
+    if (shared >= 3) return true;
+    if (shared == 2) {
+        int so = 3 - si[0] - si[1], to = 3 - ti[0] - ti[1];
+        const IK::Point_3 &p = P[s[si[0]]], &q = P[s[si[1]]], &x = P[s[so]], &y = P[t[to]];
+        if (CGAL::orientation(p, q, x, y) != CGAL::COPLANAR) return false;
+        return CGAL::coplanar_orientation(p, q, x, y) == CGAL::POSITIVE;
+    }
+    const IK::Point_3 &v = P[s[si[0]]];
+    const IK::Point_3 &s1 = P[s[(si[0] + 1) % 3]], &s2 = P[s[(si[0] + 2) % 3]];
+    const IK::Point_3 &t1 = P[t[(ti[0] + 1) % 3]], &t2 = P[t[(ti[0] + 2) % 3]];
+    IK::Triangle_3 S(v, s1, s2), T(v, t1, t2);
+    if (CGAL::do_intersect(IK::Segment_3(s1, s2), T)) return true;
+    if (CGAL::do_intersect(IK::Segment_3(t1, t2), S)) return true;
+    for (const IK::Point_3 *e2 : {&s1, &s2})
+        if (CGAL::orientation(v, t1, t2, *e2) == CGAL::COPLANAR && in_wedge(v, t1, t2, *e2))
+            return true;
+    for (const IK::Point_3 *e2 : {&t1, &t2})
+        if (CGAL::orientation(v, s1, s2, *e2) == CGAL::COPLANAR && in_wedge(v, s1, s2, *e2))
+            return true;
+    return false;
+}
+
+// Pairs of triangles of an indexed soup that intersect other than along
+// shared edges or at shared vertices, with exact predicates on the double
+// coordinates. Works on non-manifold soups (a pinched solid) as they are.
 size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tri, size_t nt)
 {
-    IMesh m;
-    build_mesh(m, nv, tri, nt, [&](size_t i) { return IK::Point_3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]); },
-               nullptr);
-    std::vector<std::pair<IMesh::Face_index, IMesh::Face_index>> pairs;
-    PMP::self_intersections(m, std::back_inserter(pairs));
-    return pairs.size();
+    std::vector<IK::Point_3> P;
+    P.reserve(nv);
+    for (size_t i = 0; i < nv; i++) P.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, size_t> Box;
+    std::vector<Box> boxes;
+    boxes.reserve(nt);
+    for (size_t t = 0; t < nt; t++) {
+        const uint32_t *q = tri + 3 * t;
+        if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
+        CGAL::Bbox_3 bb = P[q[0]].bbox() + P[q[1]].bbox() + P[q[2]].bbox();
+        boxes.emplace_back(bb, t);
+    }
+    size_t count = 0;
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(
+        boxes.begin(), boxes.end(), [&](const Box &x, const Box &y) {
+            if (pair_intersects(P, tri + 3 * x.info(), tri + 3 * y.info())) count++;
+        });
+    return count;
 }
 
 // The exact pass over the parts `ids` of the input (see the file comment).
