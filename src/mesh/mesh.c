@@ -78,6 +78,9 @@ coons_status coons_mesh_add_part(coons_mesh *m, const char *name, const double *
     p->tri_count = nt;
     p->vert_first = m->nv;
     p->vert_count = nv;
+    p->tolerance = -1.0;
+    p->deviation = -1.0;
+    p->lattice[0] = p->lattice[1] = p->lattice[2] = 0;
     m->nv += nv;
     m->nt += nt;
     return COONS_OK;
@@ -101,6 +104,26 @@ void coons_mesh_part_range(const coons_mesh *m, size_t i, size_t *tri_first, siz
     if (tri_count) *tri_count = p ? p->tri_count : 0;
     if (vert_first) *vert_first = p ? p->vert_first : 0;
     if (vert_count) *vert_count = p ? p->vert_count : 0;
+}
+
+int coons_mesh_part_sampling(const coons_mesh *m, size_t i, double *tolerance,
+                             double *deviation, size_t lattice[3])
+{
+    const coons__mesh_part *p = i < m->nparts ? &m->parts[i] : NULL;
+    int sampled = p && p->deviation >= 0.0;
+    if (tolerance) *tolerance = sampled ? p->tolerance : -1.0;
+    if (deviation) *deviation = sampled ? p->deviation : -1.0;
+    if (lattice)
+        for (int d = 0; d < 3; d++) lattice[d] = sampled ? p->lattice[d] : 0;
+    return sampled;
+}
+
+double coons_mesh_deviation(const coons_mesh *m)
+{
+    double dev = -1.0;
+    for (size_t i = 0; i < m->nparts; i++)
+        if (m->parts[i].deviation > dev) dev = m->parts[i].deviation;
+    return dev;
 }
 
 double coons_mesh_volume(const coons_mesh *m)

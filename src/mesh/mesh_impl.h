@@ -9,6 +9,9 @@ typedef struct coons__mesh_part {
     char *name;
     size_t tri_first, tri_count;
     size_t vert_first, vert_count;
+    /* Set by the sampler (sample.c); deviation < 0 for parts not sampled. */
+    double tolerance, deviation;
+    size_t lattice[3];
 } coons__mesh_part;
 
 struct coons_mesh {

@@ -1,0 +1,40 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Internal declarations shared by the C sources of src/mesh and the C++
+ * OpenMesh glue (openmesh.cpp). Plain C: no OpenMesh or C++ types here. */
+#ifndef COONS_MESH_GLUE_H
+#define COONS_MESH_GLUE_H
+
+#include "coons_internal.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Resolved sampling options: tolerance > 0, max_triangles > 0,
+ * max_aspect >= 1 (INFINITY: no aspect refinement). */
+typedef struct coons__sample_opts {
+    double tolerance;
+    unsigned resolution;
+    size_t max_triangles;
+    double max_aspect;
+} coons__sample_opts;
+
+/* Checks a public options struct (NULL: defaults) and resolves it;
+ * tolerance stays <= 0 when the caller must supply the default. */
+coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__sample_opts *out,
+                                        coons_error *err);
+
+/* Samples body b (sample.c) and appends it to `mesh` as one part.
+ * *triangles receives the part's triangle count. */
+coons_status coons__body_sample_into(const coons_body *b, const coons__sample_opts *o,
+                                     const char *name, coons_mesh *mesh, size_t *triangles,
+                                     coons_error *err);
+
+/* The index-array checks of coons_mesh_check() (check.c): everything but
+ * the OpenMesh fields, which are left 0. */
+coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coons_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

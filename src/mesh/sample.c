@@ -1,0 +1,697 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Sampling a body's boundary into a closed triangle mesh.
+ *
+ * A body F: [0,1]^3 -> R^3 (seed 000, section 2) is bounded by the six
+ * surfaces F(0,v,w), F(1,v,w), F(u,0,w), F(u,1,w), F(u,v,0), F(u,v,1)
+ * (seed 000 section 2.2, "Boundary surfaces"). They are sampled on one
+ * parameter lattice per direction, shared by the four faces that run along
+ * it, so a lattice point on an edge or corner is one vertex whichever face
+ * reaches it: watertight by construction. Points are evaluated once, by the
+ * first face that owns them (order u0 u1 v0 v1 w0 w1); the evaluations of
+ * later faces are discarded rather than welded by distance.
+ *
+ * Collapsed edges and faces (cone apex, a face shrunk to a curve) produce
+ * lattice neighbours at the same place. They are merged only along mesh
+ * edges (lattice lines and the chosen diagonals), never across the surface,
+ * so merging is an edge collapse of zero-length edges. "Same place" is
+ * 1e-9 of the lattice's box diagonal (the model format's consistency
+ * tolerance) plus 64 ulps of the largest coordinate: evaluating the same
+ * point through different blend sums (e.g. (1-v)P + vP) differs from P by
+ * a few ulps of the coordinates, while a real edge of an adaptive lattice
+ * is at least MIN_WIDTH times the parametric speed, many orders above.
+ *
+ * Density: the lattices start proportional to the body's extent along each
+ * direction and are refined (intervals halved) where exact points F(s,t) at
+ * sub-samples of a cell lie farther than the tolerance from the cell's two
+ * triangles: points on the cell's sides along a direction refine that
+ * direction, interior points the direction with the longer side. The
+ * distance to the cell's own triangles is an upper bound of the distance
+ * to the mesh; unlike the parametric error |F(s,t) - L(s,t)| it ignores
+ * sliding within the surface (a cone's straight generators need no
+ * refinement). The final pass (quarter points and triangle centroids of
+ * every cell, against the final merged vertices) measures the reported
+ * deviation. Refining for shape (max_aspect) skips cells whose opposite
+ * sides differ by more than 20%: cells converging to a collapsed edge or
+ * apex stay thin however often they are split.
+ */
+#include <float.h>
+#include <string.h>
+
+#include "coons_internal.h"
+#include "mesh_glue.h"
+#include "mesh_impl.h"
+
+enum {
+    START_INTERVALS = 4, /* along the longest direction */
+    MAX_ROUNDS = 200,
+    ASPECT_ROUNDS = 6    /* bounds aspect refinement: opposite faces can pull both ways */
+};
+#define MIN_WIDTH (1.0 / 1048576.0) /* 2^-20: narrowest interval refinement makes */
+#define LOOP_FRACTION 0.75          /* the coarse estimate aims below the tolerance */
+#define SIDE_RATIO 0.8              /* shape refinement only where opposite sides agree */
+
+typedef struct face_desc {
+    int fixed, a, b; /* fixed direction; the face's (s,t) directions, a < b */
+    int flip;        /* 1 when (a,b) is clockwise seen from outside a right-handed body */
+    double val;
+    const char *name;
+} face_desc;
+
+static const face_desc FACES[6] = {
+    {0, 1, 2, 1, 0.0, "u0"}, {0, 1, 2, 0, 1.0, "u1"}, {1, 0, 2, 0, 0.0, "v0"},
+    {1, 0, 2, 1, 1.0, "v1"}, {2, 0, 1, 1, 0.0, "w0"}, {2, 0, 1, 0, 1.0, "w1"}};
+
+typedef struct sampler {
+    const coons_body *body;
+    const coons__sample_opts *o;
+    const char *name;
+    coons_error *err;
+    double merge_tol;
+    double *t[3];          /* lattice values, n[d] + 1 of them, t[d][0] = 0, t[d][n] = 1 */
+    size_t n[3];           /* intervals per direction */
+    unsigned char *mark[3];/* intervals to halve */
+    size_t nv;             /* raw lattice vertices */
+    double *pos;           /* 3 * nv */
+    uint32_t *uf;          /* union-find parents over raw vertices */
+    uint32_t *ids[6];      /* raw vertex of each face lattice point, (na+1)*(nb+1) */
+    unsigned char *diag[6];/* per cell: 0 = diagonal 00-11, 1 = diagonal 10-01 */
+    uint32_t *tri;         /* 3 * nt representative raw ids */
+    size_t nt;
+    double *buf, *bs;      /* evaluation scratch */
+    size_t buf_cap, bs_cap;
+    double dev;            /* largest deviation found by the last scan */
+    size_t aspect_marks;   /* marks made for shape only by the last scan */
+} sampler;
+
+static coons_status ensure(double **p, size_t *cap, size_t need, coons_error *err)
+{
+    if (need <= *cap) return COONS_OK;
+    double *q = coons__malloc_array(need, sizeof(double));
+    if (!q) return coons__error_nomem(err);
+    coons__free(*p);
+    *p = q;
+    *cap = need;
+    return COONS_OK;
+}
+
+/* Evaluates face f on av[0..na-1] x bv[0..nb-1] into out[(i*nb + j)*3]. */
+static coons_status eval_face(sampler *s, int f, const double *av, size_t na, const double *bv,
+                              size_t nb, double *out)
+{
+    const face_desc *F = &FACES[f];
+    const double *q[3];
+    size_t c[3];
+    q[F->fixed] = &F->val;
+    c[F->fixed] = 1;
+    q[F->a] = av;
+    c[F->a] = na;
+    q[F->b] = bv;
+    c[F->b] = nb;
+    coons_status st = coons_body_eval_grid(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out, s->err);
+    if (st) return st;
+    if (!coons__all_finite(out, 3 * na * nb))
+        return coons__error_set(s->err, COONS_E_INVALID,
+                                "body '%s' evaluates to a non-finite point on face %s", s->name,
+                                F->name);
+    return COONS_OK;
+}
+
+static size_t tri_estimate(const size_t n[3])
+{
+    /* Two triangles per cell of the six faces, before degenerate ones drop;
+     * the lattice sizes are bounded far below overflow by the caller. */
+    return 4 * (n[0] * n[1] + n[0] * n[2] + n[1] * n[2]);
+}
+
+static coons_status alloc_lattices(sampler *s)
+{
+    for (int d = 0; d < 3; d++) {
+        coons__free(s->mark[d]);
+        s->mark[d] = coons__calloc(s->n[d], 1);
+        if (!s->mark[d]) return coons__error_nomem(s->err);
+    }
+    return COONS_OK;
+}
+
+static coons_status init_lattices(sampler *s)
+{
+    if (s->o->resolution) {
+        for (int d = 0; d < 3; d++) s->n[d] = s->o->resolution;
+    } else {
+        /* Extent along each direction: the longest lattice line of a 9 x 9
+         * sampling of the faces that run along it. */
+        enum { K = 9 };
+        double g[K], len[3] = {0, 0, 0};
+        for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
+        coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+        if (st) return st;
+        for (int f = 0; f < 6; f++) {
+            if ((st = eval_face(s, f, g, K, g, K, s->buf))) return st;
+            for (int j = 0; j < K; j++) {
+                double la = 0, lb = 0;
+                for (int i = 0; i + 1 < K; i++) {
+                    la += v3_dist(s->buf + 3 * (i * K + j), s->buf + 3 * ((i + 1) * K + j));
+                    lb += v3_dist(s->buf + 3 * (j * K + i), s->buf + 3 * (j * K + i + 1));
+                }
+                if (la > len[FACES[f].a]) len[FACES[f].a] = la;
+                if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
+            }
+        }
+        double lmax = fmax(len[0], fmax(len[1], len[2]));
+        for (int d = 0; d < 3; d++) {
+            double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
+            s->n[d] = k < 1 ? 1 : (k > START_INTERVALS ? START_INTERVALS : (size_t)k);
+        }
+    }
+    for (int d = 0; d < 3; d++) {
+        s->t[d] = coons__malloc_array(s->n[d] + 1, sizeof(double));
+        if (!s->t[d]) return coons__error_nomem(s->err);
+        for (size_t i = 0; i <= s->n[d]; i++) s->t[d][i] = (double)i / (double)s->n[d];
+    }
+    return alloc_lattices(s);
+}
+
+static coons_status limit_error(sampler *s, size_t need)
+{
+    if (s->o->resolution)
+        return coons__error_set(s->err, COONS_E_LIMIT,
+                                "body '%s': resolution %u gives %zu triangles, more than the "
+                                "limit of %zu; raise max_triangles (coons2stl --max-triangles N) "
+                                "or lower the resolution",
+                                s->name, s->o->resolution, need, s->o->max_triangles);
+    return coons__error_set(s->err, COONS_E_LIMIT,
+                            "body '%s': sampling to tolerance %g needs more than %zu triangles "
+                            "(the limit); raise max_triangles (coons2stl --max-triangles N) or "
+                            "loosen the tolerance",
+                            s->name, s->o->tolerance, s->o->max_triangles);
+}
+
+/* First face (in FACES order) holding lattice point ijk: that face owns it. */
+static int owner(const sampler *s, const size_t ijk[3])
+{
+    for (int f = 0; f < 6; f++) {
+        size_t want = FACES[f].val == 0.0 ? 0 : s->n[FACES[f].fixed];
+        if (ijk[FACES[f].fixed] == want) return f;
+    }
+    return -1; /* interior: never asked */
+}
+
+static uint32_t find(uint32_t *uf, uint32_t a)
+{
+    while (uf[a] != a) {
+        uf[a] = uf[uf[a]];
+        a = uf[a];
+    }
+    return a;
+}
+
+static void merge_close(sampler *s, uint32_t a, uint32_t b)
+{
+    uint32_t ra = find(s->uf, a), rb = find(s->uf, b);
+    if (ra == rb || v3_dist(s->pos + 3 * (size_t)ra, s->pos + 3 * (size_t)rb) > s->merge_tol)
+        return;
+    /* The lower id, evaluated first, stays the representative. */
+    if (ra < rb)
+        s->uf[rb] = ra;
+    else
+        s->uf[ra] = rb;
+}
+
+static void free_mesh(sampler *s)
+{
+    coons__free(s->pos);
+    coons__free(s->uf);
+    coons__free(s->tri);
+    s->pos = NULL;
+    s->uf = NULL;
+    s->tri = NULL;
+    s->nt = 0;
+    for (int f = 0; f < 6; f++) {
+        coons__free(s->ids[f]);
+        coons__free(s->diag[f]);
+        s->ids[f] = NULL;
+        s->diag[f] = NULL;
+    }
+}
+
+static inline const double *rep_pos(sampler *s, uint32_t id)
+{
+    return s->pos + 3 * (size_t)find(s->uf, id);
+}
+
+/* Evaluates the lattice, shares seam vertices, merges collapsed edges,
+ * splits cells along the shorter diagonal and orients the triangles. */
+static coons_status build(sampler *s)
+{
+    free_mesh(s);
+    const size_t *n = s->n;
+    size_t total = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
+    size_t inner = (n[0] - 1) * (n[1] - 1) * (n[2] - 1);
+    s->nv = total - inner;
+    if (s->nv > UINT32_MAX)
+        return coons__error_set(s->err, COONS_E_LIMIT, "body '%s': more than %u vertices",
+                                s->name, (unsigned)UINT32_MAX);
+    s->pos = coons__malloc_array(s->nv, 3 * sizeof(double));
+    s->uf = coons__malloc_array(s->nv, sizeof(uint32_t));
+    if (!s->pos || !s->uf) return coons__error_nomem(s->err);
+    size_t cells = 0;
+    for (int f = 0; f < 6; f++) {
+        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
+        s->ids[f] = coons__malloc_array((na + 1) * (nb + 1), sizeof(uint32_t));
+        s->diag[f] = coons__malloc_array(na * nb, 1);
+        if (!s->ids[f] || !s->diag[f]) return coons__error_nomem(s->err);
+        cells += na * nb;
+    }
+    s->tri = coons__malloc_array(cells, 6 * sizeof(uint32_t));
+    if (!s->tri) return coons__error_nomem(s->err);
+
+    uint32_t next = 0;
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    for (int f = 0; f < 6; f++) {
+        const face_desc *F = &FACES[f];
+        size_t na = n[F->a], nb = n[F->b];
+        coons_status st = ensure(&s->buf, &s->buf_cap, 3 * (na + 1) * (nb + 1), s->err);
+        if (st) return st;
+        if ((st = eval_face(s, f, s->t[F->a], na + 1, s->t[F->b], nb + 1, s->buf))) return st;
+        for (size_t ia = 0; ia <= na; ia++)
+            for (size_t ib = 0; ib <= nb; ib++) {
+                size_t ijk[3];
+                ijk[F->fixed] = F->val == 0.0 ? 0 : n[F->fixed];
+                ijk[F->a] = ia;
+                ijk[F->b] = ib;
+                int g = owner(s, ijk);
+                uint32_t id;
+                if (g == f) {
+                    id = next++;
+                    v3_copy(s->pos + 3 * (size_t)id, s->buf + 3 * (ia * (nb + 1) + ib));
+                    bbox_add(lo, hi, s->pos + 3 * (size_t)id);
+                } else {
+                    const face_desc *G = &FACES[g];
+                    id = s->ids[g][ijk[G->a] * (n[G->b] + 1) + ijk[G->b]];
+                }
+                s->ids[f][ia * (nb + 1) + ib] = id;
+            }
+    }
+    if (next != s->nv)
+        return coons__error_set(s->err, COONS_E_INTERNAL, "lattice vertex count %u != %zu",
+                                (unsigned)next, s->nv);
+
+    double maxabs = 0;
+    for (int d = 0; d < 3; d++) maxabs = fmax(maxabs, fmax(fabs(lo[d]), fabs(hi[d])));
+    s->merge_tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
+    for (uint32_t i = 0; i < next; i++) s->uf[i] = i;
+
+    for (int f = 0; f < 6; f++) {
+        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
+        const uint32_t *id = s->ids[f];
+        for (size_t ia = 0; ia <= na; ia++)
+            for (size_t ib = 0; ib <= nb; ib++) {
+                if (ia < na) merge_close(s, id[ia * (nb + 1) + ib], id[(ia + 1) * (nb + 1) + ib]);
+                if (ib < nb) merge_close(s, id[ia * (nb + 1) + ib], id[ia * (nb + 1) + ib + 1]);
+            }
+    }
+    for (int f = 0; f < 6; f++) {
+        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
+        const uint32_t *id = s->ids[f];
+        for (size_t p = 0; p < na; p++)
+            for (size_t q = 0; q < nb; q++) {
+                uint32_t i00 = id[p * (nb + 1) + q], i10 = id[(p + 1) * (nb + 1) + q];
+                uint32_t i01 = id[p * (nb + 1) + q + 1], i11 = id[(p + 1) * (nb + 1) + q + 1];
+                double d1 = v3_dist(rep_pos(s, i00), rep_pos(s, i11));
+                double d2 = v3_dist(rep_pos(s, i10), rep_pos(s, i01));
+                unsigned char dg = d2 < d1;
+                s->diag[f][p * nb + q] = dg;
+                if (dg)
+                    merge_close(s, i10, i01);
+                else
+                    merge_close(s, i00, i11);
+            }
+    }
+
+    size_t nt = 0;
+    for (int f = 0; f < 6; f++) {
+        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
+        const uint32_t *id = s->ids[f];
+        for (size_t p = 0; p < na; p++)
+            for (size_t q = 0; q < nb; q++) {
+                uint32_t A = find(s->uf, id[p * (nb + 1) + q]);
+                uint32_t B = find(s->uf, id[(p + 1) * (nb + 1) + q]);
+                uint32_t C = find(s->uf, id[(p + 1) * (nb + 1) + q + 1]);
+                uint32_t D = find(s->uf, id[p * (nb + 1) + q + 1]);
+                uint32_t t[2][3];
+                if (!s->diag[f][p * nb + q]) {
+                    t[0][0] = A, t[0][1] = B, t[0][2] = C;
+                    t[1][0] = A, t[1][1] = C, t[1][2] = D;
+                } else {
+                    t[0][0] = A, t[0][1] = B, t[0][2] = D;
+                    t[1][0] = B, t[1][1] = C, t[1][2] = D;
+                }
+                for (int k = 0; k < 2; k++) {
+                    uint32_t x = t[k][0], y = t[k][1], z = t[k][2];
+                    if (x == y || y == z || z == x) continue; /* collapsed */
+                    if (FACES[f].flip) {
+                        uint32_t tmp = y;
+                        y = z;
+                        z = tmp;
+                    }
+                    s->tri[3 * nt] = x;
+                    s->tri[3 * nt + 1] = y;
+                    s->tri[3 * nt + 2] = z;
+                    nt++;
+                }
+            }
+    }
+    s->nt = nt;
+
+    /* Outward whatever the handedness: a left-handed body (det J < 0) maps
+     * the outward lattice orientation inward, which makes the volume
+     * negative. Shifting by one vertex reduces cancellation. */
+    double vol = 0;
+    const double *o = nt ? s->pos + 3 * (size_t)s->tri[0] : NULL;
+    for (size_t t = 0; t < nt; t++) {
+        double a[3], b[3], c[3], bc[3];
+        v3_sub(a, s->pos + 3 * (size_t)s->tri[3 * t], o);
+        v3_sub(b, s->pos + 3 * (size_t)s->tri[3 * t + 1], o);
+        v3_sub(c, s->pos + 3 * (size_t)s->tri[3 * t + 2], o);
+        v3_cross(bc, b, c);
+        vol += v3_dot(a, bc);
+    }
+    if (vol < 0)
+        for (size_t t = 0; t < nt; t++) {
+            uint32_t tmp = s->tri[3 * t + 1];
+            s->tri[3 * t + 1] = s->tri[3 * t + 2];
+            s->tri[3 * t + 2] = tmp;
+        }
+    return COONS_OK;
+}
+
+/* Distance from p to segment ab. */
+static double seg_dist(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], q[3];
+    v3_sub(ab, b, a);
+    v3_sub(ap, p, a);
+    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(ap, ab) / l2 : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    v3_copy(q, a);
+    v3_axpy(q, t, ab);
+    return v3_dist(p, q);
+}
+
+/* Distance from p to triangle abc: to its plane when the projection falls
+ * inside, else to the nearest side (also for degenerate triangles). */
+static double tri_dist(const double p[3], const double a[3], const double b[3], const double c[3])
+{
+    double ab[3], ac[3], ap[3], n[3];
+    v3_sub(ab, b, a);
+    v3_sub(ac, c, a);
+    v3_sub(ap, p, a);
+    v3_cross(n, ab, ac);
+    double n2 = v3_dot(n, n);
+    if (n2 > 0) {
+        /* barycentric coordinates of the projection of p */
+        double t1[3], t2[3];
+        v3_cross(t1, ap, ac);
+        v3_cross(t2, ab, ap);
+        double beta = v3_dot(t1, n) / n2, gamma = v3_dot(t2, n) / n2;
+        if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) return fabs(v3_dot(ap, n)) / sqrt(n2);
+    }
+    return fmin(seg_dist(p, a, b), fmin(seg_dist(p, b, c), seg_dist(p, c, a)));
+}
+
+/* Distance from p to the two triangles of a cell split along diagonal dg. */
+static double cell_dist(const double p[3], const double *P00, const double *P10,
+                        const double *P01, const double *P11, int dg)
+{
+    if (!dg) return fmin(tri_dist(p, P00, P10, P11), tri_dist(p, P00, P11, P01));
+    return fmin(tri_dist(p, P00, P10, P01), tri_dist(p, P10, P11, P01));
+}
+
+static void mark(sampler *s, int d, size_t i)
+{
+    if (s->t[d][i + 1] - s->t[d][i] >= 2 * MIN_WIDTH) s->mark[d][i] = 1;
+}
+
+/* Compares F with the mesh at the (r+1)^2 sub-samples of every cell (and at
+ * the triangle centroids), keeps the largest distance in s->dev and, when
+ * thr > 0, marks the intervals to halve. */
+static coons_status scan(sampler *s, int r, int centroids, double thr, int aspect)
+{
+    s->dev = 0;
+    s->aspect_marks = 0;
+    for (int f = 0; f < 6; f++) {
+        const face_desc *F = &FACES[f];
+        size_t na = s->n[F->a], nb = s->n[F->b], nbs = (size_t)r * nb + 1;
+        const double *ta = s->t[F->a], *tb = s->t[F->b];
+        coons_status st = ensure(&s->bs, &s->bs_cap, nbs, s->err);
+        if (!st) st = ensure(&s->buf, &s->buf_cap, 3 * (size_t)(r + 1) * nbs, s->err);
+        if (st) return st;
+        for (size_t q = 0; q < nb; q++)
+            for (int j = 0; j < r; j++) s->bs[q * r + j] = tb[q] + (tb[q + 1] - tb[q]) * j / r;
+        s->bs[nb * r] = tb[nb];
+        for (size_t p = 0; p < na; p++) {
+            double as[5];
+            for (int i = 0; i < r; i++) as[i] = ta[p] + (ta[p + 1] - ta[p]) * i / r;
+            as[r] = ta[p + 1];
+            if ((st = eval_face(s, f, as, (size_t)r + 1, s->bs, nbs, s->buf))) return st;
+            for (size_t q = 0; q < nb; q++) {
+                const uint32_t *id = s->ids[f];
+                const double *P00 = rep_pos(s, id[p * (nb + 1) + q]);
+                const double *P10 = rep_pos(s, id[(p + 1) * (nb + 1) + q]);
+                const double *P01 = rep_pos(s, id[p * (nb + 1) + q + 1]);
+                const double *P11 = rep_pos(s, id[(p + 1) * (nb + 1) + q + 1]);
+                int dg = s->diag[f][p * nb + q];
+                double ea = 0, eb = 0, ec = 0;
+                for (int i = 0; i <= r; i++)
+                    for (int j = 0; j <= r; j++) {
+                        int ei = i == 0 || i == r, ej = j == 0 || j == r;
+                        if (ei && ej) continue; /* lattice point */
+                        const double *X = s->buf + 3 * (i * nbs + q * r + j);
+                        double e = cell_dist(X, P00, P10, P01, P11, dg);
+                        if (ej)
+                            ea = fmax(ea, e);
+                        else if (ei)
+                            eb = fmax(eb, e);
+                        else
+                            ec = fmax(ec, e);
+                    }
+                if (centroids) {
+                    static const double cx[2][2][2] = {{{2. / 3, 1. / 3}, {1. / 3, 2. / 3}},
+                                                       {{1. / 3, 1. / 3}, {2. / 3, 2. / 3}}};
+                    for (int k = 0; k < 2; k++) {
+                        double x = cx[dg][k][0], y = cx[dg][k][1], P[3];
+                        double a1 = ta[p] + (ta[p + 1] - ta[p]) * x;
+                        double b1 = tb[q] + (tb[q + 1] - tb[q]) * y;
+                        if ((st = eval_face(s, f, &a1, 1, &b1, 1, P))) return st;
+                        ec = fmax(ec, cell_dist(P, P00, P10, P01, P11, dg));
+                    }
+                }
+                double e = fmax(ea, fmax(eb, ec));
+                if (e > s->dev) s->dev = e;
+                if (!(thr > 0)) continue;
+                double la = fmax(v3_dist(P00, P10), v3_dist(P01, P11));
+                double lb = fmax(v3_dist(P00, P01), v3_dist(P10, P11));
+                int ma = ea > thr, mb = eb > thr;
+                if (ec > thr && !ma && !mb) {
+                    ma = la >= lb;
+                    mb = lb >= la;
+                }
+                if (ma) mark(s, F->a, p);
+                if (mb) mark(s, F->b, q);
+                if (aspect && !ma && !mb) {
+                    /* Only where halving the long side shortens it: not next to
+                     * a collapsed edge, whose cells keep their shape when split. */
+                    double la0 = fmin(v3_dist(P00, P10), v3_dist(P01, P11));
+                    double lb0 = fmin(v3_dist(P00, P01), v3_dist(P10, P11));
+                    double k = s->o->max_aspect;
+                    if (la > k * lb && lb > s->merge_tol && lb0 >= SIDE_RATIO * lb) {
+                        mark(s, F->a, p);
+                        s->aspect_marks++;
+                    } else if (lb > k * la && la > s->merge_tol && la0 >= SIDE_RATIO * la) {
+                        mark(s, F->b, q);
+                        s->aspect_marks++;
+                    }
+                }
+            }
+        }
+    }
+    return COONS_OK;
+}
+
+/* Halves the marked intervals; returns how many were split. */
+static coons_status refine(sampler *s, size_t *split)
+{
+    *split = 0;
+    for (int d = 0; d < 3; d++) {
+        size_t m = 0;
+        for (size_t i = 0; i < s->n[d]; i++) m += s->mark[d][i];
+        if (!m) continue;
+        double *t = coons__malloc_array(s->n[d] + m + 1, sizeof(double));
+        if (!t) return coons__error_nomem(s->err);
+        size_t k = 0;
+        for (size_t i = 0; i < s->n[d]; i++) {
+            t[k++] = s->t[d][i];
+            if (s->mark[d][i]) t[k++] = 0.5 * (s->t[d][i] + s->t[d][i + 1]);
+        }
+        t[k] = 1.0;
+        coons__free(s->t[d]);
+        s->t[d] = t;
+        s->n[d] += m;
+        *split += m;
+    }
+    return alloc_lattices(s);
+}
+
+static coons_status check_budget(sampler *s)
+{
+    size_t need = tri_estimate(s->n);
+    return need > s->o->max_triangles ? limit_error(s, need) : COONS_OK;
+}
+
+static coons_status run(sampler *s)
+{
+    coons_status st = init_lattices(s);
+    if (st) return st;
+    if (s->o->resolution) {
+        if ((st = check_budget(s)) || (st = build(s))) return st;
+        return scan(s, 4, 1, 0.0, 0);
+    }
+    int aspect_rounds = 0;
+    for (int round = 0; round < MAX_ROUNDS; round++) {
+        if ((st = check_budget(s)) || (st = build(s))) return st;
+        /* Shape refinement never spends the last three quarters of the budget. */
+        int aspect = isfinite(s->o->max_aspect) && aspect_rounds < ASPECT_ROUNDS &&
+                     tri_estimate(s->n) <= s->o->max_triangles / 4;
+        if ((st = scan(s, 2, 0, LOOP_FRACTION * s->o->tolerance, aspect))) return st;
+        size_t split;
+        if ((st = refine(s, &split))) return st;
+        if (split) {
+            if (s->aspect_marks) aspect_rounds++;
+            continue;
+        }
+        /* The coarse estimate is satisfied: measure on the finer samples. */
+        if ((st = scan(s, 4, 1, s->o->tolerance, 0))) return st;
+        if (s->dev <= s->o->tolerance) return COONS_OK;
+        if ((st = refine(s, &split))) return st;
+        if (!split) break;
+    }
+    return coons__error_set(s->err, COONS_E_LIMIT,
+                            "body '%s': cannot reach tolerance %g (deviation %g remains where "
+                            "the parameter step is already %g)",
+                            s->name, s->o->tolerance, s->dev, MIN_WIDTH);
+}
+
+static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
+{
+    if (!s->nt)
+        return coons__error_set(s->err, COONS_E_INVALID,
+                                "body '%s' has no boundary surface: it collapses to a curve or "
+                                "a point",
+                                s->name);
+    uint32_t *map = coons__malloc_array(s->nv, sizeof(uint32_t));
+    uint32_t *tri = coons__malloc_array(s->nt, 3 * sizeof(uint32_t));
+    double *xyz = coons__malloc_array(s->nv, 3 * sizeof(double));
+    coons_status st = COONS_OK;
+    if (!map || !tri || !xyz) {
+        st = coons__error_nomem(s->err);
+        goto done;
+    }
+    memset(map, 0xff, s->nv * sizeof(uint32_t));
+    uint32_t nv = 0;
+    for (size_t i = 0; i < 3 * s->nt; i++) {
+        uint32_t v = s->tri[i];
+        if (map[v] == UINT32_MAX) {
+            v3_copy(xyz + 3 * (size_t)nv, s->pos + 3 * (size_t)v);
+            map[v] = nv++;
+        }
+        tri[i] = map[v];
+    }
+    size_t part = mesh->nparts;
+    st = coons_mesh_add_part(mesh, s->name, xyz, nv, tri, s->nt, s->err);
+    if (!st) {
+        coons__mesh_part *P = &mesh->parts[part];
+        P->tolerance = s->o->tolerance;
+        P->deviation = s->dev;
+        for (int d = 0; d < 3; d++) P->lattice[d] = s->n[d];
+        if (triangles) *triangles = s->nt;
+    }
+done:
+    coons__free(map);
+    coons__free(tri);
+    coons__free(xyz);
+    return st;
+}
+
+coons_status coons__body_sample_into(const coons_body *b, const coons__sample_opts *o,
+                                     const char *name, coons_mesh *mesh, size_t *triangles,
+                                     coons_error *err)
+{
+    sampler s;
+    memset(&s, 0, sizeof s);
+    s.body = b;
+    s.o = o;
+    s.name = name ? name : "body";
+    s.err = err;
+    coons_status st = run(&s);
+    if (!st) st = emit(&s, mesh, triangles);
+    free_mesh(&s);
+    for (int d = 0; d < 3; d++) {
+        coons__free(s.t[d]);
+        coons__free(s.mark[d]);
+    }
+    coons__free(s.buf);
+    coons__free(s.bs);
+    return st;
+}
+
+coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__sample_opts *out,
+                                        coons_error *err)
+{
+    coons_sample_options def = COONS_SAMPLE_OPTIONS_INIT;
+    if (!in) in = &def;
+    if (in->version != COONS_SAMPLE_OPTIONS_VERSION)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "sample options version %u, expected %u (use "
+                                "COONS_SAMPLE_OPTIONS_INIT)",
+                                in->version, (unsigned)COONS_SAMPLE_OPTIONS_VERSION);
+    if (isnan(in->tolerance) || isinf(in->tolerance))
+        return coons__error_set(err, COONS_E_INVALID, "tolerance must be a finite number");
+    if (isnan(in->max_aspect) || (in->max_aspect != 0.0 && in->max_aspect < 1.0))
+        return coons__error_set(err, COONS_E_INVALID,
+                                "max_aspect must be 0 (default) or at least 1, not %g",
+                                in->max_aspect);
+    /* Caps the lattice so that no size computation can overflow: 2^20
+     * intervals per direction is far beyond any triangle budget. */
+    if (in->resolution > (1u << 20))
+        return coons__error_set(err, COONS_E_LIMIT, "resolution %u is above %u", in->resolution,
+                                1u << 20);
+    out->tolerance = in->tolerance;
+    out->resolution = in->resolution;
+    out->max_triangles = in->max_triangles ? in->max_triangles : COONS_DEFAULT_MAX_TRIANGLES;
+    out->max_aspect = in->max_aspect != 0.0 ? in->max_aspect : COONS_DEFAULT_MAX_ASPECT;
+    return COONS_OK;
+}
+
+coons_status coons_body_sample(const coons_body *b, const coons_sample_options *opts,
+                               const char *name, coons_mesh **out, coons_error *err)
+{
+    *out = NULL;
+    coons__sample_opts o;
+    coons_status st = coons__sample_opts_resolve(opts, &o, err);
+    if (st) return st;
+    if (!(o.tolerance > 0)) {
+        double lo[3], hi[3];
+        coons_body_control_bbox(b, lo, hi);
+        double d = bbox_diag(lo, hi);
+        o.tolerance = d > 0 ? 1e-3 * d : 1e-3;
+    }
+    coons_mesh *m;
+    if ((st = coons_mesh_new(&m, err))) return st;
+    if ((st = coons__body_sample_into(b, &o, name, m, NULL, err))) {
+        coons_mesh_free(m);
+        return st;
+    }
+    *out = m;
+    return COONS_OK;
+}
