@@ -284,7 +284,9 @@ static void test_read_errors_silent(void **state)
     snprintf(unknown, sizeof unknown, "%s/test_om_mesh.xyz", COONS_BINARY_DIR);
     snprintf(broken, sizeof broken, "%s/test_om_mesh_broken.off", COONS_BINARY_DIR);
     write_file(unknown, "hello\n", 6);
-    write_file(broken, "OFF\n3 1 0\n0 0\n", 14);
+    /* (a truncated OFF file would do too, but OpenMesh 9.0's reader then
+     * uses uninitialised face indices: valgrind flags it inside OpenMesh) */
+    write_file(broken, "OFF\n0 0 0\n", 10);
     const char *paths[] = {missing, unknown, broken, NULL};
     assert_int_equal(captured_stderr(read_bad, paths), 0);
     unlink(unknown);

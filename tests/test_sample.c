@@ -4,6 +4,7 @@
  * polyhedral bodies, an edge-use count written here, point-to-triangle
  * distances from random exact boundary points, and coons_body_volume(). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -545,6 +546,60 @@ static void test_alloc_failures(void **state)
     coons_body_free(b);
 }
 
+static const char *TWO_BOXES =
+    "{\"coons\": 1, \"tolerance\": 0.01, \"operation\": \"%s\", \"bodies\": ["
+    "{\"type\": \"body0\", \"name\": \"a\", \"corners\": [[0,0,0],[0,0,1],[0,1,0],[0,1,1],"
+    "[1,0,0],[1,0,1],[1,1,0],[1,1,1]]},"
+    "{\"type\": \"body0\", \"corners\": [[%g,0,0],[%g,0,1],[%g,1,0],[%g,1,1],"
+    "[%g,0,0],[%g,0,1],[%g,1,0],[%g,1,1]]}]}";
+
+static int mesh_two_boxes(const char *op, double x0, coons_mesh **m, coons_error *err)
+{
+    char json[1024];
+    double x1 = x0 + 2;
+    snprintf(json, sizeof json, TWO_BOXES, op, x0, x0, x0, x0, x1, x1, x1, x1);
+    coons_model *model = NULL;
+    assert_coons_ok(coons_model_load_buffer(json, strlen(json), "two.json", &model, err), err);
+    int rc = coons_model_mesh(model, NULL, m, err);
+    coons_model_free(model);
+    return rc;
+}
+
+static void test_model_mesh(void **state)
+{
+    (void)state;
+    coons_mesh *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    /* apart: a plain collection of two parts */
+    assert_coons_ok(mesh_two_boxes("union", 3, &m, &err), &err);
+    assert_int_equal(coons_mesh_part_count(m), 2);
+    assert_string_equal(coons_mesh_part_name(m, 0), "a");
+    assert_string_equal(coons_mesh_part_name(m, 1), "body1");
+    assert_near(coons_mesh_volume(m), 1 + 2, 1e-12);
+    double tol;
+    coons_mesh_part_sampling(m, 1, &tol, NULL, NULL);
+    assert_near(tol, 0.01, 0);
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    assert_coons_ok(coons_mesh_check(m, &r, &err), &err);
+    assert_true(r.closed && r.manifold && r.oriented);
+    assert_int_equal(r.shells, 2);
+    assert_int_equal(r.euler, 4);
+    coons_mesh_free(m);
+    /* overlapping: the union is not available here */
+    m = (coons_mesh *)&err;
+    assert_int_equal(mesh_two_boxes("union", 0.5, &m, &err), COONS_E_UNSUPPORTED);
+    assert_null(m);
+    assert_non_null(strstr(err.message, "'a' and 'body1'"));
+    assert_non_null(strstr(err.message, "\"none\""));
+    /* touching counts as overlapping */
+    assert_int_equal(mesh_two_boxes("union", 1, &m, &err), COONS_E_UNSUPPORTED);
+    /* "none": each body's own shell, overlaps allowed */
+    assert_coons_ok(mesh_two_boxes("none", 0.5, &m, &err), &err);
+    assert_int_equal(coons_mesh_part_count(m), 2);
+    assert_near(coons_mesh_volume(m), 3, 1e-12);
+    coons_mesh_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -559,6 +614,7 @@ int main(void)
         cmocka_unit_test(test_limits_and_options),
         cmocka_unit_test(test_aspect),
         cmocka_unit_test(test_alloc_failures),
+        cmocka_unit_test(test_model_mesh),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

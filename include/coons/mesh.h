@@ -234,7 +234,9 @@ COONS_EXPORT coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_repor
  * Reads an STL (ASCII or binary) or OFF file through OpenMesh's readers, as
  * one part named after the file. Meant for tests and inspection: OpenMesh
  * reads coordinates in single precision, welds STL vertices by position,
- * and may duplicate vertices of faces it cannot add.
+ * and may duplicate vertices of faces it cannot add. Its OFF reader does
+ * not detect truncated files (it then reads uninitialised indices): do not
+ * use it on untrusted input.
  * @return ::COONS_OK, ::COONS_E_IO (missing file, unknown extension, read
  *         failure, no face read), ::COONS_E_UNSUPPORTED (built without OpenMesh),
  *         ::COONS_E_NOMEM, ::COONS_E_INTERNAL.
