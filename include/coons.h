@@ -27,5 +27,6 @@
 #include "coons/model.h"
 #include "coons/mesh.h"
 #include "coons/csg.h"
+#include "coons/io.h"
 
 #endif

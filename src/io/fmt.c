@@ -1,0 +1,217 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Shortest round-trip decimal text for the text writers (OFF, SCAD, ASCII
+ * STL), never depending on the process locale (STYLE 18; OpenSCAD's
+ * export_stl.cc calls setlocale, which a library must not do).
+ *
+ * Doubles: glibc's printf("%.*e") is exact, strtod is correctly rounded, so
+ * the shortest of 15, 16, 17 significant digits that strtod reads back to
+ * the same bits is taken (17 always does; up to 15 digits the correctly
+ * rounded text is the shortest one padded with zeros, because any decimal
+ * of <= 15 digits survives decimal -> double -> decimal; subnormals, with
+ * fewer significant bits, search from 1 digit). Both run under a
+ * thread-local "C" locale installed with uselocale().
+ *
+ * Floats: done in double arithmetic, which has 29 bits more than a float.
+ * A candidate D*10^q is accepted only if it lies inside the float's
+ * rounding interval with a relative margin of 1e-6 of the half-gap; the
+ * few roundings made computing D*10^q (< 1e-15 relative) cannot move it
+ * across that margin, so every accepted text reads back exactly. Nine
+ * digits always pass: their error is <= 0.5e-8 |v| while the smallest
+ * half-gap of a float is 2^-26 |v| ~ 1.49e-8 |v|. */
+#define _XOPEN_SOURCE 700
+#include "fmt.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int coons__fmt_begin(coons__fmt_scope *s)
+{
+    s->c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    if (s->c_locale == (locale_t)0) return 0;
+    s->saved = uselocale(s->c_locale);
+    if (s->saved == (locale_t)0) {
+        freelocale(s->c_locale);
+        s->c_locale = (locale_t)0;
+        return 0;
+    }
+    return 1;
+}
+
+void coons__fmt_end(coons__fmt_scope *s)
+{
+    if (s->c_locale == (locale_t)0) return;
+    uselocale(s->saved);
+    freelocale(s->c_locale);
+    s->c_locale = (locale_t)0;
+}
+
+void coons__fmt_suspend(const coons__fmt_scope *s) { uselocale(s->saved); }
+void coons__fmt_resume(const coons__fmt_scope *s) { uselocale(s->c_locale); }
+
+size_t coons__fmt_u64(char *out, uint64_t v)
+{
+    char tmp[24];
+    size_t n = 0;
+    do {
+        tmp[n++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v);
+    for (size_t i = 0; i < n; i++) out[i] = tmp[n - 1 - i];
+    return n;
+}
+
+static size_t ndigits(unsigned v)
+{
+    size_t n = 1;
+    while (v >= 10) {
+        v /= 10;
+        n++;
+    }
+    return n;
+}
+
+/* Writes the decimal digits[0..nd) * 10^(e - nd + 1) (e = exponent of the
+ * first digit, no trailing zeros in digits) in fixed or exponent notation,
+ * whichever is shorter, fixed on a tie. Returns the length; NUL-terminates. */
+static size_t compose(char *out, int neg, const char *digits, size_t nd, int e)
+{
+    size_t fixed_len, sci_len;
+    if (e >= (int)nd - 1)
+        fixed_len = (size_t)e + 1;
+    else if (e >= 0)
+        fixed_len = nd + 1;
+    else
+        fixed_len = nd + 1 + (size_t)(-e);
+    sci_len = nd + (nd > 1) + 1 + (e < 0) + ndigits((unsigned)(e < 0 ? -e : e));
+    char *p = out;
+    if (neg) *p++ = '-';
+    if (fixed_len <= sci_len) {
+        if (e >= (int)nd - 1) {
+            memcpy(p, digits, nd);
+            p += nd;
+            for (int i = (int)nd - 1; i < e; i++) *p++ = '0';
+        } else if (e >= 0) {
+            memcpy(p, digits, (size_t)e + 1);
+            p += e + 1;
+            *p++ = '.';
+            memcpy(p, digits + e + 1, nd - (size_t)e - 1);
+            p += nd - (size_t)e - 1;
+        } else {
+            *p++ = '0';
+            *p++ = '.';
+            for (int i = -1; i > e; i--) *p++ = '0';
+            memcpy(p, digits, nd);
+            p += nd;
+        }
+    } else {
+        *p++ = digits[0];
+        if (nd > 1) {
+            *p++ = '.';
+            memcpy(p, digits + 1, nd - 1);
+            p += nd - 1;
+        }
+        *p++ = 'e';
+        if (e < 0) *p++ = '-';
+        p += coons__fmt_u64(p, (uint64_t)(e < 0 ? -e : e));
+    }
+    *p = '\0';
+    return (size_t)(p - out);
+}
+
+static size_t fmt_zero(char *out, int neg)
+{
+    char *p = out;
+    if (neg) *p++ = '-';
+    *p++ = '0';
+    *p = '\0';
+    return (size_t)(p - out);
+}
+
+size_t coons__fmt_double(char *out, double v)
+{
+    if (v == 0.0) return fmt_zero(out, signbit(v) != 0);
+    int neg = signbit(v) != 0;
+    double a = fabs(v);
+    size_t len = 0;
+    /* Subnormals have fewer significant digits: search from 1 there. */
+    for (int prec = a < DBL_MIN ? 1 : 15; prec <= 17; prec++) {
+        char buf[48];
+        snprintf(buf, sizeof buf, "%.*e", prec - 1, a);
+        /* "d.ddd...e[+-]XX" in the C locale. */
+        char digits[24];
+        size_t nd = 0;
+        const char *s = buf;
+        for (; *s && *s != 'e'; s++)
+            if (*s >= '0' && *s <= '9') digits[nd++] = *s;
+        int e = (int)strtol(s + 1, NULL, 10);
+        while (nd > 1 && digits[nd - 1] == '0') nd--;
+        len = compose(out, neg, digits, nd, e);
+        double back = strtod(out, NULL);
+        if (memcmp(&back, &v, sizeof v) == 0) break;
+    }
+    return len;
+}
+
+/* x * 10^e with each factor an exact power of ten (<= 1e22). */
+static double scale10(double x, int e)
+{
+    static const double p10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                 1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    while (e > 22) {
+        x *= 1e22;
+        e -= 22;
+    }
+    while (e < -22) {
+        x /= 1e22;
+        e += 22;
+    }
+    return e >= 0 ? x * p10[e] : x / p10[-e];
+}
+
+size_t coons__fmt_float(char *out, float v)
+{
+    if (v == 0.0f) return fmt_zero(out, signbit(v) != 0);
+    int neg = signbit(v) != 0;
+    float fa = fabsf(v);
+    double a = fa;
+    /* Half-gaps to the neighbouring floats (exact in double). */
+    double lo = (a - (double)nextafterf(fa, 0.0f)) * 0.5;
+    double hi = isinf(nextafterf(fa, INFINITY)) ? lo
+                                                : ((double)nextafterf(fa, INFINITY) - a) * 0.5;
+    lo *= 1.0 - 1e-6;
+    hi *= 1.0 - 1e-6;
+    int k = (int)floor(log10(a));
+    double s = scale10(a, -k);
+    if (s < 1.0)
+        k--;
+    else if (s >= 10.0)
+        k++;
+    static const double pow10p[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+    uint32_t dig = 0;
+    int q = 0;
+    /* Any float with a shortest form of <= 6 digits is found at p = 6
+     * (FLT_DIG): shorter forms come out by stripping trailing zeros.
+     * Subnormals carry fewer digits, so there the search starts at 1. */
+    for (int p = fa < FLT_MIN ? 1 : 6; p <= 9; p++) {
+        double d = floor(scale10(a, p - 1 - k) + 0.5);
+        q = k - p + 1;
+        if (d >= pow10p[p]) {
+            d = pow10p[p - 1];
+            q++;
+        }
+        dig = (uint32_t)d;
+        double c = scale10(d, q);
+        if (c >= a ? c - a < hi : a - c < lo) break;
+    }
+    while (dig % 10 == 0) {
+        dig /= 10;
+        q++;
+    }
+    char digits[16];
+    size_t nd = coons__fmt_u64(digits, dig);
+    return compose(out, neg, digits, nd, q + (int)nd - 1);
+}

@@ -1,0 +1,154 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* STL writers, binary and ASCII (the de-facto format of 3D Systems' 1989
+ * StereoLithography Interface Specification: per facet a normal and three
+ * vertices, counter-clockwise seen from outside).
+ *
+ * Binary STL stores IEEE float32; it is written byte by byte in
+ * little-endian order so the output does not depend on the host. The ASCII
+ * writer prints the same float32 values (coons__fmt_float), so both STL
+ * flavours of one mesh describe bit-identical geometry, and shared vertices
+ * stay shared after rounding (rounding is per vertex). Normals are
+ * computed in double from the double vertices and then rounded. */
+#include <math.h>
+
+#include "coons/version.h"
+#include "writer.h"
+
+static inline unsigned char *put_u32(unsigned char *p, uint32_t u)
+{
+    p[0] = (unsigned char)(u & 0xffu);
+    p[1] = (unsigned char)((u >> 8) & 0xffu);
+    p[2] = (unsigned char)((u >> 16) & 0xffu);
+    p[3] = (unsigned char)((u >> 24) & 0xffu);
+    return p + 4;
+}
+
+static inline unsigned char *put_f32(unsigned char *p, double v)
+{
+    float f = (float)v;
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    return put_u32(p, u);
+}
+
+/* Unit normal of (a, b, c), or 0 for a degenerate triangle. */
+static void facet_normal(double n[3], const double *a, const double *b, const double *c)
+{
+    double e1[3], e2[3];
+    v3_sub(e1, b, a);
+    v3_sub(e2, c, a);
+    v3_cross(n, e1, e2);
+    double len = v3_norm(n);
+    if (len > 0.0 && isfinite(len))
+        v3_scale(n, n, 1.0 / len);
+    else
+        v3_zero(n);
+}
+
+static int starts_with_solid(const char *h)
+{
+    while (*h == ' ') h++;
+    const char *w = "solid";
+    for (int i = 0; i < 5; i++)
+        if (h[i] == '\0' || (h[i] | 0x20) != w[i]) return 0;
+    return 1;
+}
+
+coons_status coons__write_stl_binary(const coons_mesh *m, const coons__wopts *o, coons__sink *s)
+{
+    /* Header: the text, then " units=U" (kept whole: the text is cut
+     * first), NUL-padded to 80 bytes, never starting with "solid" since
+     * some readers then take the file for ASCII. */
+    unsigned char header[80];
+    char text[81], units[81];
+    memset(header, 0, sizeof header);
+    units[0] = '\0';
+    if (o->units[0]) {
+        char u[72];
+        coons__clean_text(u, sizeof u, o->units);
+        snprintf(units, sizeof units, " units=%s", u);
+    }
+    coons__clean_text(text, sizeof text, o->header);
+    char full[200];
+    snprintf(full, sizeof full, "%s%s", starts_with_solid(text) ? "libcoons: " : "", text);
+    size_t ul = strlen(units), fl = strlen(full);
+    if (ul > 80) ul = 80;
+    if (fl > 80 - ul) fl = 80 - ul;
+    memcpy(header, full, fl);
+    memcpy(header + fl, units, ul);
+    size_t nt = coons_mesh_triangle_count(m);
+    unsigned char count[4];
+    put_u32(count, (uint32_t)nt);
+    if (!coons__sink_put(s, header, sizeof header) || !coons__sink_put(s, count, sizeof count))
+        return s->status;
+    const double *xyz = coons_mesh_vertices(m);
+    const uint32_t *tri = coons_mesh_triangles(m);
+    for (size_t t = 0; t < nt; t++) {
+        unsigned char *p = (unsigned char *)coons__sink_room(s, 50);
+        if (!p) return s->status;
+        const double *a = xyz + 3 * (size_t)tri[3 * t], *b = xyz + 3 * (size_t)tri[3 * t + 1],
+                     *c = xyz + 3 * (size_t)tri[3 * t + 2];
+        double n[3];
+        facet_normal(n, a, b, c);
+        for (int i = 0; i < 3; i++) p = put_f32(p, n[i]);
+        for (int i = 0; i < 3; i++) p = put_f32(p, a[i]);
+        for (int i = 0; i < 3; i++) p = put_f32(p, b[i]);
+        for (int i = 0; i < 3; i++) p = put_f32(p, c[i]);
+        p[0] = p[1] = 0; /* attribute byte count */
+        s->len += 50;
+    }
+    return s->status;
+}
+
+/* One token for `solid NAME`: blanks and control characters become '_'. */
+static void solid_name(char *out, size_t cap, const char *name)
+{
+    size_t n = coons__clean_text(out, cap, name);
+    for (size_t i = 0; i < n; i++)
+        if (out[i] == ' ') out[i] = '_';
+    if (n == 0) snprintf(out, cap, "coons_model");
+}
+
+static char *put_xyz(char *p, const char *prefix, size_t plen, const double v[3])
+{
+    memcpy(p, prefix, plen);
+    p += plen;
+    for (int i = 0; i < 3; i++) {
+        *p++ = ' ';
+        p += coons__fmt_float(p, (float)v[i]);
+    }
+    *p++ = '\n';
+    return p;
+}
+
+coons_status coons__write_stl_ascii(const coons_mesh *m, const coons__wopts *o, coons__sink *s)
+{
+    char name[256];
+    solid_name(name, sizeof name, o->name);
+    if (!coons__sink_puts(s, "solid ") || !coons__sink_puts(s, name) || !coons__sink_puts(s, "\n"))
+        return s->status;
+    size_t nt = coons_mesh_triangle_count(m);
+    const double *xyz = coons_mesh_vertices(m);
+    const uint32_t *tri = coons_mesh_triangles(m);
+    static const char fn[] = "  facet normal", ol[] = "    outer loop\n", vx[] = "      vertex",
+                      el[] = "    endloop\n  endfacet\n";
+    for (size_t t = 0; t < nt; t++) {
+        /* A facet is at most 5 lines of < 120 bytes: within MAXREC. */
+        char *p = coons__sink_room(s, COONS__SINK_MAXREC), *p0 = p;
+        if (!p) return s->status;
+        const double *v[3] = {xyz + 3 * (size_t)tri[3 * t], xyz + 3 * (size_t)tri[3 * t + 1],
+                              xyz + 3 * (size_t)tri[3 * t + 2]};
+        double n[3];
+        facet_normal(n, v[0], v[1], v[2]);
+        p = put_xyz(p, fn, sizeof fn - 1, n);
+        memcpy(p, ol, sizeof ol - 1);
+        p += sizeof ol - 1;
+        for (int k = 0; k < 3; k++) p = put_xyz(p, vx, sizeof vx - 1, v[k]);
+        memcpy(p, el, sizeof el - 1);
+        p += sizeof el - 1;
+        s->len += (size_t)(p - p0);
+    }
+    if (!coons__sink_puts(s, "endsolid ") || !coons__sink_puts(s, name)) return s->status;
+    coons__sink_puts(s, "\n");
+    return s->status;
+}
