@@ -15,7 +15,9 @@
  * A candidate D*10^q is accepted only if it lies inside the float's
  * rounding interval with a relative margin of 1e-6 of the half-gap; the
  * few roundings made computing D*10^q (< 1e-15 relative) cannot move it
- * across that margin, so every accepted text reads back exactly. Nine
+ * across that margin, so every accepted text reads back exactly (where
+ * D*10^q is an integer below 2^53 the test is exact and takes ties, which
+ * strtof breaks towards the even significand). Nine
  * digits always pass: their error is <= 0.5e-8 |v| while the smallest
  * half-gap of a float is 2^-26 |v| ~ 1.49e-8 |v|. */
 #define _XOPEN_SOURCE 700
@@ -182,8 +184,12 @@ size_t coons__fmt_float(char *out, float v)
     double lo = (a - (double)nextafterf(fa, 0.0f)) * 0.5;
     double hi = isinf(nextafterf(fa, INFINITY)) ? lo
                                                 : ((double)nextafterf(fa, INFINITY) - a) * 0.5;
-    lo *= 1.0 - 1e-6;
-    hi *= 1.0 - 1e-6;
+    double lo_m = lo * (1.0 - 1e-6), hi_m = hi * (1.0 - 1e-6);
+    /* strtof rounds a tie to the even significand: if v's is even, a text
+     * exactly half-way to a neighbour still reads back as v. */
+    uint32_t bits;
+    memcpy(&bits, &fa, sizeof bits);
+    int even = (bits & 1u) == 0;
     int k = (int)floor(log10(a));
     double s = scale10(a, -k);
     if (s < 1.0)
@@ -205,7 +211,14 @@ size_t coons__fmt_float(char *out, float v)
         }
         dig = (uint32_t)d;
         double c = scale10(d, q);
-        if (c >= a ? c - a < hi : a - c < lo) break;
+        /* An integer below 2^53 times an exact power of ten is computed
+         * exactly, and then so is c - a: decide exactly, ties included. */
+        if (q >= 0 && q <= 22 && c < 9007199254740992.0) {
+            double diff = c >= a ? c - a : a - c, gap = c >= a ? hi : lo;
+            if (diff < gap || (diff == gap && even)) break;
+        } else if (c >= a ? c - a < hi_m : a - c < lo_m) {
+            break;
+        }
     }
     while (dig % 10 == 0) {
         dig /= 10;
