@@ -80,6 +80,7 @@ static inline void io_torus(coons_mesh *m, const char *name, double R, double r,
 
 static inline char *io_read_file(const char *path, size_t *len)
 {
+    if (len) *len = 0;
     FILE *f = fopen(path, "rb");
     if (!f) return NULL;
     size_t cap = 1 << 16, n = 0;

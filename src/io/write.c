@@ -58,9 +58,10 @@ static void sys_error(coons__sink *s, const char *doing)
 static int cancelled(coons__sink *s)
 {
     if (!s->opts || !s->opts->cancel) return 0;
-    coons__fmt_suspend(s->fmt);
+    /* The callback runs in the caller's locale, not the writer's "C". */
+    if (s->fmt) coons__fmt_suspend(s->fmt);
     int c = s->opts->cancel(s->opts->cancel_ctx);
-    coons__fmt_resume(s->fmt);
+    if (s->fmt) coons__fmt_resume(s->fmt);
     return c != 0;
 }
 
