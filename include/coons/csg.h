@@ -28,6 +28,8 @@
 #define COONS_CSG_H
 
 #include "coons/types.h"
+#include "coons/mesh.h"
+#include "coons/model.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -44,6 +46,8 @@ typedef void (*coons_progress_fn)(void *userdata, const char *stage, double frac
 typedef struct coons_csg_options {
     unsigned version;           /**< ::COONS_CSG_OPTIONS_VERSION */
     int unite;                  /**< nonzero: unite all parts into one solid */
+    int repair;                 /**< nonzero: resolve a part's self-intersections (default);
+                                     0: a part that meets no other passes unchecked */
     const char *name;           /**< name of the united part (NULL: "union") */
     coons_progress_fn progress; /**< NULL: no progress reports */
     void *userdata;             /**< passed to progress */
@@ -51,7 +55,7 @@ typedef struct coons_csg_options {
 } coons_csg_options;
 
 #define COONS_CSG_OPTIONS_VERSION 1
-#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 0, 0, 0, 0}
+#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 1, 0, 0, 0, 0}
 
 /** What coons_mesh_solidify() found and did. */
 typedef struct coons_csg_report {
@@ -101,6 +105,26 @@ COONS_EXPORT coons_status coons_mesh_self_intersections(const coons_mesh *m, siz
  */
 COONS_EXPORT coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
                                                               coons_error *err);
+
+/**
+ * Samples every body of a model (see coons_model_mesh()) and makes the
+ * model's solid: with operation "union" the boundary of the union of all
+ * bodies' solids as one part named after `copts->name` (default "union"),
+ * with "none" each body's solid as its own part. Bodies that meet nothing
+ * else and do not cross themselves are written as sampled.
+ * @param[in] sopts  sampling options (NULL: defaults, model tolerance)
+ * @param[in] copts  repair/union options (NULL: defaults); its `unite`
+ *                   field is ignored: the model's operation decides
+ * @param[out] report may be NULL; zeroed when no CGAL work was needed
+ * @return as coons_model_mesh() and coons_mesh_solidify(); without CGAL,
+ *         ::COONS_E_UNSUPPORTED when bodies overlap or touch under "union" or
+ *         repair is asked for a body that crosses itself cannot be checked
+ *         (without CGAL no check is made: shells are written as sampled).
+ */
+COONS_EXPORT coons_status coons_model_solid(const coons_model *model,
+                                            const coons_sample_options *sopts,
+                                            const coons_csg_options *copts, coons_mesh **out,
+                                            coons_csg_report *report, coons_error *err);
 
 /** 1 when the library was built with CGAL (repair and union available). */
 COONS_EXPORT int coons_csg_available(void);

@@ -595,7 +595,14 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
             prog("check", p0);
             Soup s;
             bool pass = false;
-            if (current.size() == 1) {
+            if (current.size() == 1 && !opts->repair) {
+                const Part &p = parts[current[0]];
+                pass = true;
+                rep.passed_through++;
+                s.xyz.assign(xyz + 3 * p.vert_first, xyz + 3 * (p.vert_first + p.vert_count));
+                for (size_t t = 0; t < 3 * p.tri_count; t++)
+                    s.tri.push_back(tri[3 * p.tri_first + t] - (uint32_t)p.vert_first);
+            } else if (current.size() == 1) {
                 const Part &p = parts[current[0]];
                 std::vector<uint32_t> local(3 * p.tri_count);
                 for (size_t t = 0; t < local.size(); t++)
