@@ -406,15 +406,23 @@ coons_status coons__json_parse(const char *buf, size_t len, size_t max_tokens, u
         coons__json_free(j);
         return coons__error_nomem(err);
     }
+    /* jsmn does not know the byte order mark the scan skipped: it parses
+     * the text after it, and the offsets are shifted back onto buf. */
+    size_t bom = (len >= 3 && memcmp(buf, "\xEF\xBB\xBF", 3) == 0) ? 3 : 0;
     jsmn_parser p;
     jsmn_init(&p);
-    int r = jsmn_parse(&p, buf, len, j->tok, (unsigned)count);
+    int r = jsmn_parse(&p, buf + bom, len - bom, j->tok, (unsigned)count);
     if (r < 0 || (size_t)r != count) {
         coons__json_free(j);
         return coons__error_set(err, COONS_E_INTERNAL,
                                 "jsmn disagrees with the validating scan (%d tokens, expected %zu)",
                                 r, count);
     }
+    if (bom)
+        for (size_t i = 0; i < count; i++) {
+            j->tok[i].start += (int)bom;
+            j->tok[i].end += (int)bom;
+        }
     /* Subtree ends: children follow their parent, so walking backwards each
      * token's end is final before it is propagated to its parent. */
     for (size_t i = 0; i < count; i++) j->next[i] = (unsigned)i + 1;

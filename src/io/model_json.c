@@ -923,7 +923,7 @@ static coons_status patch(ld *L, size_t obj, coons_patch **out)
         }
         if (!L->build) break;
         if ((rc = patch_corners(L, bd, btok))) break;
-        if (v[2] && (rc = cross_check(L, bd, cr, btok))) break;
+        if (type == P_HERMITE && v[2] && (rc = cross_check(L, bd, cr, btok))) break;
         const coons_curve *cb[4] = {bd[0], bd[1], bd[2], bd[3]};
         if (type == P_COONS)
             r = coons_patch_coons(cb, bl, L->ctol, out, &e);

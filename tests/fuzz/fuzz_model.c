@@ -1,0 +1,244 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * Fuzz target: the model loader from a memory buffer, then whatever loads
+ * is evaluated. Any byte sequence must give a model or an error with a
+ * message; nothing may crash, leak, read out of bounds, overflow a signed
+ * integer or a float-to-integer conversion (the sanitizers report those),
+ * or allocate without bound (libFuzzer's -malloc_limit_mb).
+ *
+ * Each input is loaded three times:
+ *  1. normally, with limits small enough that one input stays cheap;
+ *  2. on success, the bodies are evaluated (points, Jacobians, a small grid,
+ *     the volume to a coarse tolerance, the minimum Jacobian);
+ *  3. again with an allocator that fails the k-th allocation, k chosen from
+ *     the input's hash among the allocations the first load made: the load
+ *     must then report COONS_E_NOMEM (or the same error as before, if the
+ *     failure comes after the point where it stopped) and free everything.
+ *
+ * Built two ways: with clang -fsanitize=fuzzer (tools/fuzz.sh, the
+ * COONS_FUZZ CMake option) and, with replay_main.c, as an ordinary program
+ * that runs the files named on its command line (the regression test).
+ */
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <coons.h>
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+/* A finding that is not a crash: print and abort so that libFuzzer keeps
+ * the input. (This is a test program, not the library.) */
+#define CHECK(cond, ...)                                                \
+    do {                                                                \
+        if (!(cond)) {                                                  \
+            fprintf(stderr, "fuzz_model: check failed: %s: ", #cond);  \
+            fprintf(stderr, __VA_ARGS__);                               \
+            fputc('\n', stderr);                                        \
+            abort();                                                    \
+        }                                                               \
+    } while (0)
+
+/* ---- counting, failing allocator ------------------------------------------ */
+
+static long g_fail_at = -1; /* fail the allocation with this index; -1: never */
+static long g_count, g_live;
+
+static void *f_malloc(size_t n)
+{
+    if (g_fail_at >= 0 && g_count++ == g_fail_at) return NULL;
+    void *p = malloc(n);
+    if (p) g_live++;
+    return p;
+}
+
+static void *f_realloc(void *p, size_t n)
+{
+    if (g_fail_at >= 0 && g_count++ == g_fail_at) return NULL;
+    void *q = realloc(p, n);
+    if (q && !p) g_live++;
+    return q;
+}
+
+static void f_free(void *p)
+{
+    if (p) g_live--;
+    free(p);
+}
+
+static void alloc_reset(long fail_at)
+{
+    g_fail_at = fail_at;
+    g_count = 0;
+    g_live = 0;
+}
+
+/* ---- evaluation of what loaded ------------------------------------------- */
+
+static int finite3(const double p[3])
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+/* Largest absolute control coordinate: with moderate control data the
+ * points of a body are finite (they are affine or convex combinations of
+ * control data for all body types except the rational ones, whose weights
+ * the loader keeps positive and finite). */
+static double box_extent(const coons_body *b)
+{
+    double lo[3], hi[3], m = 0.0;
+    coons_body_control_bbox(b, lo, hi);
+    for (int i = 0; i < 3; i++) {
+        if (!(fabs(lo[i]) <= m)) m = fabs(lo[i]);
+        if (!(fabs(hi[i]) <= m)) m = fabs(hi[i]);
+    }
+    return m;
+}
+
+static void exercise_body(const coons_body *b)
+{
+    static const double P[][3] = {{0, 0, 0},       {1, 1, 1},         {0.5, 0.5, 0.5},
+                                  {0.3, 0.7, 0.1}, {1e-300, 1, 0.999}, {-1, 2, 0.5}};
+    int moderate = box_extent(b) < 1e100;
+    for (size_t i = 0; i < sizeof P / sizeof P[0]; i++) {
+        double x[3], y[3], jac[3][3];
+        coons_body_eval(b, P[i][0], P[i][1], P[i][2], x);
+        double det = coons_body_eval_jacobian(b, P[i][0], P[i][1], P[i][2], y, jac);
+        (void)det;
+        if (moderate) {
+            CHECK(finite3(x), "non-finite point (%g %g %g) at (%g %g %g)", x[0], x[1], x[2],
+                  P[i][0], P[i][1], P[i][2]);
+            /* Same point from both entry points, to rounding. */
+            for (int c = 0; c < 3; c++)
+                CHECK(fabs(x[c] - y[c]) <= 1e-9 * (1.0 + fabs(x[c])),
+                      "eval and eval_jacobian disagree: %.17g vs %.17g", x[c], y[c]);
+        }
+    }
+    /* Out-of-domain and NaN parameters must not crash (clamped or NaN out). */
+    double x[3], jac[3][3];
+    coons_body_eval(b, NAN, 0.5, INFINITY, x);
+    (void)coons_body_eval_jacobian(b, -INFINITY, NAN, 0.5, x, jac);
+
+    /* A small grid and a boundary face grid. */
+    double u[3] = {0.0, 0.5, 1.0}, v[3] = {1.0, 0.25, 0.0}, w[3] = {0.0, 0.75, 1.0};
+    double grid[27 * 3], face[9 * 3];
+    coons_error err = COONS_ERROR_INIT;
+    coons_status rc = coons_body_eval_grid(b, u, 3, v, 3, w, 3, grid, &err);
+    CHECK(rc == COONS_OK || rc == COONS_E_NOMEM, "eval_grid: %d %s", rc, err.message);
+    if (rc == COONS_OK && moderate) {
+        double p[3];
+        coons_body_eval(b, u[2], v[1], w[0], p);
+        const double *g = grid + ((2 * 3 + 1) * 3 + 0) * 3;
+        for (int c = 0; c < 3; c++)
+            CHECK(fabs(p[c] - g[c]) <= 1e-9 * (1.0 + fabs(p[c])),
+                  "grid and eval disagree: %.17g vs %.17g", g[c], p[c]);
+    }
+    rc = coons_body_eval_grid(b, u, 3, v, 3, w + 2, 1, face, &err);
+    CHECK(rc == COONS_OK || rc == COONS_E_NOMEM, "eval_grid face: %d %s", rc, err.message);
+
+    double vol = 0.0, mind = 0.0, where[3];
+    /* Coarse: the quadrature refines up to 32^3 cells while successive
+     * estimates differ by more than this, which is slow for folded or
+     * piecewise bodies. */
+    rc = coons_body_volume(b, 1.0, &vol, &err);
+    CHECK(rc == COONS_OK, "volume: %d %s", rc, err.message);
+    rc = coons_body_min_jacobian(b, 2, &mind, where, &err);
+    CHECK(rc == COONS_OK, "min_jacobian: %d %s", rc, err.message);
+    if (rc == COONS_OK && isfinite(mind))
+        for (int c = 0; c < 3; c++) CHECK(where[c] >= 0.0 && where[c] <= 1.0, "where %g", where[c]);
+}
+
+static void exercise_model(const coons_model *m)
+{
+    size_t n = coons_model_body_count(m);
+    CHECK(n >= 1, "a model with no body");
+    CHECK(coons_model_body(m, n) == NULL, "body past the end");
+    (void)coons_model_tolerance(m);
+    (void)coons_model_operation(m);
+    CHECK(coons_model_units(m) != NULL, "no units");
+    double lo[3], hi[3];
+    coons_model_control_bbox(m, lo, hi);
+    for (size_t i = 0; i < n; i++) {
+        const coons_body *b = coons_model_body(m, i);
+        const char *name = coons_model_body_name(m, i);
+        CHECK(b && name, "body %zu missing", i);
+        long k = coons_model_find_body(m, name);
+        CHECK(k >= 0 && (size_t)k <= i, "body %zu (%s) found at %ld", i, name, k);
+        exercise_body(b);
+    }
+}
+
+/* ---- the target ------------------------------------------------------------ */
+
+static uint64_t fnv1a(const uint8_t *d, size_t n)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < n; i++) h = (h ^ d[i]) * 1099511628211ull;
+    return h;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    /* Small limits: the defaults would let a short input describe a net of
+     * 10^6 points whose evaluation alone takes seconds. The limits
+     * themselves are exercised too (E_LIMIT is a valid outcome). */
+    coons_model_load_options o = COONS_MODEL_LOAD_OPTIONS_INIT;
+    o.max_bytes = 1 << 20;
+    o.max_values = 1 << 16;
+    o.max_points = 512;
+
+    static int installed;
+    if (!installed) {
+        coons_set_allocator(f_malloc, f_realloc, f_free);
+        installed = 1;
+    }
+
+    coons_model *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    alloc_reset(-1);
+    coons_status rc = coons_model_load_buffer_opts((const char *)data, size, "fuzz", &o, &m, &err);
+    if (rc != COONS_OK) {
+        CHECK(m == NULL, "error %d but a model", rc);
+        CHECK(err.code == rc, "err.code %d, returned %d", err.code, rc);
+        CHECK(err.message[0] != '\0', "error %d without a message", rc);
+        CHECK(strncmp(err.message, "fuzz", 4) == 0 || rc == COONS_E_NOMEM,
+              "message does not name the file: %s", err.message);
+        CHECK(rc == COONS_E_PARSE || rc == COONS_E_INVALID || rc == COONS_E_LIMIT ||
+                  rc == COONS_E_UNSUPPORTED || rc == COONS_E_INCOMPATIBLE,
+              "unexpected status %d: %s", rc, err.message);
+        CHECK(g_live == 0, "%ld blocks live after a failed load", g_live);
+    } else {
+        CHECK(m != NULL, "COONS_OK without a model");
+        exercise_model(m);
+        coons_model_free(m);
+        CHECK(g_live == 0, "%ld blocks live after coons_model_free", g_live);
+    }
+
+    /* Count the allocations of a load (fail_at beyond any count), then fail
+     * one of them. */
+    alloc_reset(LONG_MAX);
+    m = NULL;
+    coons_status rc2 = coons_model_load_buffer_opts((const char *)data, size, "fuzz", &o, &m, &err);
+    CHECK(rc2 == rc, "second load gave %d, first %d", rc2, rc);
+    coons_model_free(m);
+    long total = g_count;
+    if (total > 0) {
+        long k = (long)(fnv1a(data, size) % (uint64_t)total);
+        coons_error e3 = COONS_ERROR_INIT;
+        alloc_reset(k);
+        m = NULL;
+        coons_status rc3 = coons_model_load_buffer_opts((const char *)data, size, "fuzz", &o, &m,
+                                                        &e3);
+        CHECK(rc3 == COONS_E_NOMEM, "allocation %ld of %ld failed, load returned %d: %s", k, total,
+              rc3, e3.message);
+        CHECK(m == NULL, "a model despite a failed allocation");
+        CHECK(e3.message[0] != '\0', "out of memory without a message");
+        CHECK(g_live == 0, "%ld blocks leaked after allocation %ld of %ld failed", g_live, k,
+              total);
+    }
+    alloc_reset(-1);
+    return 0;
+}

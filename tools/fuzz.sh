@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Fuzzes the model loader and the evaluation of whatever loads
+# (tests/fuzz/fuzz_model.c) with libFuzzer, AddressSanitizer and
+# UndefinedBehaviorSanitizer for SECONDS seconds (default 60).
+#
+#   tools/fuzz.sh [SECONDS] [extra libFuzzer options...]
+#
+# Seeds: examples/*.json, tests/data/**/*.json and tests/fuzz/regressions/.
+# New interesting inputs accumulate in $COONS_FUZZ_BUILD/corpus (default
+# build-fuzz/corpus) and are reused by the next run. Any crash, leak,
+# sanitizer report, failed check, timeout (> 10 s for one input) or
+# allocation above 512 MB stops the run with a non-zero status; the input
+# is saved as tests/fuzz/regressions/<kind>-<sha1>. Fix the bug, keep the
+# file (rename it to say what it is): ctest's fuzz_regressions replays it.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+cd "$here"
+secs=${1:-60}
+shift || true
+build=${COONS_FUZZ_BUILD:-build-fuzz}
+case $build in /*) ;; *) build="$here/$build" ;; esac
+
+command -v clang >/dev/null || { echo "fuzz.sh: clang is missing (tools/setup.sh)" >&2; exit 2; }
+# A C-only build: the fuzz target reaches no C++ code, and clang with
+# -fsanitize=fuzzer-no-link on CGAL would cost minutes.
+CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCOONS_FUZZ=ON -DCOONS_WITH_OPENMESH=OFF -DCOONS_WITH_CGAL=OFF >/dev/null
+cmake --build "$build" --target fuzz_model -j "${COONS_JOBS:-2}" >/dev/null
+
+seeds="$build/seeds"
+rm -rf "$seeds"
+mkdir -p "$seeds" "$build/corpus"
+find examples tests/data -name '*.json' -type f 2>/dev/null | while read -r f; do
+  cp "$f" "$seeds/$(echo "$f" | tr / _)"
+done
+cp tests/fuzz/regressions/* "$seeds/" 2>/dev/null || true
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:allocator_may_return_null=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+echo "fuzz.sh: fuzzing for ${secs} s ($(ls "$seeds" | wc -l) seeds, $(ls "$build/corpus" | wc -l) in the corpus)" >&2
+log="$build/fuzz.log"
+set +e
+"$build/tests/fuzz_model" "$build/corpus" "$seeds" \
+  -dict=tests/fuzz/model.dict -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 \
+  -malloc_limit_mb=512 -max_len=16384 -print_final_stats=1 \
+  -artifact_prefix=tests/fuzz/regressions/ "$@" >"$log" 2>&1
+rc=$?
+set -e
+grep -E '^(stat::|#[0-9]+ *DONE)' "$log" >&2 || true
+if [ $rc -ne 0 ]; then
+  tail -n 60 "$log" >&2
+  echo "fuzz.sh: FAILED (status $rc); the input is in tests/fuzz/regressions/, full log: $log" >&2
+  exit 1
+fi
+echo "fuzz.sh: no finding in ${secs} s" >&2
