@@ -106,14 +106,54 @@ static inline void tb_nurbs_cylinder(double r, double h, coons_body **out)
     assert_coons_ok(tb_nurbs_cylinder_rc(r, h, out, &err), &err);
 }
 
+/* Net point (i,j,k) of a deformed unit cube sampled m x m x m. */
+static inline void tb_cube_net(int m, int i, int j, int k, double p[3])
+{
+    double x = (double)i / (m - 1), y = (double)j / (m - 1), z = (double)k / (m - 1);
+    /* terms in all three variables, so that no face is the Coons patch of
+     * its edges and opposite faces differ */
+    p[0] = x + 0.08 * sin(3.0 * y + 1.0) * sin(2.0 * z) + 0.05 * sin(4.0 * x * y + z);
+    p[1] = y + 0.06 * cos(2.0 * x + 0.5) * sin(3.0 * z + 0.3) + 0.04 * cos(3.0 * x * z - y);
+    p[2] = z + 0.1 * sin(2.5 * x) * cos(1.5 * y) + 0.05 * x * y + 0.06 * sin(2.0 * y * z + x);
+}
+
+/* The six bicubic B-spline faces (body.h order and parametrisations) of
+ * that net, m x m control points each: boundary slices of one lattice, so
+ * they agree exactly along shared edges. On failure all made are freed. */
+static inline int tb_bspline_faces(int m, coons_patch *f[6], coons_error *err)
+{
+    memset(f, 0, 6 * sizeof f[0]);
+    double *pts = malloc((size_t)m * m * 3 * sizeof *pts);
+    int rc = COONS_OK;
+    for (int n = 0; n < 6 && !rc; n++) {
+        int fixed = (n & 1) ? m - 1 : 0;
+        for (int a = 0; a < m; a++)
+            for (int b = 0; b < m; b++) {
+                double *p = pts + (a * m + b) * 3;
+                if (n < 2)
+                    tb_cube_net(m, fixed, a, b, p); /* X_I(v,w) */
+                else if (n < 4)
+                    tb_cube_net(m, a, fixed, b, p); /* Y_J(u,w) */
+                else
+                    tb_cube_net(m, a, b, fixed, p); /* Z_K(u,v) */
+            }
+        rc = coons_patch_bspline(3, 3, pts, (size_t)m, (size_t)m, NULL, NULL, NULL, &f[n], err);
+    }
+    free(pts);
+    if (rc)
+        for (int n = 0; n < 6; n++) coons_patch_free(f[n]);
+    return rc;
+}
+
 #define TB_NO_BODY 1
-#define TB_MAX_BODIES 8
+#define TB_MAX_BODIES 10
 
 static inline const char *tb_body_label(int m)
 {
     static const char *const names[TB_MAX_BODIES] = {
         "body0 linear", "body0 cubic", "body1 linear", "body1 cubic",
-        "bezier 3x4x3", "bspline", "nurbs cylinder", "nurbs random"};
+        "bezier 3x4x3", "bspline", "nurbs cylinder", "nurbs random",
+        "body2 linear", "body2 cubic"};
     return (m >= 0 && m < TB_MAX_BODIES) ? names[m] : "?";
 }
 
@@ -171,6 +211,17 @@ static inline int tb_make_body(int m, coons_body **b, coons_error *err)
         return coons_body_bspline(deg, P, n, kn, m == 7 ? W : NULL, b, err);
     }
     case 6: return tb_nurbs_cylinder_rc(1.5, 2.0, b, err);
+    case 8:
+    case 9: {
+        coons_patch *f[6];
+        int rc = tb_bspline_faces(6, f, err);
+        if (rc) return rc;
+        rc = coons_body_body2((const coons_patch *const *)f,
+                              m == 8 ? COONS_BLEND_LINEAR : COONS_BLEND_CUBIC, COONS_TOL_DEFAULT,
+                              b, err);
+        for (int n = 0; n < 6; n++) coons_patch_free(f[n]);
+        return rc;
+    }
     default: return TB_NO_BODY;
     }
 }

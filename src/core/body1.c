@@ -69,54 +69,65 @@ coons_status coons_body_body1(const coons_curve *const edges[12], coons_blend bl
 }
 
 /* Edge value (and derivative if dv is not NULL). */
-static void edge_at(const coons_curve *c, double t, double p[3], double *dv)
+static void edge_at(const coons_body *b, int e, double t, double p[3], double *dv)
 {
     double r[2][3];
-    coons_curve_eval_derivs(c, t, dv ? 1 : 0, r);
+    coons_curve_eval_derivs(b->edge[e], t, dv ? 1 : 0, r);
     v3_copy(p, r[0]);
     if (dv) v3_copy(dv, r[1]);
+}
+
+void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
+                     const double bv[5], const double bw[5], double out[3], double d[3][3])
+{
+    for (int x = 0; x < 2; x++)
+        for (int y = 0; y < 2; y++) {
+            double p[3], dp[3], f;
+            /* w-edge C(x,y,w): blends a_x(u) a_y(v) */
+            edge(b, 8 + 2 * x + y, bw[4], p, d ? dp : NULL);
+            v3_axpy(out, sign * bu[x] * bv[y], p);
+            if (d) {
+                v3_axpy(d[0], sign * bu[2 + x] * bv[y], p);
+                v3_axpy(d[1], sign * bu[x] * bv[2 + y], p);
+                v3_axpy(d[2], sign * bu[x] * bv[y], dp);
+            }
+            /* v-edge C(x,v,y): blends a_x(u) a_y(w) */
+            edge(b, 4 + 2 * x + y, bv[4], p, d ? dp : NULL);
+            f = sign * bu[x] * bw[y];
+            v3_axpy(out, f, p);
+            if (d) {
+                v3_axpy(d[0], sign * bu[2 + x] * bw[y], p);
+                v3_axpy(d[1], f, dp);
+                v3_axpy(d[2], sign * bu[x] * bw[2 + y], p);
+            }
+            /* u-edge C(u,x,y): blends a_x(v) a_y(w) */
+            edge(b, 2 * x + y, bu[4], p, d ? dp : NULL);
+            f = sign * bv[x] * bw[y];
+            v3_axpy(out, f, p);
+            if (d) {
+                v3_axpy(d[0], f, dp);
+                v3_axpy(d[1], sign * bv[2 + x] * bw[y], p);
+                v3_axpy(d[2], sign * bv[x] * bw[2 + y], p);
+            }
+        }
 }
 
 void coons__body1_eval(const coons_body *b, double u, double v, double w, double out[3],
                        double d[3][3])
 {
-    double bu[4], bv[4], bw[4];
+    double bu[5], bv[5], bw[5];
     coons__blend(b->blend, u, 1, bu);
     coons__blend(b->blend, v, 1, bv);
     coons__blend(b->blend, w, 1, bw);
+    bu[4] = u;
+    bv[4] = v;
+    bw[4] = w;
     double t[3], dt[3][3];
     coons__trilinear(b->corner, bu, bv, bw, t, d ? dt : NULL);
     v3_scale(out, t, -2.0);
     if (d)
         for (int q = 0; q < 3; q++) v3_scale(d[q], dt[q], -2.0);
-    for (int x = 0; x < 2; x++)
-        for (int y = 0; y < 2; y++) {
-            double p[3], dp[3];
-            /* w-edge C(x,y,w): blends a_x(u) a_y(v) */
-            edge_at(b->edge[8 + 2 * x + y], w, p, d ? dp : NULL);
-            v3_axpy(out, bu[x] * bv[y], p);
-            if (d) {
-                v3_axpy(d[0], bu[2 + x] * bv[y], p);
-                v3_axpy(d[1], bu[x] * bv[2 + y], p);
-                v3_axpy(d[2], bu[x] * bv[y], dp);
-            }
-            /* v-edge C(x,v,y): blends a_x(u) a_y(w) */
-            edge_at(b->edge[4 + 2 * x + y], v, p, d ? dp : NULL);
-            v3_axpy(out, bu[x] * bw[y], p);
-            if (d) {
-                v3_axpy(d[0], bu[2 + x] * bw[y], p);
-                v3_axpy(d[1], bu[x] * bw[y], dp);
-                v3_axpy(d[2], bu[x] * bw[2 + y], p);
-            }
-            /* u-edge C(u,x,y): blends a_x(v) a_y(w) */
-            edge_at(b->edge[2 * x + y], u, p, d ? dp : NULL);
-            v3_axpy(out, bv[x] * bw[y], p);
-            if (d) {
-                v3_axpy(d[0], bv[x] * bw[y], dp);
-                v3_axpy(d[1], bv[2 + x] * bw[y], p);
-                v3_axpy(d[2], bv[x] * bw[2 + y], p);
-            }
-        }
+    coons__edge_sum(b, edge_at, 1.0, bu, bv, bw, out, d);
 }
 
 /*

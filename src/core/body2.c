@@ -1,37 +1,342 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Coons body 2 (seed 000 section 2.4): placeholder until patches land. */
+/*
+ * Coons body 2 (seed 000 section 2.4) from the six faces X_i(v,w),
+ * Y_j(u,w), Z_k(u,v):
+ *   C2 = D - C1 - T,   D = sum_i a_i(u) X_i + sum_j a_j(v) Y_j + sum_k a_k(w) Z_k,
+ * with C1, T of the faces' common boundary curves (seed 000's compatibility
+ * equations). Each edge point is the average of the two faces carrying it,
+ * each corner the average of the three (model format, "Consistency").
+ * Since C1 = E - 2T (E the three bilinear edge blends), C2 = D - E + T: the
+ * form used here, which also saves the work of the -2T/+T pair.
+ * Edge e, parameter x, and the (s,t) where its two faces carry it:
+ *   uJK (e = 2J+K):    Y_J(s=x, t=K)   and Z_K(s=x, t=J)
+ *   vIK (e = 4+2I+K):  X_I(s=x, t=K)   and Z_K(s=I, t=x)
+ *   wIJ (e = 8+2I+J):  X_I(s=J, t=x)   and Y_J(s=I, t=x)
+ */
+#include <stdio.h>
+#include <string.h>
+
 #include "body_impl.h"
 
-void coons__body2_free_faces(coons_body *b) { (void)b; }
+/* Source m (0, 1) of edge e: face index, which patch parameter runs with
+ * the edge (0 = s, 1 = t), and the fixed value of the other. */
+static void edge_source(int e, int m, int *face, int *run, int *fixed)
+{
+    int dir = e / 4, x = (e >> 1) & 1, y = e & 1;
+    if (dir == 0) { /* u-edge, J = x, K = y */
+        *face = m == 0 ? 2 + x : 4 + y;
+        *run = 0;
+        *fixed = m == 0 ? y : x;
+    } else if (dir == 1) { /* v-edge, I = x, K = y */
+        *face = m == 0 ? x : 4 + y;
+        *run = m == 0 ? 0 : 1;
+        *fixed = m == 0 ? y : x;
+    } else { /* w-edge, I = x, J = y */
+        *face = m == 0 ? x : 2 + y;
+        *run = 1;
+        *fixed = m == 0 ? y : x;
+    }
+}
+
+static void source_at(const coons_patch *p, int run, int fixed, double x, double out[3],
+                      double *dx)
+{
+    double s = run == 0 ? x : fixed, t = run == 0 ? fixed : x, r[3][3];
+    coons_patch_eval_derivs(p, s, t, dx ? 1 : 0, r);
+    v3_copy(out, r[0]);
+    if (dx) v3_copy(dx, r[1 + run]);
+}
+
+void coons__body2_free_faces(coons_body *b)
+{
+    for (int f = 0; f < 6; f++) coons_patch_free(b->face[f]);
+}
+
 coons_status coons__body2_copy_faces(const coons_body *b, coons_body *d, coons_error *err)
 {
-    (void)b;
-    (void)d;
-    (void)err;
+    for (int f = 0; f < 6; f++) {
+        if (!b->face[f]) continue;
+        coons_status rc = coons_patch_copy(b->face[f], &d->face[f], err);
+        if (rc) return rc;
+    }
     return COONS_OK;
 }
 
 coons_status coons_body_body2(const coons_patch *const faces[6], coons_blend blend, double tol,
                               coons_body **out, coons_error *err)
 {
-    (void)faces;
-    (void)blend;
-    (void)tol;
     *out = NULL;
-    return coons__error_set(err, COONS_E_UNSUPPORTED, "body2 is not implemented yet");
+    if (!faces) return coons__error_set(err, COONS_E_INVALID, "body2: faces are NULL");
+    if (blend != COONS_BLEND_LINEAR && blend != COONS_BLEND_CUBIC)
+        return coons__error_set(err, COONS_E_INVALID, "body2: unknown blend %d", (int)blend);
+    if (!(tol >= 0.0) || !isfinite(tol))
+        return coons__error_set(err, COONS_E_INVALID, "body2: tolerance %g is not >= 0", tol);
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    for (int f = 0; f < 6; f++) {
+        if (!faces[f])
+            return coons__error_set(err, COONS_E_INVALID, "body2: face %s is NULL",
+                                    coons__body_face_name(f));
+        double a[3], c[3];
+        coons_patch_control_bbox(faces[f], a, c);
+        bbox_add(lo, hi, a);
+        bbox_add(lo, hi, c);
+    }
+    double eps = coons__tolerance(tol, bbox_diag(lo, hi));
+    /* Parametric agreement along each shared edge, at 17 inner samples and
+     * both ends (the ends also cover the corners: any two of the three
+     * faces at a corner share an edge through it). */
+    enum { SAMPLES = 18 };
+    static const char *const fixed_names[3][2] = {{"v", "w"}, {"u", "w"}, {"u", "v"}};
+    for (int e = 0; e < 12; e++) {
+        int fa, ra, xa, fb, rb, xb;
+        edge_source(e, 0, &fa, &ra, &xa);
+        edge_source(e, 1, &fb, &rb, &xb);
+        double worst = -1.0, at = 0.0;
+        for (int m = 0; m <= SAMPLES; m++) {
+            double x = (double)m / SAMPLES, pa[3], pb[3];
+            source_at(faces[fa], ra, xa, x, pa, NULL);
+            source_at(faces[fb], rb, xb, x, pb, NULL);
+            double dist = v3_dist(pa, pb);
+            if (!(dist <= worst)) { /* also catches NaN */
+                worst = dist;
+                at = x;
+            }
+        }
+        if (!(worst <= eps)) {
+            int dir = e / 4;
+            return coons__error_set(
+                err, COONS_E_INCOMPATIBLE,
+                "body2: edge %s (%s=%d,%s=%d): faces %s and %s differ by %.6g at %c=%.6g "
+                "(tolerance %.3g)",
+                coons__body_edge_name(e), fixed_names[dir][0], (e >> 1) & 1,
+                fixed_names[dir][1], e & 1, coons__body_face_name(fa), coons__body_face_name(fb),
+                worst, "uvw"[dir], at, eps);
+        }
+    }
+    coons_body *b;
+    coons_status rc = coons__body_alloc(COONS_BODY_BODY2, blend, &b, err);
+    if (rc) return rc;
+    for (int f = 0; f < 6; f++) {
+        if ((rc = coons_patch_copy(faces[f], &b->face[f], err))) {
+            coons_body_free(b);
+            return rc;
+        }
+    }
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 2; k++) {
+                double x[3], y[3], z[3];
+                coons_patch_eval(faces[i], j, k, x);
+                coons_patch_eval(faces[2 + j], i, k, y);
+                coons_patch_eval(faces[4 + k], i, j, z);
+                double *c = b->corner[4 * i + 2 * j + k];
+                for (int r = 0; r < 3; r++) c[r] = (x[r] + y[r] + z[r]) / 3.0;
+            }
+    v3_copy(b->lo, lo);
+    v3_copy(b->hi, hi);
+    *out = b;
+    return COONS_OK;
+}
+
+/* Edge point: the average of its two faces. */
+static void edge_at(const coons_body *b, int e, double x, double p[3], double *dp)
+{
+    double pa[3], pb[3], da[3], db[3];
+    for (int m = 0; m < 2; m++) {
+        int f, run, fixed;
+        edge_source(e, m, &f, &run, &fixed);
+        source_at(b->face[f], run, fixed, x, m ? pb : pa, dp ? (m ? db : da) : NULL);
+    }
+    for (int r = 0; r < 3; r++) p[r] = 0.5 * (pa[r] + pb[r]);
+    if (dp)
+        for (int r = 0; r < 3; r++) dp[r] = 0.5 * (da[r] + db[r]);
 }
 
 void coons__body2_eval(const coons_body *b, double u, double v, double w, double out[3],
                        double d[3][3])
 {
-    (void)b; (void)u; (void)v; (void)w; (void)d;
-    v3_zero(out);
+    double bu[5], bv[5], bw[5];
+    coons__blend(b->blend, u, 1, bu);
+    coons__blend(b->blend, v, 1, bv);
+    coons__blend(b->blend, w, 1, bw);
+    bu[4] = u;
+    bv[4] = v;
+    bw[4] = w;
+    coons__trilinear(b->corner, bu, bv, bw, out, d);
+    int nd = d ? 1 : 0;
+    for (int x = 0; x < 2; x++) {
+        double X[3][3], Y[3][3], Z[3][3];
+        coons_patch_eval_derivs(b->face[x], v, w, nd, X);
+        coons_patch_eval_derivs(b->face[2 + x], u, w, nd, Y);
+        coons_patch_eval_derivs(b->face[4 + x], u, v, nd, Z);
+        v3_axpy(out, bu[x], X[0]);
+        v3_axpy(out, bv[x], Y[0]);
+        v3_axpy(out, bw[x], Z[0]);
+        if (!d) continue;
+        v3_axpy(d[0], bu[2 + x], X[0]);
+        v3_axpy(d[0], bv[x], Y[1]);
+        v3_axpy(d[0], bw[x], Z[1]);
+        v3_axpy(d[1], bu[x], X[1]);
+        v3_axpy(d[1], bv[2 + x], Y[0]);
+        v3_axpy(d[1], bw[x], Z[2]);
+        v3_axpy(d[2], bu[x], X[2]);
+        v3_axpy(d[2], bv[x], Y[2]);
+        v3_axpy(d[2], bw[2 + x], Z[0]);
+    }
+    coons__edge_sum(b, edge_at, -1.0, bu, bv, bw, out, d);
 }
 
+/*
+ * The inner loop of the grid: one w-line of n3 = 3 nw doubles,
+ *   o = (x0 + a1 xd) + (g0 + b1 gd) + (q0 + w1 qd),
+ * q0, qd the (u,v) terms repeated twice so that blocks of 6 doubles (two
+ * points) are whole SSE2/AVX vectors. The AVX2 clone performs the same
+ * IEEE operations in the same order (no contraction into FMA in ISO C
+ * mode), so every clone gives bitwise the same points.
+ */
+COONS__SIMD_CLONES
+static void w_line(size_t n3, double a1, double b1, const double *restrict x0,
+                   const double *restrict xd, const double *restrict g0,
+                   const double *restrict gd, const double *restrict w1,
+                   const double *restrict q0, const double *restrict qd, double *restrict o)
+{
+    size_t m = 0, n6 = n3 - n3 % 6;
+    for (; m < n6; m += 6)
+        for (size_t r = 0; r < 6; r++)
+            o[m + r] = (x0[m + r] + a1 * xd[m + r]) + (g0[m + r] + b1 * gd[m + r]) +
+                       (q0[r] + w1[m + r] * qd[r]);
+    for (size_t r = 0; m < n3; m++, r++)
+        o[m] = (x0[m] + a1 * xd[m]) + (g0[m] + b1 * gd[m]) + (q0[r] + w1[m] * qd[r]);
+}
+
+/*
+ * Grid. Per point C2 = D - E + T regroups as
+ *   C2 = a_0(u) X_0(v,w) + a_1(u) X_1(v,w)             (face grids over (v,w))
+ *      + a_0(v) G_0(u,w) + a_1(v) G_1(u,w)             (over (u,w))
+ *      + a_0(w) P_0(u,v) + a_1(w) P_1(u,v)             (over (u,v))
+ * with G_j = Y_j - sum_i a_i(u) C(i,j,w) and
+ * P_k = Z_k - sum_i a_i(u) C(i,v,k) - sum_j a_j(v) C(u,j,k) + sum_ij a_i(u) a_j(v) C_ijk,
+ * so the inner loop along w reads two rows of X, two of G and six constants.
+ */
 coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
                                const double *v, size_t nv, const double *w, size_t nw,
                                double *out, coons_error *err)
 {
-    (void)b; (void)u; (void)nu; (void)v; (void)nv; (void)w; (void)nw; (void)out;
-    return coons__error_set(err, COONS_E_UNSUPPORTED, "body2 is not implemented yet");
+    size_t total = 0;
+    size_t nmax = nu > nv ? (nu > nw ? nu : nw) : (nv > nw ? nv : nw);
+    /* clamped parameters and blends (3 per sample), faces X (2 nv nw 3),
+     * Y/G (2 nu nw 3), Z/P (2 nu nv 3), edges (12 per sample), one face's
+     * two boundary rows (6 nmax) */
+    if (!coons__size_addmul(&total, nu + nv + nw, 15) ||
+        !coons__size_addmul(&total, nv, 6 * nw) || !coons__size_addmul(&total, nu, 6 * nw) ||
+        !coons__size_addmul(&total, nu, 6 * nv) || !coons__size_addmul(&total, nmax, 6))
+        return coons__error_set(err, COONS_E_LIMIT, "body2 grid: scratch size overflows");
+    double *s = coons__malloc_array(total, sizeof(double));
+    if (!s) return coons__error_nomem(err);
+    double *uc = s, *vc = uc + nu, *wc = vc + nv, *au = wc + nw, *av = au + 2 * nu,
+           *aw = av + 2 * nv;
+    double *X = aw + 2 * nw, *G = X + 6 * nv * nw, *Z = G + 6 * nu * nw;
+    double *Cw = Z + 6 * nu * nv, *Cv = Cw + 12 * nw, *Cu = Cv + 12 * nv, *row = Cu + 12 * nu;
+    size_t nX = 3 * nv * nw, nG = 3 * nu * nw, nZ = 3 * nu * nv;
+    const double *par[3] = {uc, vc, wc};
+    const size_t np[3] = {nu, nv, nw};
+    double *bl[3] = {au, av, aw};
+    for (int d = 0; d < 3; d++) {
+        const double *src = d == 0 ? u : d == 1 ? v : w;
+        double *dst = (double *)par[d];
+        for (size_t m = 0; m < np[d]; m++) {
+            double t[4];
+            dst[m] = clamp01(src[m]);
+            coons__blend(b->blend, dst[m], 0, t);
+            bl[d][2 * m] = t[0];
+            bl[d][2 * m + 1] = t[1];
+        }
+    }
+    static const double ends[2] = {0.0, 1.0};
+    coons_status rc = COONS_OK;
+    /* Face grids. Face f's parameters (s,t): X (v,w), Y (u,w), Z (u,v). */
+    for (int x = 0; x < 2 && !rc; x++) {
+        rc = coons_patch_eval_grid(b->face[x], vc, nv, wc, nw, X + x * nX, err);
+        if (!rc) rc = coons_patch_eval_grid(b->face[2 + x], uc, nu, wc, nw, G + x * nG, err);
+        if (!rc) rc = coons_patch_eval_grid(b->face[4 + x], uc, nu, vc, nv, Z + x * nZ, err);
+    }
+    /* Edges: Cw[(2i+j) 3nw + 3k] = C(i,j,w_k), Cv[(2i+k) 3nv + 3j] = C(i,v_j,k),
+     * Cu[(2j+k) 3nu + 3i] = C(u_i,j,k); each the average of its two faces,
+     * whose boundary rows are sampled first into Cx (first face) and `row`. */
+    for (int e = 0; e < 12 && !rc; e++) {
+        int dir = e / 4;
+        size_t n = np[dir];
+        double *C = (dir == 0 ? Cu : dir == 1 ? Cv : Cw) + (size_t)(e % 4) * 3 * n;
+        for (int m = 0; m < 2 && !rc; m++) {
+            int f, run, fixed;
+            edge_source(e, m, &f, &run, &fixed);
+            double *dst = m == 0 ? C : row;
+            if (run == 0)
+                rc = coons_patch_eval_grid(b->face[f], par[dir], n, ends + fixed, 1, dst, err);
+            else
+                rc = coons_patch_eval_grid(b->face[f], ends + fixed, 1, par[dir], n, dst, err);
+        }
+        if (!rc)
+            for (size_t m = 0; m < 3 * n; m++) C[m] = 0.5 * (C[m] + row[m]);
+    }
+    if (rc) {
+        coons__free(s);
+        return rc;
+    }
+    /* G_j(u_i, w_k) = Y_j - sum_i' a_i'(u_i) C(i',j,w_k), in place. */
+    for (int j = 0; j < 2; j++)
+        for (size_t i = 0; i < nu; i++) {
+            double a0 = au[2 * i], a1 = au[2 * i + 1];
+            double *g = G + j * nG + i * 3 * nw;
+            const double *c0 = Cw + (size_t)j * 3 * nw, *c1 = Cw + (size_t)(2 + j) * 3 * nw;
+            for (size_t m = 0; m < 3 * nw; m++) g[m] -= a0 * c0[m] + a1 * c1[m];
+        }
+    /* P_k(u_i, v_j) in place of Z_k. */
+    const double(*c)[3] = b->corner;
+    for (size_t i = 0; i < nu; i++) {
+        double a0 = au[2 * i], a1 = au[2 * i + 1], tu[4][3], cu[4][3];
+        for (int jk = 0; jk < 4; jk++)
+            for (int r = 0; r < 3; r++) {
+                tu[jk][r] = a0 * c[jk][r] + a1 * c[4 + jk][r];
+                cu[jk][r] = Cu[(size_t)jk * 3 * nu + 3 * i + (size_t)r];
+            }
+        for (size_t j = 0; j < nv; j++) {
+            double b0 = av[2 * j], b1 = av[2 * j + 1];
+            for (int k = 0; k < 2; k++) {
+                double *z = Z + k * nZ + (i * nv + j) * 3;
+                for (int r = 0; r < 3; r++)
+                    z[r] -= a0 * Cv[(size_t)k * 3 * nv + 3 * j + (size_t)r] +
+                            a1 * Cv[(size_t)(2 + k) * 3 * nv + 3 * j + (size_t)r] +
+                            b0 * (cu[k][r] - tu[k][r]) + b1 * (cu[2 + k][r] - tu[2 + k][r]);
+            }
+        }
+    }
+    /* Both blends sum to one (a_0 = 1 - a_1), so each pair becomes a base
+     * and a difference: X_0 + a_1(u) (X_1 - X_0), and so on. */
+    for (size_t m = 0; m < nX; m++) X[nX + m] -= X[m];
+    for (size_t m = 0; m < nG; m++) G[nG + m] -= G[m];
+    for (size_t m = 0; m < nZ; m++) Z[nZ + m] -= Z[m];
+    /* a_1(w) repeated for the three coordinates (reuses the Cw rows). */
+    double *w1 = Cw;
+    for (size_t k = 0; k < nw; k++) w1[3 * k] = w1[3 * k + 1] = w1[3 * k + 2] = aw[2 * k + 1];
+    for (size_t i = 0; i < nu; i++) {
+        double a1 = au[2 * i + 1];
+        const double *g0 = G + i * 3 * nw, *gd = g0 + nG;
+        for (size_t j = 0; j < nv; j++) {
+            double b1 = av[2 * j + 1];
+            const double *x0 = X + j * 3 * nw, *xd = x0 + nX;
+            const double *p0 = Z + (i * nv + j) * 3, *pd = p0 + nZ;
+            /* the (u,v) terms repeated over two points: the loop below then
+             * runs over whole vectors of doubles */
+            double q0[6], qd[6];
+            for (int r = 0; r < 6; r++) {
+                q0[r] = p0[r % 3];
+                qd[r] = pd[r % 3];
+            }
+            w_line(3 * nw, a1, b1, x0, xd, g0, gd, w1, q0, qd, out + (i * nv + j) * nw * 3);
+        }
+    }
+    coons__free(s);
+    return COONS_OK;
 }

@@ -6,6 +6,15 @@
 
 #include "basis.h"
 
+/* Marks a hot loop to be compiled also for AVX2 and picked at load time
+ * (GCC function multiversioning, needs ifunc: x86-64 ELF). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__ELF__) && \
+    !defined(COONS_NO_CLONES)
+#define COONS__SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define COONS__SIMD_CLONES
+#endif
+
 struct coons_body {
     coons_body_type type;
     coons_blend blend;
@@ -45,6 +54,18 @@ static inline int coons__size_addmul(size_t *acc, size_t n, size_t k)
 /* Name of an edge ("u00" .. "w11") or a face ("u0" .. "w1"). */
 const char *coons__body_edge_name(int e);
 const char *coons__body_face_name(int f);
+
+/* Value (and derivative along its parameter if dp is not NULL) of edge e
+ * (body.h order) at parameter x. */
+typedef void (*coons__edge_fn)(const coons_body *b, int e, double x, double p[3], double *dp);
+
+/* Adds sign * E to out (and to d[q] = dE/dq if d is not NULL), with
+ * E = sum_ij a_i(u) a_j(v) C(i,j,w) + sum_ik a_i(u) a_k(w) C(i,v,k)
+ *   + sum_jk a_j(v) a_k(w) C(u,j,k), the edge part of seed 000's C1.
+ * bu, bv, bw: blend pairs (coons__trilinear layout) followed by the
+ * parameter itself at index 4. */
+void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
+                     const double bv[5], const double bw[5], double out[3], double d[3][3]);
 
 /* Per-type point (+ partials if d is not NULL: d[q] = dF/dq). Parameters
  * are already clamped. */
