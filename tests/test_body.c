@@ -540,6 +540,44 @@ static void test_nurbs_cylinder(void **state)
     coons_body_free(b);
 }
 
+/* F = (X(u), Y(v), Z(w) + H(u,v)) has det J = X' Y' Z', so its volume is
+ * (X(1)-X(0)) (Y(1)-Y(0)) (Z(1)-Z(0)) whatever H. Built as a B-spline
+ * volume with uneven knots: x, y on Greville abscissae (linear X, Y), z
+ * any increasing sequence plus a shear h_ij. Z' jumps at the w knots (degree
+ * 2), so only knot-aligned cells integrate it exactly. */
+static void test_bspline_volume_exact(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    int deg[3] = {3, 2, 2};
+    size_t n[3] = {6, 5, 5};
+    double ku[10] = {0, 0, 0, 0, 0.3, 0.37, 1, 1, 1, 1};
+    double kv[8] = {0, 0, 0, 0.21, 0.8, 1, 1, 1};
+    double kw[8] = {0, 0, 0, 0.13, 0.55, 1, 1, 1};
+    const double *kn[3] = {ku, kv, kw};
+    const double zeta[5] = {0.0, 0.1, 0.9, 1.0, 2.5};
+    double P[6 * 5 * 5 * 3];
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 5; j++)
+            for (int k = 0; k < 5; k++) {
+                double *p = P + ((i * 5 + j) * 5 + k) * 3;
+                p[0] = 2.0 * (ku[i + 1] + ku[i + 2] + ku[i + 3]) / 3.0;
+                p[1] = 3.0 * (kv[j + 1] + kv[j + 2]) / 2.0;
+                p[2] = zeta[k] + 0.3 * sin(1.0 + i * j);
+            }
+    coons_body *b;
+    assert_coons_ok(coons_body_bspline(deg, P, n, kn, NULL, &b, &err), &err);
+    /* X, Y linear: x = 2u, y = 3v. */
+    double y[3];
+    coons_body_eval(b, 0.4, 0.7, 0.5, y);
+    assert_near(y[0], 0.8, 1e-14);
+    assert_near(y[1], 2.1, 1e-14);
+    double vol;
+    assert_coons_ok(coons_body_volume(b, 1e-13, &vol, &err), &err);
+    assert_near(vol, 2.0 * 3.0 * 2.5, 1e-12);
+    coons_body_free(b);
+}
+
 /* ---------- shared properties over every type ---------- */
 
 static void test_jacobian_fd(void **state)
@@ -620,6 +658,37 @@ static void test_grid_matches_points(void **state)
     }
 }
 
+/* coons_body_min_jacobian (tabulated det J, a separate path for body 2)
+ * against det J point by point on the same lattice. */
+static void test_min_jacobian_matches_points(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_body *bodies[TB_MAX_BODIES];
+    int nb = tb_all_bodies(bodies);
+    const unsigned n = 6;
+    for (int m = 0; m < nb; m++) {
+        double best = INFINITY;
+        for (unsigned i = 0; i <= n; i++)
+            for (unsigned j = 0; j <= n; j++)
+                for (unsigned k = 0; k <= n; k++) {
+                    double p[3], jac[3][3];
+                    double d = coons_body_eval_jacobian(bodies[m], (double)i / n, (double)j / n,
+                                                        (double)k / n, p, jac);
+                    if (d < best) best = d;
+                }
+        double mj, where[3];
+        assert_coons_ok(coons_body_min_jacobian(bodies[m], n, &mj, where, &err), &err);
+        if (fabs(mj - best) > 1e-11 * (1.0 + fabs(best)))
+            fail_msg("body %d (%s): min det %.17g, pointwise %.17g", m, tb_body_label(m), mj,
+                     best);
+        double p[3], jac[3][3];
+        assert_near(coons_body_eval_jacobian(bodies[m], where[0], where[1], where[2], p, jac), mj,
+                    1e-11 * (1.0 + fabs(mj)));
+        coons_body_free(bodies[m]);
+    }
+}
+
 static void test_copy(void **state)
 {
     (void)state;
@@ -696,8 +765,10 @@ int main(void)
         cmocka_unit_test(test_bezier_volume),
         cmocka_unit_test(test_bspline_volume),
         cmocka_unit_test(test_nurbs_cylinder),
+        cmocka_unit_test(test_bspline_volume_exact),
         cmocka_unit_test(test_jacobian_fd),
         cmocka_unit_test(test_grid_matches_points),
+        cmocka_unit_test(test_min_jacobian_matches_points),
         cmocka_unit_test(test_copy),
         cmocka_unit_test(test_alloc_failures),
     };

@@ -137,12 +137,15 @@ COONS_EXPORT void coons_body_control_bbox(const coons_body *b, double lo[3], dou
 
 /**
  * Volume of the body, the integral of det J over the unit cube, by
- * tensor Gauss-Legendre quadrature on a grid of cells refined until two
- * successive estimates differ by less than `rel_tol` (relative; <= 0 means
- * 1e-9) or 32 cells per direction are reached (the last estimate is then
- * returned). The volume is signed: negative for a left-handed body
- * (det J < 0), and folded regions count with their sign.
- * @return ::COONS_OK, ::COONS_E_INVALID (NULL arguments).
+ * tensor Gauss-Legendre quadrature (5 points per direction and cell) on
+ * cells bounded by the breakpoints of the body's data (knots of B-spline
+ * curves, surfaces and volumes, Coons cubic segment ends), each split
+ * into c^3 sub-cells with c doubling until two successive estimates
+ * differ by less than `rel_tol` (relative; <= 0 means 1e-9), or until the
+ * next level would take more than 2^21 Jacobian evaluations (the last
+ * estimate is then returned). The volume is signed: negative for a
+ * left-handed body (det J < 0), and folded regions count with their sign.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL arguments), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_volume(const coons_body *b, double rel_tol,
                                             double *volume, coons_error *err);

@@ -340,3 +340,133 @@ coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
     coons__free(s);
     return COONS_OK;
 }
+
+/*
+ * det J on a grid, for volume quadrature and fold detection. With the
+ * regrouping of the grid above, C2 = sum_i a_i X_i + sum_j b_j G_j +
+ * sum_k c_k P_k, X on (v,w), G on (u,w), P on (u,v), so
+ *   F_u = sum a_i' X_i + sum b_j G_j,u + sum c_k P_k,u
+ *   F_v = sum a_i X_i,v + sum b_j' G_j + sum c_k P_k,v
+ *   F_w = sum a_i X_i,w + sum b_j G_j,w + sum c_k' P_k,
+ * each of X, G, P with its two partials tabulated once per grid.
+ */
+coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t nu,
+                                   const double *v, size_t nv, const double *w, size_t nw,
+                                   double *det, coons_error *err)
+{
+    size_t total = 0;
+    /* blends 4 per sample, edges 24 per sample, X 18 nv nw, G 18 nu nw, P 18 nu nv */
+    if (!coons__size_addmul(&total, nu + nv + nw, 28) ||
+        !coons__size_addmul(&total, nv, 18 * nw) || !coons__size_addmul(&total, nu, 18 * nw) ||
+        !coons__size_addmul(&total, nu, 18 * nv))
+        return coons__error_set(err, COONS_E_LIMIT, "body2 Jacobian grid: scratch overflows");
+    double *s = coons__malloc_array(total, sizeof(double));
+    if (!s) return coons__error_nomem(err);
+    double *A[3], *E[3], *X = s, *G = X + 18 * nv * nw, *P = G + 18 * nu * nw;
+    const double *par[3] = {u, v, w};
+    const size_t np[3] = {nu, nv, nw};
+    A[0] = P + 18 * nu * nv;
+    for (int d = 0; d < 3; d++) {
+        if (d) A[d] = E[d - 1] + 24 * np[d - 1];
+        E[d] = A[d] + 4 * np[d];
+        /* A[d][4m..]: a_0, a_1, a_0', a_1'; E[d][(2e'+q) 3n + 3m]: edge e' of
+         * this direction (value q = 0, derivative q = 1) at sample m */
+        for (size_t m = 0; m < np[d]; m++) {
+            double x = clamp01(par[d][m]);
+            coons__blend(b->blend, x, 1, A[d] + 4 * m);
+            for (int e = 0; e < 4; e++)
+                edge_at(b, 4 * d + e, x, E[d] + (size_t)(2 * e) * 3 * np[d] + 3 * m,
+                        E[d] + (size_t)(2 * e + 1) * 3 * np[d] + 3 * m);
+        }
+    }
+#define EDGE(d, e, q, m) (E[d] + (size_t)(2 * (e) + (q)) * 3 * np[d] + 3 * (m))
+    /* X_i and partials: X[((3i+q) nv nw + j nw + k) 3], q = value, d/dv, d/dw */
+    for (int i = 0; i < 2; i++)
+        for (size_t j = 0; j < nv; j++)
+            for (size_t k = 0; k < nw; k++) {
+                double r[3][3];
+                coons_patch_eval_derivs(b->face[i], v[j], w[k], 1, r);
+                for (int q = 0; q < 3; q++)
+                    v3_copy(X + (((size_t)(3 * i + q) * nv + j) * nw + k) * 3, r[q]);
+            }
+    /* G_j = Y_j - sum_i a_i C(i,j,w): value, d/du, d/dw */
+    for (int jj = 0; jj < 2; jj++)
+        for (size_t i = 0; i < nu; i++) {
+            const double *a = A[0] + 4 * i;
+            for (size_t k = 0; k < nw; k++) {
+                double r[3][3];
+                coons_patch_eval_derivs(b->face[2 + jj], u[i], w[k], 1, r);
+                const double *c0 = EDGE(2, jj, 0, k), *c1 = EDGE(2, 2 + jj, 0, k);
+                const double *d0 = EDGE(2, jj, 1, k), *d1 = EDGE(2, 2 + jj, 1, k);
+                double *g = G + (((size_t)(3 * jj) * nu + i) * nw + k) * 3;
+                double *gu = g + nu * nw * 3, *gw = gu + nu * nw * 3;
+                for (int t = 0; t < 3; t++) {
+                    g[t] = r[0][t] - a[0] * c0[t] - a[1] * c1[t];
+                    gu[t] = r[1][t] - a[2] * c0[t] - a[3] * c1[t];
+                    gw[t] = r[2][t] - a[0] * d0[t] - a[1] * d1[t];
+                }
+            }
+        }
+    /* P_k = Z_k - sum_i a_i C(i,v,k) - sum_j b_j (C(u,j,k) - sum_i a_i C_ijk):
+     * value, d/du, d/dv */
+    const double(*cn)[3] = b->corner;
+    for (int kk = 0; kk < 2; kk++)
+        for (size_t i = 0; i < nu; i++) {
+            const double *a = A[0] + 4 * i;
+            for (size_t j = 0; j < nv; j++) {
+                const double *bb = A[1] + 4 * j;
+                double r[3][3];
+                coons_patch_eval_derivs(b->face[4 + kk], u[i], v[j], 1, r);
+                double *p = P + (((size_t)(3 * kk) * nu + i) * nv + j) * 3;
+                double *pu = p + nu * nv * 3, *pv = pu + nu * nv * 3;
+                for (int t = 0; t < 3; t++) {
+                    p[t] = r[0][t];
+                    pu[t] = r[1][t];
+                    pv[t] = r[2][t];
+                    for (int x = 0; x < 2; x++) {
+                        /* C(x,v,k): v-edge 2x+k; C(u,x,k): u-edge 2x+k */
+                        const double *cv = EDGE(1, 2 * x + kk, 0, j), *dv = EDGE(1, 2 * x + kk, 1, j);
+                        const double *cu = EDGE(0, 2 * x + kk, 0, i), *du = EDGE(0, 2 * x + kk, 1, i);
+                        p[t] -= a[x] * cv[t] + bb[x] * cu[t];
+                        pu[t] -= a[2 + x] * cv[t] + bb[x] * du[t];
+                        pv[t] -= a[x] * dv[t] + bb[2 + x] * cu[t];
+                        for (int y = 0; y < 2; y++) {
+                            double c = cn[4 * y + 2 * x + kk][t]; /* C_{y x k} */
+                            p[t] += a[y] * bb[x] * c;
+                            pu[t] += a[2 + y] * bb[x] * c;
+                            pv[t] += a[y] * bb[2 + x] * c;
+                        }
+                    }
+                }
+            }
+        }
+#undef EDGE
+    size_t sX = nv * nw * 3, sG = nu * nw * 3, sP = nu * nv * 3;
+    for (size_t i = 0; i < nu; i++) {
+        const double *a = A[0] + 4 * i;
+        for (size_t j = 0; j < nv; j++) {
+            const double *bb = A[1] + 4 * j;
+            const double *p0 = P + (i * nv + j) * 3, *p1 = p0 + 3 * sP;
+            for (size_t k = 0; k < nw; k++) {
+                const double *c = A[2] + 4 * k;
+                const double *x0 = X + (j * nw + k) * 3, *x1 = x0 + 3 * sX;
+                const double *g0 = G + (i * nw + k) * 3, *g1 = g0 + 3 * sG;
+                double fu[3], fv[3], fw[3];
+                for (int t = 0; t < 3; t++) {
+                    fu[t] = a[2] * x0[t] + a[3] * x1[t] + bb[0] * g0[sG + t] +
+                            bb[1] * g1[sG + t] + c[0] * p0[sP + t] + c[1] * p1[sP + t];
+                    fv[t] = a[0] * x0[sX + t] + a[1] * x1[sX + t] + bb[2] * g0[t] +
+                            bb[3] * g1[t] + c[0] * p0[2 * sP + t] + c[1] * p1[2 * sP + t];
+                    fw[t] = a[0] * x0[2 * sX + t] + a[1] * x1[2 * sX + t] +
+                            bb[0] * g0[2 * sG + t] + bb[1] * g1[2 * sG + t] + c[2] * p0[t] +
+                            c[3] * p1[t];
+                }
+                double cr[3];
+                v3_cross(cr, fv, fw);
+                det[(i * nv + j) * nw + k] = v3_dot(fu, cr);
+            }
+        }
+    }
+    coons__free(s);
+    return COONS_OK;
+}

@@ -13,6 +13,12 @@
 #define COONS__SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define COONS__SIMD_CLONES
+/* det J at every grid point into det[(i*nv + j)*nw + k] (body 2's fast path;
+ * other types go point by point in body_volume.c). */
+coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t nu,
+                                   const double *v, size_t nv, const double *w, size_t nw,
+                                   double *det, coons_error *err);
+
 #endif
 
 struct coons_body {
@@ -92,5 +98,11 @@ coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
 coons_status coons__tensor_grid(const coons_body *b, const double *u, size_t nu,
                                 const double *v, size_t nv, const double *w, size_t nw,
                                 double *out, coons_error *err);
+
+/* det J at every grid point into det[(i*nv + j)*nw + k] (body 2's fast path;
+ * other types go point by point in body_volume.c). */
+coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t nu,
+                                   const double *v, size_t nv, const double *w, size_t nw,
+                                   double *det, coons_error *err);
 
 #endif

@@ -2,42 +2,221 @@
 /*
  * Volume and fold detection of a body F: [0,1]^3 -> R^3 (seed 000 section
  * 2): the signed volume is the integral of det J = det dF/d(u,v,w) over the
- * unit cube (change of variables), computed by tensor 4-point
- * Gauss-Legendre quadrature on c^3 equal cells, c doubling until two
- * successive estimates agree. The rule is exact for polynomials of degree
- * 7 per variable, so bodies 0/1 with low-degree data converge at once, and
- * rational or piecewise data converge like h^8 per cell.
+ * unit cube (change of variables), computed by tensor 5-point
+ * Gauss-Legendre quadrature. Base cells are bounded by the breakpoints of
+ * the body's data (knots, segment ends), where the map may be only finitely
+ * smooth; each is split into c^3 sub-cells, c doubling until two
+ * successive estimates agree. Within a base cell the map is smooth (a
+ * polynomial for polynomial data) and the rule is exact for degree 9 per
+ * variable: det J of a body of degree 3 per variable has degree 8, so
+ * bicubic data converge at once and smooth data like h^10.
  * A negative det J somewhere means the body folds over itself.
  */
+#include <stdlib.h>
+#include <string.h>
+
 #include "body_impl.h"
+#include "curve_impl.h"
+#include "patch_impl.h"
 
-/* Cells per direction never exceed this (32^3 cells * 64 nodes). */
-#define MAX_CELLS 32
+/* Gauss-Legendre points per direction and cell: exact for degree 9. */
+#define NG 5
+/* Quadrature work is capped: a level is not started if it would need more
+ * Jacobian evaluations than this (the last estimate is returned). */
+#define MAX_NODES (1u << 21)
+/* More breakpoints than this in a direction: uniform cells instead. */
+#define MAX_BREAKS 64
 
-static double volume_level(const coons_body *b, unsigned c)
+/* Breakpoints of the body's data in one direction, in (0,1): where the
+ * map may lose smoothness (knots of B-spline curves, surfaces and volumes,
+ * segment ends of Coons cubics). Base cells start there, so that
+ * Gauss-Legendre integrates piecewise polynomials span by span. */
+typedef struct breaks {
+    double *v;
+    size_t n, cap;
+    int nomem;
+} breaks;
+
+static void brk_add(breaks *B, double x)
 {
-    static const double x[4] = {-0.86113631159405257522, -0.33998104358485626480,
-                                0.33998104358485626480, 0.86113631159405257522};
-    static const double wt[4] = {0.34785484513745385737, 0.65214515486254614263,
-                                 0.65214515486254614263, 0.34785484513745385737};
-    double h = 1.0 / c, sum = 0.0;
-    for (unsigned a = 0; a < c; a++)
-        for (unsigned e = 0; e < c; e++)
-            for (unsigned g = 0; g < c; g++) {
-                double cell = 0.0;
-                for (int i = 0; i < 4; i++)
-                    for (int j = 0; j < 4; j++)
-                        for (int k = 0; k < 4; k++) {
-                            double p[3], jac[3][3];
-                            double u = (a + 0.5 * (1.0 + x[i])) * h;
-                            double v = (e + 0.5 * (1.0 + x[j])) * h;
-                            double w = (g + 0.5 * (1.0 + x[k])) * h;
-                            cell += wt[i] * wt[j] * wt[k] *
-                                    coons_body_eval_jacobian(b, u, v, w, p, jac);
-                        }
-                sum += cell;
+    if (B->nomem || !(x > 0.0 && x < 1.0)) return;
+    if (B->n == B->cap) {
+        size_t cap = B->cap ? 2 * B->cap : 16;
+        double *v = coons__realloc(B->v, cap * sizeof *v);
+        if (!v) {
+            B->nomem = 1;
+            return;
+        }
+        B->v = v;
+        B->cap = cap;
+    }
+    B->v[B->n++] = x;
+}
+
+static void brk_knots(breaks *B, const double *k, size_t ncp, int p)
+{
+    if (!k) return;
+    double lo = k[p], len = k[ncp] - k[p];
+    for (size_t i = (size_t)p + 1; i < ncp && B->n <= MAX_BREAKS; i++)
+        brk_add(B, (k[i] - lo) / len);
+}
+
+static void brk_curve(breaks *B, const coons_curve *c)
+{
+    if (!c) return;
+    if (c->type == COONS_CURVE_COONS_CUBIC) {
+        size_t nseg = c->n - 3; /* closed curves carry P0, P1, P2 again */
+        for (size_t s = 1; s < nseg && B->n <= MAX_BREAKS; s++) brk_add(B, (double)s / nseg);
+        return;
+    }
+    brk_knots(B, c->knots, c->n, c->degree);
+}
+
+/* dir 0: along the patch's s, 1: along t. */
+static void brk_patch(breaks *B, const coons_patch *p, int dir)
+{
+    switch (p->type) {
+    case COONS_PATCH_RULED:
+        if (dir == 0) {
+            brk_curve(B, p->curve[0]);
+            brk_curve(B, p->curve[1]);
+        }
+        break;
+    case COONS_PATCH_COONS:
+    case COONS_PATCH_HERMITE_COONS:
+        /* T0, T1 and the cross curves x_t(s,0), x_t(s,1) run along s */
+        brk_curve(B, p->curve[dir == 0 ? COONS_T0 : COONS_S0]);
+        brk_curve(B, p->curve[dir == 0 ? COONS_T1 : COONS_S1]);
+        brk_curve(B, p->cross[dir == 0 ? 0 : 2]);
+        brk_curve(B, p->cross[dir == 0 ? 1 : 3]);
+        break;
+    case COONS_PATCH_BSPLINE:
+        if (dir == 0)
+            brk_knots(B, p->ks, p->ns, p->ps);
+        else
+            brk_knots(B, p->kt, p->nt, p->pt);
+        break;
+    default: break; /* bilinear, Bezier: polynomial */
+    }
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Cell boundaries 0 = x_0 < ... < x_m = 1 of direction d into B (B->n = m+1). */
+static void cell_bounds(const coons_body *b, int d, breaks *B)
+{
+    switch (b->type) {
+    case COONS_BODY_BODY1:
+        for (int e = 0; e < 4; e++) brk_curve(B, b->edge[4 * d + e]);
+        break;
+    case COONS_BODY_BODY2: {
+        /* faces whose s or t runs along direction d (body.h) */
+        static const int face[3][4] = {{2, 3, 4, 5}, {0, 1, 4, 5}, {0, 1, 2, 3}};
+        static const int sdir[3][4] = {{0, 0, 0, 0}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+        for (int m = 0; m < 4; m++) brk_patch(B, b->face[face[d][m]], sdir[d][m]);
+        break;
+    }
+    case COONS_BODY_BEZIER:
+    case COONS_BODY_BSPLINE: brk_knots(B, b->knots[d], b->n[d], b->deg[d]); break;
+    default: break;
+    }
+    if (B->n > MAX_BREAKS) B->n = 0;
+    qsort(B->v, B->n, sizeof(double), cmp_double);
+    size_t m = 0;
+    for (size_t i = 0; i < B->n; i++)
+        if (m == 0 || B->v[i] - B->v[m - 1] > 1e-12) B->v[m++] = B->v[i];
+    B->n = m;
+    /* add the ends: [0, breaks..., 1] */
+    brk_add(B, 0.5); /* reserve room for two more values */
+    brk_add(B, 0.5);
+    if (B->nomem) return;
+    memmove(B->v + 1, B->v, m * sizeof(double));
+    B->v[0] = 0.0;
+    B->v[m + 1] = 1.0;
+    B->n = m + 2;
+}
+
+/* det J over a tensor grid, into det[(i*nv + j)*nw + k]. */
+static coons_status det_grid(const coons_body *b, const double *u, size_t nu, const double *v,
+                             size_t nv, const double *w, size_t nw, double *det,
+                             coons_error *err)
+{
+    if (b->type == COONS_BODY_BODY2)
+        return coons__body2_det_grid(b, u, nu, v, nv, w, nw, det, err);
+    for (size_t i = 0; i < nu; i++)
+        for (size_t j = 0; j < nv; j++)
+            for (size_t k = 0; k < nw; k++) {
+                double p[3], jac[3][3];
+                det[(i * nv + j) * nw + k] = coons_body_eval_jacobian(b, u[i], v[j], w[k], p, jac);
             }
-    return sum * (0.125 * h * h * h);
+    return COONS_OK;
+}
+
+/* Grids are processed in slabs of u of at most this many points. */
+#define SLAB_POINTS ((size_t)1 << 18)
+
+/* Estimate with every base cell split into c^3 sub-cells, NG^3 nodes each:
+ * the nodes form a tensor grid, with weights wt_u(i) wt_v(j) wt_w(k). */
+static coons_status volume_level(const coons_body *b, breaks X[3], unsigned c, double *sum,
+                                 coons_error *err)
+{
+    static const double x[NG] = {-0.90617984593866399280, -0.53846931010568309104, 0.0,
+                                 0.53846931010568309104, 0.90617984593866399280};
+    static const double wt[NG] = {0.23692688505618908751, 0.47862867049936646804,
+                                  0.56888888888888888889, 0.47862867049936646804,
+                                  0.23692688505618908751};
+    size_t n[3], total = 0;
+    for (int d = 0; d < 3; d++) {
+        n[d] = (X[d].n - 1) * c * NG;
+        total += 2 * n[d];
+    }
+    size_t slab = SLAB_POINTS / (n[1] * n[2]);
+    if (slab < 1) slab = 1;
+    if (slab > n[0]) slab = n[0];
+    double *t = coons__malloc_array(total + slab * n[1] * n[2], sizeof(double));
+    if (!t) return coons__error_nomem(err);
+    double *node[3], *wgt[3], *det = t + total;
+    double *q = t;
+    for (int d = 0; d < 3; d++) {
+        node[d] = q;
+        wgt[d] = q + n[d];
+        q += 2 * n[d];
+        size_t m = 0;
+        for (size_t e = 0; e + 1 < X[d].n; e++) {
+            double h = (X[d].v[e + 1] - X[d].v[e]) / c;
+            for (unsigned sub = 0; sub < c; sub++)
+                for (int g = 0; g < NG; g++, m++) {
+                    node[d][m] = X[d].v[e] + (sub + 0.5 * (1.0 + x[g])) * h;
+                    wgt[d][m] = 0.5 * h * wt[g];
+                }
+        }
+    }
+    double acc = 0.0;
+    for (size_t i0 = 0; i0 < n[0]; i0 += slab) {
+        size_t ni = n[0] - i0 < slab ? n[0] - i0 : slab;
+        coons_status rc = det_grid(b, node[0] + i0, ni, node[1], n[1], node[2], n[2], det, err);
+        if (rc) {
+            coons__free(t);
+            return rc;
+        }
+        for (size_t i = 0; i < ni; i++) {
+            double si = 0.0;
+            for (size_t j = 0; j < n[1]; j++) {
+                double sj = 0.0;
+                const double *dk = det + (i * n[1] + j) * n[2];
+                for (size_t k = 0; k < n[2]; k++) sj += wgt[2][k] * dk[k];
+                si += wgt[1][j] * sj;
+            }
+            acc += wgt[0][i0 + i] * si;
+        }
+    }
+    coons__free(t);
+    *sum = acc;
+    return COONS_OK;
 }
 
 coons_status coons_body_volume(const coons_body *b, double rel_tol, double *volume,
@@ -45,17 +224,30 @@ coons_status coons_body_volume(const coons_body *b, double rel_tol, double *volu
 {
     if (!b || !volume) return coons__error_set(err, COONS_E_INVALID, "body volume: NULL argument");
     if (!(rel_tol > 0.0)) rel_tol = 1e-9;
-    /* An absolute floor for bodies of (near) zero volume, where a relative
-     * test cannot be met: rounding of det J is about 1e-16 diag^3. */
-    double diag = bbox_diag(b->lo, b->hi);
-    double floor_ = 1e-14 * diag * diag * diag;
-    double prev = volume_level(b, 1), cur = prev;
-    for (unsigned c = 2; c <= MAX_CELLS; c *= 2) {
-        cur = volume_level(b, c);
-        double diff = fabs(cur - prev);
-        if (diff <= rel_tol * fabs(cur) || diff <= floor_) break;
-        prev = cur;
+    breaks X[3] = {{0}};
+    coons_status rc = COONS_OK;
+    for (int d = 0; d < 3 && !rc; d++) {
+        cell_bounds(b, d, &X[d]);
+        if (X[d].nomem) rc = coons__error_nomem(err);
     }
+    double cur = 0.0;
+    if (!rc) {
+        double cells = (double)(X[0].n - 1) * (double)(X[1].n - 1) * (double)(X[2].n - 1);
+        /* An absolute floor for bodies of (near) zero volume, where a relative
+         * test cannot be met: rounding of det J is about 1e-16 diag^3. */
+        double diag = bbox_diag(b->lo, b->hi);
+        double floor_ = 1e-14 * diag * diag * diag, prev = 0.0;
+        rc = volume_level(b, X, 1, &prev, err);
+        cur = prev;
+        for (unsigned c = 2; !rc && cells * (NG * NG * NG) * c * c * c <= MAX_NODES; c *= 2) {
+            rc = volume_level(b, X, c, &cur, err);
+            double diff = fabs(cur - prev);
+            if (diff <= rel_tol * fabs(cur) || diff <= floor_) break;
+            prev = cur;
+        }
+    }
+    for (int e = 0; e < 3; e++) coons__free(X[e].v);
+    if (rc) return rc;
     *volume = cur;
     return COONS_OK;
 }
@@ -70,18 +262,33 @@ coons_status coons_body_min_jacobian(const coons_body *b, unsigned n, double *mi
                                 n);
     if (n > 1u << 20)
         return coons__error_set(err, COONS_E_LIMIT, "body min Jacobian: n = %u is too large", n);
+    size_t m = (size_t)n + 1;
+    size_t slab = SLAB_POINTS / (m * m);
+    if (slab < 1) slab = 1;
+    if (slab > m) slab = m;
+    double *t = coons__malloc_array(m + slab * m * m, sizeof(double));
+    if (!t) return coons__error_nomem(err);
+    double *par = t, *det = t + m;
+    for (size_t i = 0; i < m; i++) par[i] = (double)i / n;
     double best = INFINITY, at[3] = {0, 0, 0};
-    for (unsigned i = 0; i <= n; i++)
-        for (unsigned j = 0; j <= n; j++)
-            for (unsigned k = 0; k <= n; k++) {
-                double u = (double)i / n, v = (double)j / n, w = (double)k / n;
-                double p[3], jac[3][3];
-                double det = coons_body_eval_jacobian(b, u, v, w, p, jac);
-                if (det < best) {
-                    best = det;
-                    v3_set(at, u, v, w);
+    for (size_t i0 = 0; i0 < m; i0 += slab) {
+        size_t ni = m - i0 < slab ? m - i0 : slab;
+        coons_status rc = det_grid(b, par + i0, ni, par, m, par, m, det, err);
+        if (rc) {
+            coons__free(t);
+            return rc;
+        }
+        for (size_t i = 0; i < ni; i++)
+            for (size_t j = 0; j < m; j++)
+                for (size_t k = 0; k < m; k++) {
+                    double dj = det[(i * m + j) * m + k];
+                    if (dj < best) {
+                        best = dj;
+                        v3_set(at, par[i0 + i], par[j], par[k]);
+                    }
                 }
-            }
+    }
+    coons__free(t);
     *min_det = best;
     if (where) v3_copy(where, at);
     return COONS_OK;
