@@ -733,7 +733,7 @@ static void test_alloc_failures(void **state)
                 break;
             }
             if (rc == COONS_OK) rc = coons_body_copy(b, &c, &err);
-            double u[3] = {0, 0.4, 1}, out[27];
+            double u[3] = {0, 0.4, 1}, out[3 * 3 * 3 * 3];
             if (rc == COONS_OK) rc = coons_body_eval_grid(c, u, 3, u, 3, u, 3, out, &err);
             double vol;
             if (rc == COONS_OK) rc = coons_body_volume(b, 1e-3, &vol, &err);

@@ -107,18 +107,21 @@ static void test_body2_formula_and_boundary(void **state)
                 coons_body_eval(b, u, v, I, y);
                 assert_vec3_near(y, x, 1e-13);
             }
-            /* The twelve edges, from the lattice that made the faces
-             * (clamped cubic B-spline boundary: the edge is the B-spline
-             * of the lattice edge). */
-            coons_patch_eval(f[2], u, 0, x); /* Y_0(u, w=0) = C(u,0,0) */
-            coons_body_eval(b, u, 0, 0, y);
-            assert_vec3_near(y, x, 1e-13);
-            coons_patch_eval(f[1], 1, w, x); /* X_1(v=1, w) = C(1,1,w) */
-            coons_body_eval(b, 1, 1, w, y);
-            assert_vec3_near(y, x, 1e-13);
-            coons_patch_eval(f[5], 0, v, x); /* Z_1(u=0, v) = C(0,v,1) */
-            coons_body_eval(b, 0, v, 1, y);
-            assert_vec3_near(y, x, 1e-13);
+            /* The twelve edges, each on the face of the first-named
+             * direction: C(u,J,K) = Y_J(u,K), C(I,v,K) = X_I(v,K),
+             * C(I,J,w) = X_I(J,w). */
+            for (int J = 0; J < 2; J++)
+                for (int K = 0; K < 2; K++) {
+                    coons_patch_eval(f[2 + J], u, K, x);
+                    coons_body_eval(b, u, J, K, y);
+                    assert_vec3_near(y, x, 1e-13);
+                    coons_patch_eval(f[J], v, K, x);
+                    coons_body_eval(b, J, v, K, y);
+                    assert_vec3_near(y, x, 1e-13);
+                    coons_patch_eval(f[J], K, w, x);
+                    coons_body_eval(b, J, K, w, y);
+                    assert_vec3_near(y, x, 1e-13);
+                }
         }
         /* Corners are the lattice corners. */
         for (int n = 0; n < 8; n++) {

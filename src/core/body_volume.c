@@ -125,7 +125,7 @@ static void cell_bounds(const coons_body *b, int d, breaks *B)
     default: break;
     }
     if (B->n > MAX_BREAKS) B->n = 0;
-    qsort(B->v, B->n, sizeof(double), cmp_double);
+    if (B->n) qsort(B->v, B->n, sizeof(double), cmp_double);
     size_t m = 0;
     for (size_t i = 0; i < B->n; i++)
         if (m == 0 || B->v[i] - B->v[m - 1] > 1e-12) B->v[m++] = B->v[i];
