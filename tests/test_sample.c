@@ -256,6 +256,43 @@ static coons_body *chisel(void)
     return b;
 }
 
+/* A washer as body 1 (like examples/curve-coons-cubic-closed.json): the four
+ * u edges are closed Coons cubics, so faces u0 and u1 coincide. */
+static coons_body *ring(void)
+{
+    static const double oct[8][2] = {{0.75, -0.75}, {1, 0},   {0.75, 0.75}, {0, 1},
+                                     {-0.75, 0.75}, {-1, 0}, {-0.75, -0.75}, {0, -1}};
+    const double rad[2] = {6, 3}, hgt[2] = {0, 3};
+    coons_curve *e[12];
+    coons_error err = COONS_ERROR_INIT;
+    for (int j = 0; j < 2; j++)
+        for (int k = 0; k < 2; k++) {
+            double pts[8][3];
+            for (int i = 0; i < 8; i++) {
+                pts[i][0] = rad[j] * oct[i][0];
+                pts[i][1] = rad[j] * oct[i][1];
+                pts[i][2] = hgt[k];
+            }
+            assert_coons_ok(coons_curve_coons_cubic(&pts[0][0], 8, 1, &e[2 * j + k], &err), &err);
+        }
+    /* the closed curves start (and end) at (C0 P7 + C1 P0 + C2 P1 + C3 P2) */
+    double a[2][2][3];
+    for (int j = 0; j < 2; j++)
+        for (int k = 0; k < 2; k++) coons_curve_eval(e[2 * j + k], 0.0, a[j][k]);
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 2; k++) /* v edges: C(i, v, k) from outer (j=0) to inner */
+            assert_coons_ok(coons_curve_line(a[0][k], a[1][k], &e[4 + 2 * i + k], &err), &err);
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) /* w edges: C(i, j, w) */
+            assert_coons_ok(coons_curve_line(a[j][0], a[j][1], &e[8 + 2 * i + j], &err), &err);
+    coons_body *b = NULL;
+    assert_coons_ok(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_LINEAR, 0, &b,
+                                     &err),
+                    &err);
+    for (int i = 0; i < 12; i++) coons_curve_free(e[i]);
+    return b;
+}
+
 /* ---------- tests ---------- */
 
 static void test_box_volume_exact(void **state)
@@ -435,6 +472,52 @@ static void test_curved_chisel_face_to_curve(void **state)
     coons_body_free(b);
 }
 
+static void test_ring_glued(void **state)
+{
+    (void)state;
+    coons_body *b = ring();
+    coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+    o.tolerance = 1e-2;
+    coons_mesh *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons_body_sample(b, &o, "ring", &m, &err), &err);
+    assert_closed_oriented(m);
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    assert_coons_ok(coons_mesh_check(m, &r, &err), &err);
+    assert_true(r.closed && r.manifold && r.oriented);
+    assert_int_equal(r.euler, 0); /* a torus: the coincident faces u0, u1 are gone */
+    assert_int_equal(r.expected_euler, 0);
+    assert_int_equal(r.shells, 1);
+    /* no vertex lies strictly inside the washer's cross-section cut at u = 0 */
+    double cut[3];
+    coons_body_eval(b, 0, 0.5, 0.5, cut);
+    const double *v = coons_mesh_vertices(m);
+    for (size_t i = 0; i < coons_mesh_vertex_count(m); i++) {
+        double d[3];
+        sub(d, v + 3 * i, cut);
+        assert_true(sqrt(dot(d, d)) > 0.5);
+    }
+    double vol;
+    assert_coons_ok(coons_body_volume(b, 1e-10, &vol, &err), &err);
+    assert_near(coons_mesh_volume(m), vol, coons_mesh_area(m) * o.tolerance);
+    /* random points of the four remaining faces */
+    double worst = 0;
+    for (int i = 0; i < 300; i++) {
+        int face = 2 + (int)(urand() * 4) % 4;
+        double q[3] = {urand(), urand(), urand()}, p[3];
+        q[face / 2] = (double)(face % 2);
+        coons_body_eval(b, q[0], q[1], q[2], p);
+        worst = fmax(worst, dist_to_mesh(m, p));
+    }
+    assert_true(worst <= o.tolerance);
+    print_message("ring     tol %g: %zu triangles, Euler %ld, random-point distance %.3g, "
+                  "volume %.9g vs %.9g\n",
+                  o.tolerance, coons_mesh_triangle_count(m), r.euler, worst,
+                  coons_mesh_volume(m), vol);
+    coons_mesh_free(m);
+    coons_body_free(b);
+}
+
 static void test_fixed_resolution(void **state)
 {
     (void)state;
@@ -610,6 +693,7 @@ int main(void)
         cmocka_unit_test(test_curved_pillow),
         cmocka_unit_test(test_curved_cone_apex),
         cmocka_unit_test(test_curved_chisel_face_to_curve),
+        cmocka_unit_test(test_ring_glued),
         cmocka_unit_test(test_fixed_resolution),
         cmocka_unit_test(test_limits_and_options),
         cmocka_unit_test(test_aspect),

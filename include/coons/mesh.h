@@ -69,7 +69,7 @@ COONS_EXPORT double coons_mesh_area(const coons_mesh *m);
 /* Sampling bodies into closed boundary meshes (src/mesh/sample.c)          */
 /* ------------------------------------------------------------------------ */
 
-/** Default largest ratio between the long and the short side of a lattice cell. */
+/** Default largest side ratio of the cells of the starting lattice. */
 #define COONS_DEFAULT_MAX_ASPECT 4.0
 
 /** Version of ::coons_sample_options this header describes. */
@@ -98,10 +98,12 @@ typedef struct coons_sample_options {
     /** Largest number of triangles; 0: ::COONS_DEFAULT_MAX_TRIANGLES. */
     size_t max_triangles;
     /**
-     * Adaptive sampling refines a lattice cell whose long side exceeds this
-     * many times its short side (a bounded number of rounds; cells next to a
-     * collapsed edge are exempt). 0: ::COONS_DEFAULT_MAX_ASPECT; values
-     * below 1 other than 0 are invalid; INFINITY disables it.
+     * Adaptive sampling starts from a lattice whose cells are at most this
+     * many times longer in one direction than in another (judged by the
+     * body's extent along u, v, w; refinement for the tolerance may then
+     * make cells thinner where it concentrates, e.g. along a kink).
+     * 0: ::COONS_DEFAULT_MAX_ASPECT; values below 1 other than 0 are
+     * invalid; INFINITY disables it.
      */
     double max_aspect;
 } coons_sample_options;
@@ -198,6 +200,12 @@ typedef struct coons_mesh_report {
     size_t nonmanifold_vertices; /**< vertices whose triangles do not form one fan */
     size_t shells;               /**< connected components (sharing vertices) */
     long euler;                  /**< V - E + F (2 per sphere-like shell) */
+    /**
+     * What `euler` should be: per sampled part 2, or 0 when the body closes
+     * on itself (a ring: its glued faces leave a torus); 2 per shell for
+     * other parts.
+     */
+    long expected_euler;
     int closed;   /**< every edge has exactly two triangles */
     int manifold; /**< no non-manifold edge or vertex, no degenerate triangle */
     int oriented; /**< every two-triangle edge is run in opposite directions */
@@ -209,7 +217,7 @@ typedef struct coons_mesh_report {
 } coons_mesh_report;
 
 #define COONS_MESH_REPORT_INIT {COONS_MESH_REPORT_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
-                                0, 0, 0, 0, 0, 0, 0.0, 0.0}
+                                0, 0, 0, 0, 0, 0, 0, 0.0, 0.0}
 
 /**
  * Checks that a mesh is closed, 2-manifold and consistently oriented and
@@ -219,7 +227,8 @@ typedef struct coons_mesh_report {
  * in order); a closed, manifold, oriented mesh loads with no refused face
  * and no boundary halfedge, anything else shows in `openmesh_rejected` and
  * `openmesh_boundary`. A closed, manifold, oriented mesh of s sphere-like
- * shells has `euler == 2 * s`. The library never prints: OpenMesh's log
+ * shells has `euler == 2 * s`; `expected_euler` says what the parts should
+ * give. The library never prints: OpenMesh's log
  * streams (omlog, omout, omerr) are disabled, process-wide, by any call
  * into the OpenMesh layer.
  * @param[in]     m       the mesh

@@ -181,6 +181,19 @@ coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coon
     }
     for (size_t vi = 0; vi < nv; vi++)
         if (first[vi + 1] > first[vi] && uf_find(uf, (uint32_t)vi) == vi) r->shells++;
+    /* Expected Euler characteristic, part by part: a sampled body's boundary
+     * is a sphere, or tori once opposite faces were glued; anything else is
+     * assumed to be spheres, one per shell. */
+    for (size_t p = 0; p < m->nparts; p++) {
+        const coons__mesh_part *P = &m->parts[p];
+        if (P->deviation >= 0) {
+            r->expected_euler += P->glued ? 0 : 2;
+            continue;
+        }
+        for (size_t vi = P->vert_first; vi < P->vert_first + P->vert_count; vi++)
+            if (first[vi + 1] > first[vi] && uf_find(uf, (uint32_t)vi) == vi)
+                r->expected_euler += 2;
+    }
 
     r->euler = (long)r->vertices - (long)r->edges + (long)nf;
     r->closed = nt > 0 && r->boundary_edges == 0 && r->nonmanifold_edges == 0;

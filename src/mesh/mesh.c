@@ -81,6 +81,7 @@ coons_status coons_mesh_add_part(coons_mesh *m, const char *name, const double *
     p->tolerance = -1.0;
     p->deviation = -1.0;
     p->lattice[0] = p->lattice[1] = p->lattice[2] = 0;
+    p->glued = 0;
     m->nv += nv;
     m->nt += nt;
     return COONS_OK;

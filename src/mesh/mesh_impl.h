@@ -12,6 +12,7 @@ typedef struct coons__mesh_part {
     /* Set by the sampler (sample.c); deviation < 0 for parts not sampled. */
     double tolerance, deviation;
     size_t lattice[3];
+    int glued; /* bit d: the body closes on itself along direction d */
 } coons__mesh_part;
 
 struct coons_mesh {

@@ -30,9 +30,17 @@
  * sliding within the surface (a cone's straight generators need no
  * refinement). The final pass (quarter points and triangle centroids of
  * every cell, against the final merged vertices) measures the reported
- * deviation. Refining for shape (max_aspect) skips cells whose opposite
- * sides differ by more than 20%: cells converging to a collapsed edge or
- * apex stay thin however often they are split.
+ * deviation.
+ *
+ * Shape: the starting lattice gives every direction enough intervals that
+ * its cells are at most max_aspect times longer than the shortest
+ * direction's (by the longest lattice line along each direction), so flat
+ * and long bodies start with well-shaped cells; each cell is then split
+ * along its shorter diagonal. Refinement is not driven by shape: in a tensor
+ * lattice, halving intervals to resolve a kink or a curved strip makes thin
+ * cells across the whole lattice, and re-squaring them refines everything
+ * (an aspect-driven loop gave 44 times the triangles on the polyline
+ * example). Cells converging to an apex are thin however they are split.
  */
 #include <float.h>
 #include <string.h>
@@ -43,12 +51,10 @@
 
 enum {
     START_INTERVALS = 4, /* along the longest direction */
-    MAX_ROUNDS = 200,
-    ASPECT_ROUNDS = 6    /* bounds aspect refinement: opposite faces can pull both ways */
+    MAX_ROUNDS = 200
 };
 #define MIN_WIDTH (1.0 / 1048576.0) /* 2^-20: narrowest interval refinement makes */
 #define LOOP_FRACTION 0.75          /* the coarse estimate aims below the tolerance */
-#define SIDE_RATIO 0.8              /* shape refinement only where opposite sides agree */
 
 typedef struct face_desc {
     int fixed, a, b; /* fixed direction; the face's (s,t) directions, a < b */
@@ -79,8 +85,8 @@ typedef struct sampler {
     size_t nt;
     double *buf, *bs;      /* evaluation scratch */
     size_t buf_cap, bs_cap;
+    int glued;             /* bit d: faces d0 and d1 coincide and are left out */
     double dev;            /* largest deviation found by the last scan */
-    size_t aspect_marks;   /* marks made for shape only by the last scan */
 } sampler;
 
 static coons_status ensure(double **p, size_t *cap, size_t need, coons_error *err)
@@ -162,6 +168,18 @@ static coons_status init_lattices(sampler *s)
             double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
             s->n[d] = k < 1 ? 1 : (k > START_INTERVALS ? START_INTERVALS : (size_t)k);
         }
+        /* Cell length along d is about len[d] / n[d]; the shortest of them
+         * (ignoring collapsed directions) bounds the others. */
+        double cmin = INFINITY;
+        for (int d = 0; d < 3; d++)
+            if (len[d] > 1e-9 * lmax) cmin = fmin(cmin, len[d] / (double)s->n[d]);
+        if (isfinite(s->o->max_aspect) && isfinite(cmin))
+            for (int d = 0; d < 3; d++) {
+                double k = ceil(len[d] / (s->o->max_aspect * cmin) - 1e-9);
+                /* capped so that a needle cannot exhaust the budget here */
+                if (k > 4096) k = 4096;
+                if (k > (double)s->n[d]) s->n[d] = (size_t)k;
+            }
     }
     for (int d = 0; d < 3; d++) {
         s->t[d] = coons__malloc_array(s->n[d] + 1, sizeof(double));
@@ -302,6 +320,25 @@ static coons_status build(sampler *s)
     s->merge_tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
     for (uint32_t i = 0; i < next; i++) s->uf[i] = i;
 
+    /* Opposite faces that coincide point for point (a body closed on itself
+     * along u, v or w: a ring made with closed edge curves) are glued and
+     * left out: they are inside the solid, and what remains is its boundary
+     * (a torus for one such pair). */
+    s->glued = 0;
+    for (int d = 0; d < 3; d++) {
+        const uint32_t *i0 = s->ids[2 * d], *i1 = s->ids[2 * d + 1];
+        size_t np = (n[FACES[2 * d].a] + 1) * (n[FACES[2 * d].b] + 1), k;
+        for (k = 0; k < np; k++)
+            if (v3_dist(s->pos + 3 * (size_t)i0[k], s->pos + 3 * (size_t)i1[k]) > s->merge_tol)
+                break;
+        if (k < np) continue;
+        s->glued |= 1 << d;
+        for (k = 0; k < np; k++) {
+            uint32_t ra = find(s->uf, i0[k]), rb = find(s->uf, i1[k]);
+            if (ra != rb) s->uf[ra > rb ? ra : rb] = ra < rb ? ra : rb;
+        }
+    }
+
     for (int f = 0; f < 6; f++) {
         size_t na = n[FACES[f].a], nb = n[FACES[f].b];
         const uint32_t *id = s->ids[f];
@@ -331,6 +368,7 @@ static coons_status build(sampler *s)
 
     size_t nt = 0;
     for (int f = 0; f < 6; f++) {
+        if (s->glued & 1 << FACES[f].fixed) continue;
         size_t na = n[FACES[f].a], nb = n[FACES[f].b];
         const uint32_t *id = s->ids[f];
         for (size_t p = 0; p < na; p++)
@@ -436,12 +474,12 @@ static void mark(sampler *s, int d, size_t i)
 /* Compares F with the mesh at the (r+1)^2 sub-samples of every cell (and at
  * the triangle centroids), keeps the largest distance in s->dev and, when
  * thr > 0, marks the intervals to halve. */
-static coons_status scan(sampler *s, int r, int centroids, double thr, int aspect)
+static coons_status scan(sampler *s, int r, int centroids, double thr)
 {
     s->dev = 0;
-    s->aspect_marks = 0;
     for (int f = 0; f < 6; f++) {
         const face_desc *F = &FACES[f];
+        if (s->glued & 1 << F->fixed) continue;
         size_t na = s->n[F->a], nb = s->n[F->b], nbs = (size_t)r * nb + 1;
         const double *ta = s->t[F->a], *tb = s->t[F->b];
         coons_status st = ensure(&s->bs, &s->bs_cap, nbs, s->err);
@@ -499,20 +537,6 @@ static coons_status scan(sampler *s, int r, int centroids, double thr, int aspec
                 }
                 if (ma) mark(s, F->a, p);
                 if (mb) mark(s, F->b, q);
-                if (aspect && !ma && !mb) {
-                    /* Only where halving the long side shortens it: not next to
-                     * a collapsed edge, whose cells keep their shape when split. */
-                    double la0 = fmin(v3_dist(P00, P10), v3_dist(P01, P11));
-                    double lb0 = fmin(v3_dist(P00, P01), v3_dist(P10, P11));
-                    double k = s->o->max_aspect;
-                    if (la > k * lb && lb > s->merge_tol && lb0 >= SIDE_RATIO * lb) {
-                        mark(s, F->a, p);
-                        s->aspect_marks++;
-                    } else if (lb > k * la && la > s->merge_tol && la0 >= SIDE_RATIO * la) {
-                        mark(s, F->b, q);
-                        s->aspect_marks++;
-                    }
-                }
             }
         }
     }
@@ -555,23 +579,16 @@ static coons_status run(sampler *s)
     if (st) return st;
     if (s->o->resolution) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
-        return scan(s, 4, 1, 0.0, 0);
+        return scan(s, 4, 1, 0.0);
     }
-    int aspect_rounds = 0;
     for (int round = 0; round < MAX_ROUNDS; round++) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
-        /* Shape refinement never spends the last three quarters of the budget. */
-        int aspect = isfinite(s->o->max_aspect) && aspect_rounds < ASPECT_ROUNDS &&
-                     tri_estimate(s->n) <= s->o->max_triangles / 4;
-        if ((st = scan(s, 2, 0, LOOP_FRACTION * s->o->tolerance, aspect))) return st;
+        if ((st = scan(s, 2, 0, LOOP_FRACTION * s->o->tolerance))) return st;
         size_t split;
         if ((st = refine(s, &split))) return st;
-        if (split) {
-            if (s->aspect_marks) aspect_rounds++;
-            continue;
-        }
+        if (split) continue;
         /* The coarse estimate is satisfied: measure on the finer samples. */
-        if ((st = scan(s, 4, 1, s->o->tolerance, 0))) return st;
+        if ((st = scan(s, 4, 1, s->o->tolerance))) return st;
         if (s->dev <= s->o->tolerance) return COONS_OK;
         if ((st = refine(s, &split))) return st;
         if (!split) break;
@@ -614,6 +631,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
         P->tolerance = s->o->tolerance;
         P->deviation = s->dev;
         for (int d = 0; d < 3; d++) P->lattice[d] = s->n[d];
+        P->glued = s->glued;
         if (triangles) *triangles = s->nt;
     }
 done:
