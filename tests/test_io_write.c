@@ -468,6 +468,51 @@ static void test_locale_independent(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* Given allocations failing at each point in turn, every format either
+ * fails with COONS_E_NOMEM leaving the previous file and no temporary file,
+ * or succeeds with exactly the normal output (the ASCII STL writer falls
+ * back to formatting without its vertex text cache). */
+static void test_allocation_failures(void **state)
+{
+    (void)state;
+    char dir[64], p[128], ref[128];
+    io_tmpdir(dir, sizeof dir);
+    path_in(p, sizeof p, dir, "out");
+    path_in(ref, sizeof ref, dir, "ref");
+    coons_mesh *m = torus_mesh(12);
+    coons_error e = COONS_ERROR_INIT;
+    for (int f = COONS_FORMAT_STL_BINARY; f <= COONS_FORMAT_SCAD; f++) {
+        assert_coons_ok(coons_mesh_write(m, ref, (coons_format)f, NULL, &e), &e);
+        size_t ref_len = 0;
+        char *want = io_read_file(ref, &ref_len);
+        int fallback_seen = 0;
+        for (long n = 0;; n++) {
+            io_write_file(p, previous, strlen(previous));
+            coons_test_fail_after(n);
+            int rc = coons_mesh_write(m, p, (coons_format)f, NULL, &e);
+            long used = coons_test_alloc_count();
+            coons_test_fail_after(-1);
+            if (rc == COONS_E_NOMEM) {
+                assert_file_is(p, previous);
+                assert_int_equal(io_dir_count(dir), 2);
+                continue;
+            }
+            assert_int_equal(rc, COONS_OK);
+            size_t len = 0;
+            char *got = io_read_file(p, &len);
+            assert_int_equal(len, ref_len);
+            assert_memory_equal(got, want, len);
+            free(got);
+            if (used <= n) break; /* nothing failed: done */
+            fallback_seen = 1;
+        }
+        assert_int_equal(fallback_seen, f == COONS_FORMAT_STL_ASCII);
+        free(want);
+    }
+    coons_mesh_free(m);
+    io_rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -481,6 +526,7 @@ int main(void)
         cmocka_unit_test(test_cancel),
         cmocka_unit_test(test_signal_leaves_nothing),
         cmocka_unit_test(test_locale_independent),
+        cmocka_unit_test(test_allocation_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -180,45 +180,56 @@ size_t coons__fmt_float(char *out, float v)
     int neg = signbit(v) != 0;
     float fa = fabsf(v);
     double a = fa;
-    /* Half-gaps to the neighbouring floats (exact in double). */
-    double lo = (a - (double)nextafterf(fa, 0.0f)) * 0.5;
-    double hi = isinf(nextafterf(fa, INFINITY)) ? lo
-                                                : ((double)nextafterf(fa, INFINITY) - a) * 0.5;
+    /* Neighbouring floats by their bit patterns (fa > 0 and finite), and
+     * the half-gaps to them (exact in double). */
+    uint32_t bits;
+    memcpy(&bits, &fa, sizeof bits);
+    uint32_t bdown = bits - 1, bup = bits + 1;
+    float fdown, fup;
+    memcpy(&fdown, &bdown, sizeof fdown);
+    memcpy(&fup, &bup, sizeof fup);
+    double lo = (a - (double)fdown) * 0.5;
+    double hi = isinf(fup) ? lo : ((double)fup - a) * 0.5;
     double lo_m = lo * (1.0 - 1e-6), hi_m = hi * (1.0 - 1e-6);
     /* strtof rounds a tie to the even significand: if v's is even, a text
      * exactly half-way to a neighbour still reads back as v. */
-    uint32_t bits;
-    memcpy(&bits, &fa, sizeof bits);
     int even = (bits & 1u) == 0;
-    int k = (int)floor(log10(a));
-    double s = scale10(a, -k);
-    if (s < 1.0)
-        k--;
-    else if (s >= 10.0)
-        k++;
+    /* Decimal exponent k of the first digit: 2^(e2-1) <= a < 2^e2 gives
+     * floor((e2-1) log10 2) <= k <= that + 1. */
+    int e2;
+    (void)frexp(a, &e2);
+    int k = (int)floor((e2 - 1) * 0.30102999566398120);
+    if (scale10(a, -k) >= 10.0) k++;
     static const double pow10p[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+    /* Everything in units of 10^(k-8), where the value has 9 digits before
+     * the point; the candidates and half-gaps are rescaled once. */
+    double s9 = scale10(a, 8 - k), lo9 = scale10(lo_m, 8 - k), hi9 = scale10(hi_m, 8 - k);
     uint32_t dig = 0;
     int q = 0;
     /* Any float with a shortest form of <= 6 digits is found at p = 6
      * (FLT_DIG): shorter forms come out by stripping trailing zeros.
      * Subnormals carry fewer digits, so there the search starts at 1. */
     for (int p = fa < FLT_MIN ? 1 : 6; p <= 9; p++) {
-        double d = floor(scale10(a, p - 1 - k) + 0.5);
+        double unit = pow10p[9 - p];
+        double d = floor(s9 / unit + 0.5);
         q = k - p + 1;
+        dig = (uint32_t)d;
         if (d >= pow10p[p]) {
-            d = pow10p[p - 1];
+            dig = (uint32_t)pow10p[p - 1];
             q++;
         }
-        dig = (uint32_t)d;
-        double c = scale10(d, q);
         /* An integer below 2^53 times an exact power of ten is computed
          * exactly, and then so is c - a: decide exactly, ties included. */
-        if (q >= 0 && q <= 22 && c < 9007199254740992.0) {
-            double diff = c >= a ? c - a : a - c, gap = c >= a ? hi : lo;
-            if (diff < gap || (diff == gap && even)) break;
-        } else if (c >= a ? c - a < hi_m : a - c < lo_m) {
-            break;
+        if (q >= 0 && q <= 22) {
+            double c = scale10((double)dig, q);
+            if (c < 9007199254740992.0) {
+                double diff = c >= a ? c - a : a - c, gap = c >= a ? hi : lo;
+                if (diff < gap || (diff == gap && even)) break;
+                continue;
+            }
         }
+        double c9 = d * unit;
+        if (c9 >= s9 ? c9 - s9 < hi9 : s9 - c9 < lo9) break;
     }
     while (dig % 10 == 0) {
         dig /= 10;

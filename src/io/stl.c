@@ -109,16 +109,32 @@ static void solid_name(char *out, size_t cap, const char *name)
     if (n == 0) snprintf(out, cap, "coons_model");
 }
 
-static char *put_xyz(char *p, const char *prefix, size_t plen, const double v[3])
+static char *put_xyz(char *p, const double v[3])
 {
-    memcpy(p, prefix, plen);
-    p += plen;
     for (int i = 0; i < 3; i++) {
         *p++ = ' ';
         p += coons__fmt_float(p, (float)v[i]);
     }
-    *p++ = '\n';
     return p;
+}
+
+/* Each vertex's " x y z" text, formatted once: a vertex of a closed mesh
+ * is shared by about six triangles, and formatting dominates the ASCII
+ * writer. Slot: a length byte, then at most 3 * 16 bytes (a float's text
+ * is at most 15 characters). NULL if memory is short: then every use
+ * formats again. */
+#define SLOT 50
+static unsigned char *vertex_texts(const coons_mesh *m)
+{
+    size_t nv = coons_mesh_vertex_count(m);
+    unsigned char *slots = coons__malloc_array(nv ? nv : 1, SLOT);
+    if (!slots) return NULL;
+    const double *xyz = coons_mesh_vertices(m);
+    for (size_t v = 0; v < nv; v++) {
+        unsigned char *sl = slots + SLOT * v;
+        sl[0] = (unsigned char)(put_xyz((char *)sl + 1, xyz + 3 * v) - (char *)(sl + 1));
+    }
+    return slots;
 }
 
 coons_status coons__write_stl_ascii(const coons_mesh *m, const coons__wopts *o, coons__sink *s)
@@ -130,24 +146,38 @@ coons_status coons__write_stl_ascii(const coons_mesh *m, const coons__wopts *o, 
     size_t nt = coons_mesh_triangle_count(m);
     const double *xyz = coons_mesh_vertices(m);
     const uint32_t *tri = coons_mesh_triangles(m);
-    static const char fn[] = "  facet normal", ol[] = "    outer loop\n", vx[] = "      vertex",
+    unsigned char *texts = vertex_texts(m);
+    static const char fn[] = "  facet normal", ol[] = "\n    outer loop\n", vx[] = "      vertex",
                       el[] = "    endloop\n  endfacet\n";
     for (size_t t = 0; t < nt; t++) {
-        /* A facet is at most 5 lines of < 120 bytes: within MAXREC. */
+        /* A facet is 7 lines of < 64 bytes: within MAXREC. */
         char *p = coons__sink_room(s, COONS__SINK_MAXREC), *p0 = p;
-        if (!p) return s->status;
+        if (!p) break;
         const double *v[3] = {xyz + 3 * (size_t)tri[3 * t], xyz + 3 * (size_t)tri[3 * t + 1],
                               xyz + 3 * (size_t)tri[3 * t + 2]};
         double n[3];
         facet_normal(n, v[0], v[1], v[2]);
-        p = put_xyz(p, fn, sizeof fn - 1, n);
+        memcpy(p, fn, sizeof fn - 1);
+        p = put_xyz(p + sizeof fn - 1, n);
         memcpy(p, ol, sizeof ol - 1);
         p += sizeof ol - 1;
-        for (int k = 0; k < 3; k++) p = put_xyz(p, vx, sizeof vx - 1, v[k]);
+        for (int k = 0; k < 3; k++) {
+            memcpy(p, vx, sizeof vx - 1);
+            p += sizeof vx - 1;
+            if (texts) {
+                const unsigned char *sl = texts + SLOT * (size_t)tri[3 * t + (size_t)k];
+                memcpy(p, sl + 1, sl[0]);
+                p += sl[0];
+            } else {
+                p = put_xyz(p, v[k]);
+            }
+            *p++ = '\n';
+        }
         memcpy(p, el, sizeof el - 1);
         p += sizeof el - 1;
         s->len += (size_t)(p - p0);
     }
+    coons__free(texts);
     if (!coons__sink_puts(s, "endsolid ") || !coons__sink_puts(s, name)) return s->status;
     coons__sink_puts(s, "\n");
     return s->status;
