@@ -1,0 +1,539 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * coons2stl: reads a libcoons model (coons-model(5)) and writes the boundary
+ * mesh of its bodies, evaluates a body at given parameters (--eval), or
+ * describes the model (--info). A thin client of <coons.h>; see coons2stl(1).
+ *
+ * Exit status: 0 success, 1 bad input (model or --eval lines), 2 bad usage,
+ * 3 a geometric operation or writing the output failed.
+ */
+#define _POSIX_C_SOURCE 200809L /* getline */
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <coons.h>
+
+enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_GEOMETRY = 3 };
+
+static const char *const PROG = "coons2stl";
+
+typedef struct options {
+    const char *input;  /* "-" = standard input */
+    const char *output; /* NULL = standard output */
+    const char *format; /* resolved: stl, stl-ascii, off, scad */
+    const char *body;   /* --body argument or NULL */
+    double tolerance;   /* > 0 when given */
+    int eval, jacobian, info, quiet;
+} options;
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "Usage: %s [OPTIONS] MODEL.json\n"
+            "Reads a libcoons model (MODEL.json, or - for standard input) and writes the\n"
+            "boundary mesh of its bodies.\n"
+            "\n"
+            "  -o, --output FILE      write the mesh to FILE (default: standard output)\n"
+            "  -f, --format FMT       stl (binary), stl-ascii, off or scad; by default taken\n"
+            "                         from the extension of FILE (.stl, .off, .scad), else stl\n"
+            "  -t, --tolerance D      largest distance between mesh and surface (> 0),\n"
+            "                         instead of the model's \"tolerance\"\n"
+            "      --body NAME|INDEX  use that body (a 0-based index if all digits, else a\n"
+            "                         name); default: all bodies, or body 0 for --eval\n"
+            "      --eval             read lines \"u v w\" from standard input and print\n"
+            "                         \"x y z\" of the body (17 significant digits)\n"
+            "      --jacobian         with --eval, also print the Jacobian (row-major,\n"
+            "                         columns d/du d/dv d/dw) and its determinant\n"
+            "      --info             print a JSON description of the model and its bodies\n"
+            "  -q, --quiet            no warnings\n"
+            "  -h, --help             show this help and exit\n"
+            "      --version          show the version and exit\n"
+            "\n"
+            "Exit status: 0 success, 1 bad input, 2 bad usage, 3 a geometric operation\n"
+            "or writing the output failed.\n",
+            PROG);
+}
+
+static int usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "%s: ", PROG);
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\nTry '%s --help' for more information.\n", PROG);
+    return EXIT_USAGE;
+}
+
+static const char *format_from_name(const char *f)
+{
+    static const char *const known[] = {"stl", "stl-ascii", "off", "scad"};
+    for (size_t i = 0; i < sizeof known / sizeof *known; i++)
+        if (strcmp(f, known[i]) == 0) return known[i];
+    return NULL;
+}
+
+static const char *format_from_extension(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash + 1 : path, '.');
+    if (!dot) return NULL;
+    char ext[8];
+    size_t n = strlen(dot + 1);
+    if (n == 0 || n >= sizeof ext) return NULL;
+    for (size_t i = 0; i <= n; i++) {
+        char c = dot[1 + i];
+        ext[i] = (c >= 'A' && c <= 'Z') ? (char)(c - 'A' + 'a') : c;
+    }
+    if (strcmp(ext, "stl") == 0) return "stl";
+    if (strcmp(ext, "off") == 0) return "off";
+    if (strcmp(ext, "scad") == 0) return "scad";
+    return NULL;
+}
+
+/* Parses the command line; returns -1 to go on, else an exit status. */
+static int parse_args(int argc, char **argv, options *o)
+{
+    int only_files = 0;
+    const char *format = NULL, *tol = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
+            if (o->input) return usage_error("more than one model file given ('%s')", a);
+            o->input = a;
+            continue;
+        }
+        if (strcmp(a, "--") == 0) {
+            only_files = 1;
+            continue;
+        }
+        const char *name, *value = NULL;
+        char shortname[3] = "-?";
+        int is_long = a[1] == '-';
+        if (is_long) {
+            name = a + 2;
+        } else {
+            shortname[1] = a[1];
+            static const char *const map[][2] = {
+                {"o", "output"}, {"f", "format"}, {"t", "tolerance"}, {"q", "quiet"}, {"h", "help"}};
+            name = NULL;
+            for (size_t k = 0; k < sizeof map / sizeof *map; k++)
+                if (a[1] == map[k][0][0]) name = map[k][1];
+            if (!name) return usage_error("unknown option '%s'", a);
+            if (a[2]) {
+                if (strcmp(name, "quiet") == 0 || strcmp(name, "help") == 0)
+                    return usage_error("unknown option '%s' (give short options separately)", a);
+                value = a + 2; /* -ofile */
+            }
+        }
+        char lname[32];
+        const char *eq = is_long ? strchr(name, '=') : NULL;
+        size_t nl = eq ? (size_t)(eq - name) : strlen(name);
+        if (nl >= sizeof lname) return usage_error("unknown option '%s'", a);
+        memcpy(lname, name, nl);
+        lname[nl] = '\0';
+        if (eq) value = eq + 1;
+        static const char *const with_value[] = {"output", "format", "tolerance", "body"};
+        static const char *const flags[] = {"eval", "jacobian", "info", "quiet", "help", "version"};
+        int takes = -1;
+        for (size_t k = 0; k < 4; k++)
+            if (strcmp(lname, with_value[k]) == 0) takes = 1;
+        for (size_t k = 0; k < 6; k++)
+            if (strcmp(lname, flags[k]) == 0) takes = 0;
+        if (takes < 0) return usage_error("unknown option '%s'", a);
+        if (takes == 0 && value) return usage_error("option '%s' takes no value", a);
+        if (takes == 1 && !value) {
+            if (i + 1 >= argc)
+                return usage_error("option '%s' needs a value", is_long ? a : shortname);
+            value = argv[++i];
+        }
+        if (strcmp(lname, "output") == 0) o->output = value;
+        else if (strcmp(lname, "format") == 0) format = value;
+        else if (strcmp(lname, "tolerance") == 0) tol = value;
+        else if (strcmp(lname, "body") == 0) o->body = value;
+        else if (strcmp(lname, "eval") == 0) o->eval = 1;
+        else if (strcmp(lname, "jacobian") == 0) o->jacobian = o->eval = 1;
+        else if (strcmp(lname, "info") == 0) o->info = 1;
+        else if (strcmp(lname, "quiet") == 0) o->quiet = 1;
+        else if (strcmp(lname, "help") == 0) {
+            usage(stdout);
+            return fflush(stdout) == 0 ? 0 : EXIT_GEOMETRY;
+        } else if (strcmp(lname, "version") == 0) {
+            printf("%s (libcoons) %s\nmodel format version %d\n", PROG, coons_version_string(),
+                   COONS_MODEL_FORMAT_VERSION);
+            return fflush(stdout) == 0 ? 0 : EXIT_GEOMETRY;
+        }
+    }
+    if (!o->input) return usage_error("%s", "no model file given");
+    if (tol) {
+        char *end = NULL;
+        errno = 0;
+        o->tolerance = strtod(tol, &end);
+        if (end == tol || *end || !isfinite(o->tolerance) || !(o->tolerance > 0))
+            return usage_error("--tolerance needs a number > 0, not '%s'", tol);
+    }
+    if (o->eval && o->info) return usage_error("%s", "--eval and --info cannot be combined");
+    if ((o->eval || o->info) && (o->output || format))
+        return usage_error("%s", "-o and -f are for meshes: --eval and --info print to "
+                                 "standard output");
+    if (o->eval && strcmp(o->input, "-") == 0)
+        return usage_error("%s", "--eval reads parameters from standard input, so the model "
+                                 "must come from a file");
+    if (format) {
+        if (!(o->format = format_from_name(format)))
+            return usage_error("unknown format '%s': expected stl, stl-ascii, off or scad",
+                               format);
+    } else if (o->output && strcmp(o->output, "-") != 0) {
+        if (!(o->format = format_from_extension(o->output)))
+            return usage_error("cannot tell the output format from the name '%s': use -f stl, "
+                               "stl-ascii, off or scad",
+                               o->output);
+    } else
+        o->format = "stl";
+    return -1;
+}
+
+/* ---- input --------------------------------------------------------------- */
+
+static int load_model(const options *o, coons_model **m)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_status rc;
+    if (strcmp(o->input, "-") == 0) {
+        /* Read at most one byte more than the loader accepts, so that it
+         * reports the limit itself. */
+        size_t cap = 1 << 16, len = 0, max = COONS_MODEL_MAX_BYTES + 1;
+        char *buf = malloc(cap);
+        while (buf) {
+            if (len == cap) {
+                if (cap >= max) break;
+                size_t nc = cap * 2 > max ? max : cap * 2;
+                char *nb = realloc(buf, nc);
+                if (!nb) {
+                    free(buf);
+                    buf = NULL;
+                    break;
+                }
+                buf = nb;
+                cap = nc;
+            }
+            size_t got = fread(buf + len, 1, cap - len, stdin);
+            len += got;
+            if (got == 0) break;
+        }
+        if (!buf) {
+            fprintf(stderr, "%s: <stdin>: out of memory reading the model\n", PROG);
+            return EXIT_INPUT;
+        }
+        if (ferror(stdin)) {
+            fprintf(stderr, "%s: <stdin>: cannot read the model: %s\n", PROG, strerror(errno));
+            free(buf);
+            return EXIT_INPUT;
+        }
+        rc = coons_model_load_buffer(buf, len, "<stdin>", m, &err);
+        free(buf);
+    } else {
+        rc = coons_model_load(o->input, m, &err);
+    }
+    if (rc != COONS_OK) {
+        /* The message carries FILE:LINE:COL: /json/path: ... already. */
+        fprintf(stderr, "%s: %s\n", PROG, err.message);
+        return EXIT_INPUT;
+    }
+    return -1;
+}
+
+/* --body: all digits = index, else a name. Returns the index or -1. */
+static long select_body(const coons_model *m, const char *arg)
+{
+    size_t n = coons_model_body_count(m);
+    int digits = arg[0] != '\0';
+    for (const char *p = arg; *p; p++)
+        if (*p < '0' || *p > '9') digits = 0;
+    if (digits) {
+        errno = 0;
+        unsigned long long i = strtoull(arg, NULL, 10);
+        if (errno || i >= n) {
+            fprintf(stderr, "%s: --body %s: the model has %zu bod%s (indices 0..%zu)\n", PROG, arg,
+                    n, n == 1 ? "y" : "ies", n - 1);
+            return -1;
+        }
+        return (long)i;
+    }
+    long i = coons_model_find_body(m, arg);
+    if (i < 0) fprintf(stderr, "%s: --body %s: the model has no body of that name\n", PROG, arg);
+    return i;
+}
+
+/* ---- --eval -------------------------------------------------------------- */
+
+static int eval_lines(const coons_body *b, int jacobian)
+{
+    char *line = NULL;
+    size_t cap = 0;
+    long lineno = 0;
+    int status = 0;
+    /* One write per line, so that a program driving coons2stl through a
+     * pipe gets each answer at once. */
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    while (getline(&line, &cap, stdin) != -1) {
+        lineno++;
+        char *hash = strchr(line, '#');
+        if (hash) *hash = '\0';
+        double q[3];
+        int n = 0;
+        const char *p = line;
+        for (;;) {
+            while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n' || *p == '\v' ||
+                   *p == '\f')
+                p++;
+            if (!*p) break;
+            if (n == 3) {
+                n = 4;
+                break;
+            }
+            char *end;
+            double x = strtod(p, &end);
+            if (end == p || !(*end == '\0' || strchr(" \t\r\n\v\f", *end)) || !isfinite(x)) {
+                n = -1;
+                break;
+            }
+            q[n++] = x;
+            p = end;
+        }
+        if (n == 0) continue; /* blank line or comment */
+        if (n != 3) {
+            fprintf(stderr, "%s: <stdin>:%ld: expected three numbers \"u v w\"\n", PROG, lineno);
+            status = EXIT_INPUT;
+            break;
+        }
+        static const char names[] = "uvw";
+        for (int k = 0; k < 3 && !status; k++) {
+            if (q[k] < -1e-12 || q[k] > 1 + 1e-12) {
+                fprintf(stderr, "%s: <stdin>:%ld: %c = %.17g is outside [0, 1]\n", PROG, lineno,
+                        names[k], q[k]);
+                status = EXIT_INPUT;
+            }
+            q[k] = q[k] < 0 ? 0 : q[k] > 1 ? 1 : q[k];
+        }
+        if (status) break;
+        double x[3], J[3][3];
+        if (jacobian) {
+            double det = coons_body_eval_jacobian(b, q[0], q[1], q[2], x, J);
+            printf("%.17g %.17g %.17g", x[0], x[1], x[2]);
+            for (int r = 0; r < 3; r++)
+                for (int c = 0; c < 3; c++) printf(" %.17g", J[r][c]);
+            printf(" %.17g\n", det);
+        } else {
+            coons_body_eval(b, q[0], q[1], q[2], x);
+            printf("%.17g %.17g %.17g\n", x[0], x[1], x[2]);
+        }
+    }
+    free(line);
+    if (!status && ferror(stdin)) {
+        fprintf(stderr, "%s: <stdin>: cannot read: %s\n", PROG, strerror(errno));
+        status = EXIT_INPUT;
+    }
+    return status;
+}
+
+/* ---- --info -------------------------------------------------------------- */
+
+static void json_string(const char *s)
+{
+    putchar('"');
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            printf("\\%c", c);
+        else if (c < 0x20)
+            printf("\\u%04x", c);
+        else
+            putchar(c);
+    }
+    putchar('"');
+}
+
+static void json_number(double x)
+{
+    if (isfinite(x))
+        printf("%.17g", x);
+    else
+        printf("null");
+}
+
+static void json_box(const double lo[3], const double hi[3])
+{
+    printf("{\"min\": [");
+    for (int k = 0; k < 3; k++) {
+        if (k) printf(", ");
+        json_number(lo[k]);
+    }
+    printf("], \"max\": [");
+    for (int k = 0; k < 3; k++) {
+        if (k) printf(", ");
+        json_number(hi[k]);
+    }
+    printf("]}");
+}
+
+static const char *body_type_name(coons_body_type t)
+{
+    switch (t) {
+    case COONS_BODY_BODY0: return "body0";
+    case COONS_BODY_BODY1: return "body1";
+    case COONS_BODY_BODY2: return "body2";
+    case COONS_BODY_BEZIER: return "bezier-volume";
+    case COONS_BODY_BSPLINE: return "bspline-volume";
+    default: return "unknown";
+    }
+}
+
+#define INFO_GRID 65
+#define INFO_JAC 16
+
+/* Box of the boundary sampled on the six faces, INFO_GRID^2 points each. */
+static int sampled_box(const coons_body *b, double lo[3], double hi[3], coons_error *err)
+{
+    static double out[INFO_GRID * INFO_GRID * 3];
+    double g[INFO_GRID], ends[2] = {0.0, 1.0};
+    for (int i = 0; i < INFO_GRID; i++) g[i] = (double)i / (INFO_GRID - 1);
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (int face = 0; face < 6; face++) {
+        const double *e = &ends[face % 2];
+        int dir = face / 2;
+        coons_status rc = coons_body_eval_grid(
+            b, dir == 0 ? e : g, dir == 0 ? 1 : INFO_GRID, dir == 1 ? e : g,
+            dir == 1 ? 1 : INFO_GRID, dir == 2 ? e : g, dir == 2 ? 1 : INFO_GRID, out, err);
+        if (rc) return rc;
+        for (size_t p = 0; p < (size_t)INFO_GRID * INFO_GRID; p++)
+            for (int k = 0; k < 3; k++) {
+                if (out[3 * p + k] < lo[k]) lo[k] = out[3 * p + k];
+                if (out[3 * p + k] > hi[k]) hi[k] = out[3 * p + k];
+            }
+    }
+    return 0;
+}
+
+static int info(const coons_model *m, long only, int quiet)
+{
+    size_t n = coons_model_body_count(m);
+    double clo[3], chi[3];
+    coons_model_control_bbox(m, clo, chi);
+    double diag = sqrt((chi[0] - clo[0]) * (chi[0] - clo[0]) + (chi[1] - clo[1]) * (chi[1] - clo[1]) +
+                       (chi[2] - clo[2]) * (chi[2] - clo[2]));
+    double tol = coons_model_tolerance(m);
+    /* Volumes to a relative accuracy tied to the model tolerance: a boundary
+     * off by tol changes the volume by about tol * area ~ tol / size. */
+    double rel = diag > 0 ? tol / diag : 1e-6;
+    if (rel > 1e-6) rel = 1e-6;
+    if (rel < 1e-12) rel = 1e-12;
+    double total = 0.0;
+    size_t listed = 0;
+    printf("{\n  \"units\": ");
+    json_string(coons_model_units(m));
+    printf(",\n  \"tolerance\": ");
+    json_number(tol);
+    printf(",\n  \"operation\": \"%s\",\n  \"control_bbox\": ",
+           coons_model_operation(m) == COONS_OP_NONE ? "none" : "union");
+    json_box(clo, chi);
+    printf(",\n  \"bodies\": [");
+    for (size_t i = 0; i < n; i++) {
+        if (only >= 0 && (size_t)only != i) continue;
+        const coons_body *b = coons_model_body(m, i);
+        coons_error err = COONS_ERROR_INIT;
+        double lo[3], hi[3], blo[3], bhi[3], vol = NAN, mindet = NAN, where[3] = {0, 0, 0};
+        if (sampled_box(b, lo, hi, &err) || coons_body_volume(b, rel, &vol, &err) ||
+            coons_body_min_jacobian(b, INFO_JAC, &mindet, where, &err)) {
+            fflush(stdout);
+            fprintf(stderr, "%s: body %zu (%s): %s\n", PROG, i, coons_model_body_name(m, i),
+                    err.message);
+            return EXIT_GEOMETRY;
+        }
+        coons_body_control_bbox(b, blo, bhi);
+        total += vol;
+        if (mindet < 0 && !quiet) {
+            fflush(stdout);
+            fprintf(stderr,
+                    "%s: warning: body %zu (%s): det J = %.6g < 0 at (u, v, w) = (%g, %g, %g): "
+                    "the body %s\n",
+                    PROG, i, coons_model_body_name(m, i), mindet, where[0], where[1], where[2],
+                    vol < 0 ? "is left-handed or folds over itself"
+                            : "folds over itself there");
+        }
+        printf("%s\n    {\"index\": %zu, \"name\": ", listed ? "," : "", i);
+        json_string(coons_model_body_name(m, i));
+        printf(", \"type\": \"%s\",\n     \"bbox\": ", body_type_name(coons_body_get_type(b)));
+        json_box(lo, hi);
+        printf(",\n     \"control_bbox\": ");
+        json_box(blo, bhi);
+        printf(",\n     \"volume\": ");
+        json_number(vol);
+        printf(", \"min_det_jacobian\": ");
+        json_number(mindet);
+        printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]}", where[0], where[1], where[2]);
+        listed++;
+    }
+    printf("\n  ],\n  \"body_count\": %zu,\n  \"total_volume\": ", listed);
+    json_number(total);
+    printf("\n}\n");
+    return 0;
+}
+
+/* ---- output -------------------------------------------------------------- */
+
+/*
+ * Writes the boundary mesh of the model (all bodies, or only body `body`
+ * when >= 0) to `output` (NULL or "-": standard output) in `format` ("stl",
+ * "stl-ascii", "off" or "scad"), sampled to `tolerance`. It must not create,
+ * truncate or change `output` unless everything succeeded (write a
+ * temporary file in the same directory, then rename() it). Prints its own
+ * diagnostics and returns the exit status.
+ *
+ * The meshing work replaces this body; nothing else in this file needs to
+ * change.
+ */
+static int write_output(const coons_model *m, long body, const char *format, const char *output,
+                        double tolerance, int quiet)
+{
+    (void)m;
+    (void)body;
+    (void)format;
+    (void)tolerance;
+    (void)quiet;
+    fprintf(stderr, "%s: %s: writing meshes is not available yet; nothing was written\n", PROG,
+            output && strcmp(output, "-") != 0 ? output : "<stdout>");
+    return EXIT_GEOMETRY;
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    memset(&o, 0, sizeof o);
+    int rc = parse_args(argc, argv, &o);
+    if (rc >= 0) return rc;
+    coons_model *m = NULL;
+    if ((rc = load_model(&o, &m)) >= 0) return rc;
+    long body = -1;
+    if (o.body && (body = select_body(m, o.body)) < 0) {
+        coons_model_free(m);
+        return EXIT_USAGE;
+    }
+    if (o.eval)
+        rc = eval_lines(coons_model_body(m, body < 0 ? 0 : (size_t)body), o.jacobian);
+    else if (o.info)
+        rc = info(m, body, o.quiet);
+    else
+        rc = write_output(m, body, o.format, o.output,
+                          o.tolerance > 0 ? o.tolerance : coons_model_tolerance(m), o.quiet);
+    coons_model_free(m);
+    if ((o.eval || o.info) && (fflush(stdout) != 0 || ferror(stdout))) {
+        fprintf(stderr, "%s: cannot write to standard output: %s\n", PROG, strerror(errno));
+        if (!rc) rc = EXIT_GEOMETRY;
+    }
+    return rc;
+}
