@@ -1,0 +1,242 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Shared helpers of the coons2stl command-line tests (not a test itself).
+
+- Runner: parses --bin/--src/--build, runs the binary, counts checks.
+- An independent reference of the model format (coons-model(5)) written
+  from the format's definitions, not from libcoons: every curve type at any
+  t (Cox-de Boor, Bernstein, Coons polynomials of seed 002, cubic Hermite),
+  and the 8 corners of every body type.
+"""
+import argparse
+import os
+import subprocess
+import sys
+
+
+class Runner:
+    def __init__(self, doc=""):
+        ap = argparse.ArgumentParser(description=doc)
+        ap.add_argument("--bin", required=True)
+        ap.add_argument("--src", required=True)
+        ap.add_argument("--build", required=True)
+        a = ap.parse_args()
+        self.bin, self.src, self.build = a.bin, a.src, a.build
+        self.data = os.path.join(self.src, "tests", "data")
+        self.passed = self.failed = 0
+
+    def check(self, name, ok, detail=""):
+        if ok:
+            self.passed += 1
+            print(f"ok   {name}")
+        else:
+            self.failed += 1
+            print(f"FAIL {name}" + (f"\n     {detail}" if detail else ""))
+        return ok
+
+    def run(self, args, stdin=None, cwd=None, binary=False):
+        """Runs coons2stl; returns (status, stdout, stderr)."""
+        p = subprocess.run([self.bin] + list(args), input=stdin, cwd=cwd,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                           text=not binary, timeout=120)
+        return p.returncode, p.stdout, p.stderr
+
+    def finish(self):
+        print(f"{self.passed} passed, {self.failed} failed")
+        sys.exit(1 if self.failed or not self.passed else 0)
+
+
+# ---- small vector helpers ---------------------------------------------------
+
+def pt3(p):
+    """[x, y] means z = 0."""
+    return [float(p[0]), float(p[1]), float(p[2]) if len(p) > 2 else 0.0]
+
+
+def add(a, b):
+    return [a[i] + b[i] for i in range(3)]
+
+
+def scale(a, s):
+    return [a[i] * s for i in range(3)]
+
+
+def dist(a, b):
+    return sum((a[i] - b[i]) ** 2 for i in range(3)) ** 0.5
+
+
+def lincomb(ws, ps):
+    out = [0.0, 0.0, 0.0]
+    for w, p in zip(ws, ps):
+        for i in range(3):
+            out[i] += w * p[i]
+    return out
+
+
+# ---- bases ---------------------------------------------------------------------
+
+def bernstein(n, t):
+    from math import comb
+    return [comb(n, i) * t ** i * (1 - t) ** (n - i) for i in range(n + 1)]
+
+
+def clamped_knots(p, ncp):
+    """p+1 zeros, 1..ncp-p-1, p+1 times ncp-p."""
+    return [0.0] * (p + 1) + [float(i) for i in range(1, ncp - p)] + [float(ncp - p)] * (p + 1)
+
+
+def bspline_basis(knots, p, ncp, t):
+    """All ncp basis values at t in [0,1] mapped onto [k_p, k_ncp]; the
+    right end belongs to the last non-empty span (Cox-de Boor recursion)."""
+    a, b = knots[p], knots[ncp]
+    x = a + t * (b - a)
+    # span: k_i <= x < k_i+1, p <= i <= ncp-1; at the right end the last
+    # non-empty span
+    span = None
+    for i in range(p, ncp):
+        if knots[i] <= x < knots[i + 1]:
+            span = i
+    if span is None:
+        for i in range(ncp - 1, p - 1, -1):
+            if knots[i] < knots[i + 1]:
+                span = i
+                break
+    m = len(knots) - 1
+    N = [1.0 if i == span else 0.0 for i in range(m)]
+    for d in range(1, p + 1):
+        M = [0.0] * (m - d)
+        for i in range(m - d):
+            v = 0.0
+            den = knots[i + d] - knots[i]
+            if den > 0:
+                v += (x - knots[i]) / den * N[i]
+            den = knots[i + d + 1] - knots[i + 1]
+            if den > 0:
+                v += (knots[i + d + 1] - x) / den * N[i + 1]
+            M[i] = v
+        N = M
+    return N[:ncp]
+
+
+def coons_basis(t):
+    return [(1 - t) ** 3 / 6, (3 * t ** 3 - 6 * t ** 2 + 4) / 6,
+            (-3 * t ** 3 + 3 * t ** 2 + 3 * t + 1) / 6, t ** 3 / 6]
+
+
+# ---- curves ---------------------------------------------------------------------
+
+def curve_eval(c, t):
+    typ = c["type"]
+    P = [pt3(p) for p in c["points"]]
+    if typ in ("line", "polyline"):
+        n = len(P) - 1
+        s = min(int(t * n), n - 1)
+        return add(scale(P[s], 1 - (t * n - s)), scale(P[s + 1], t * n - s))
+    if typ == "bezier":
+        return lincomb(bernstein(len(P) - 1, t), P)
+    if typ == "hermite":
+        T = [pt3(v) for v in c["tangents"]]
+        h = [1 - 3 * t * t + 2 * t ** 3, t - 2 * t * t + t ** 3, -t * t + t ** 3, 3 * t * t - 2 * t ** 3]
+        return lincomb(h, [P[0], T[0], T[1], P[1]])
+    if typ == "coons-cubic":
+        if c.get("closed", False):
+            P = P + P[:3]
+        nseg = len(P) - 3
+        x = t * nseg
+        s = min(int(x), nseg - 1)
+        return lincomb(coons_basis(x - s), P[s:s + 4])
+    if typ == "clamped-cubic":
+        return lincomb(bspline_basis(clamped_knots(3, len(P)), 3, len(P), t), P)
+    if typ == "bspline":
+        p = int(c["degree"])
+        k = [float(v) for v in c["knots"]] if "knots" in c else clamped_knots(p, len(P))
+        N = bspline_basis(k, p, len(P), t)
+        if "weights" in c:
+            w = [float(v) for v in c["weights"]]
+            W = sum(N[i] * w[i] for i in range(len(P)))
+            return lincomb([N[i] * w[i] / W for i in range(len(P))], P)
+        return lincomb(N, P)
+    raise ValueError("unknown curve type " + typ)
+
+
+# ---- tensor products ---------------------------------------------------------
+
+def tensor_eval(obj, params):
+    """Bezier or B-spline/NURBS surface (2 params) or volume (3 params)."""
+    pts = obj["points"]
+    dims = len(params)
+    shape = []
+    a = pts
+    for _ in range(dims):
+        shape.append(len(a))
+        a = a[0]
+    bases = []
+    for d in range(dims):
+        n = shape[d]
+        if obj["type"].startswith("bezier"):
+            bases.append(bernstein(n - 1, params[d]))
+        else:
+            p = int(obj["degree"][d])
+            k = [float(v) for v in obj["knots"][d]] if "knots" in obj else clamped_knots(p, n)
+            bases.append(bspline_basis(k, p, n, params[d]))
+    num, den = [0.0, 0.0, 0.0], 0.0
+    w = obj.get("weights")
+
+    def walk(node, wnode, d, coef):
+        nonlocal den
+        if d == dims:
+            ww = float(wnode) if w is not None else 1.0
+            for i in range(3):
+                num[i] += coef * ww * pt3(node)[i]
+            den += coef * ww
+            return
+        for i in range(shape[d]):
+            if bases[d][i] != 0.0:
+                walk(node[i], wnode[i] if w is not None else None, d + 1, coef * bases[d][i])
+    walk(pts, w, 0, 1.0)
+    return scale(num, 1.0 / den)
+
+
+# ---- patches and bodies at corners -----------------------------------------------
+
+def patch_eval_corner(p, s, t):
+    """A patch at a corner (s, t in {0, 1})."""
+    typ = p["type"]
+    if typ == "bilinear":
+        return pt3(p["corners"][int(s) + 2 * int(t)])
+    if typ == "ruled":
+        return curve_eval(p["curves"][int(t)], s)
+    if typ in ("coons", "hermite-coons"):
+        b = p["boundary"]
+        # x(s, t) at a corner: t0/t1 give x(s, 0)/x(s, 1); s0/s1 agree with them
+        return curve_eval(b["t1" if t else "t0"], s)
+    return tensor_eval(p, [s, t])
+
+
+def body_corners(b):
+    """The 8 corners P_ijk (index 4i + 2j + k) of a body."""
+    typ = b["type"]
+    out = []
+    for n in range(8):
+        i, j, k = n >> 2, (n >> 1) & 1, n & 1
+        if typ == "body0":
+            out.append(pt3(b["corners"][n]))
+        elif typ == "body1":
+            e = b["edges"]
+            out.append(curve_eval(e["u%d%d" % (j, k)], i))
+        elif typ == "body2":
+            f = b["faces"]
+            # u_I(s, t) = C(I, v=s, w=t)
+            out.append(patch_eval_corner(f["u%d" % i], j, k))
+        else:
+            out.append(tensor_eval(b, [i, j, k]))
+    return out
+
+
+def model_scale(model):
+    """Diagonal of the box of the model's corner points (for tolerances)."""
+    lo, hi = [1e300] * 3, [-1e300] * 3
+    for b in model["bodies"]:
+        for p in body_corners(b):
+            for i in range(3):
+                lo[i], hi[i] = min(lo[i], p[i]), max(hi[i], p[i])
+    return max(dist(lo, hi), 1e-300)
