@@ -391,7 +391,7 @@ static coons_status net(ld *L, size_t tok, const netspec *ns, size_t shape[3], d
         else if (n < ns->min)
             rc = fail(L, t, COONS_E_INVALID, "%s needs at least %zu %s%s, found %zu", ns->what,
                       ns->min, ns->noun, along, n);
-        else if (n > L->max_points || total > L->max_points / n)
+        else if (n > L->max_points || (n && total > L->max_points / n))
             rc = fail(L, t, COONS_E_LIMIT,
                       "%s has more than %zu %s: above the limit of %zu points per curve, "
                       "surface or volume",
