@@ -4,9 +4,11 @@
 
 - an affine body0 (x = o + A q: the Jacobian is A, det J = det A) at random
   parameters;
-- a skew trilinear body0 and the same hexahedron as a body1 with straight
-  edges of four curve types (seed 000: body 1 with straight edges = body 0),
-  against the trilinear formula and its partial derivatives;
+- a skew trilinear body0, the same hexahedron as a body1 with straight
+  edges of four curve types and as a body2 of bilinear, Coons and ruled
+  faces (seed 000: body 1 with straight edges = body 0, body 2 with
+  bilinear faces = body 1), against the trilinear formula and its partial
+  derivatives;
 - a NURBS tube (bspline-volume): radius 1 + u and height 3 w exactly;
 - a Bezier volume against the Bernstein formula;
 - the 8 corners of every body of every model in examples/ and
@@ -96,7 +98,7 @@ T.check("affine body0: x = o + A q, J = A, det J = det A at 203 parameters", ok,
 # --- trilinear body0 and the equivalent body1 ------------------------------------
 m = load(os.path.join(OK, "trilinear.json"))
 H = [clitest.pt3(p) for p in m["bodies"][0]["corners"]]
-for name in ("trilinear.json", "body1-straight.json"):
+for name in ("trilinear.json", "body1-straight.json", "body2-bilinear.json"):
     rows, err = eval_lines(os.path.join(OK, name), params, ["--jacobian"])
     ok = rows is not None and len(rows) == len(params)
     bad = ""
