@@ -208,6 +208,44 @@ static const char *RICH =
     " \"points\": [[[[0,0,0],[0,0,1]],[[0,1,0],[0,1,1]]],[[[1,0,0],[1,0,1]],[[1,1,0],[1,1,1]]]]}\n"
     "]}";
 
+/* A unit cube as a body2 whose faces use every patch type: x = (u, v, w). */
+static const char *FACES =
+    "{\"coons\": 1, \"bodies\": [{\"type\": \"body2\", \"blend\": \"linear\", \"faces\": {\n"
+    " \"u0\": {\"type\": \"hermite-coons\", \"boundary\": {"
+    "\"t0\": {\"type\": \"line\", \"points\": [[0,0,0],[0,1,0]]},"
+    "\"t1\": {\"type\": \"line\", \"points\": [[0,0,1],[0,1,1]]},"
+    "\"s0\": {\"type\": \"line\", \"points\": [[0,0,0],[0,0,1]]},"
+    "\"s1\": {\"type\": \"line\", \"points\": [[0,1,0],[0,1,1]]}},"
+    " \"cross\": {\"t0\": {\"type\": \"line\", \"points\": [[0,0,1],[0,0,1]]},"
+    "\"t1\": {\"type\": \"line\", \"points\": [[0,0,1],[0,0,1]]},"
+    "\"s0\": {\"type\": \"line\", \"points\": [[0,1,0],[0,1,0]]},"
+    "\"s1\": {\"type\": \"line\", \"points\": [[0,1,0],[0,1,0]]}},"
+    " \"twist\": [[0,0],[0,0],[0,0,0],[0,0]]},\n"
+    " \"u1\": {\"type\": \"coons\", \"blend\": \"cubic\", \"boundary\": {"
+    "\"t0\": {\"type\": \"line\", \"points\": [[1,0,0],[1,1,0]]},"
+    "\"t1\": {\"type\": \"line\", \"points\": [[1,0,1],[1,1,1]]},"
+    "\"s0\": {\"type\": \"line\", \"points\": [[1,0,0],[1,0,1]]},"
+    "\"s1\": {\"type\": \"line\", \"points\": [[1,1,0],[1,1,1]]}}},\n"
+    " \"v0\": {\"type\": \"bezier-surface\", \"points\": [[[0,0,0],[0,0,1]],[[1,0,0],[1,0,1]]]},\n"
+    " \"v1\": {\"type\": \"bspline-surface\", \"degree\": [1,1], \"knots\": [[0,0,1,1],[0,0,1,1]],"
+    " \"weights\": [[1,1],[1,1]], \"points\": [[[0,1,0],[0,1,1]],[[1,1,0],[1,1,1]]]},\n"
+    " \"w0\": {\"type\": \"bilinear\", \"corners\": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]},\n"
+    " \"w1\": {\"type\": \"ruled\", \"curves\": [{\"type\": \"line\", \"points\": [[0,0,1],[1,0,1]]},"
+    "{\"type\": \"line\", \"points\": [[0,1,1],[1,1,1]]}]}}}]}";
+
+static void test_faces(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_model *m = NULL;
+    assert_coons_ok(load(FACES, &m, &err), &err);
+    assert_int_equal(coons_body_get_type(coons_model_body(m, 0)), COONS_BODY_BODY2);
+    double x[3], ex[3] = {0.25, 0.5, 0.75};
+    coons_body_eval(coons_model_body(m, 0), 0.25, 0.5, 0.75, x);
+    assert_vec3_near(x, ex, 1e-14);
+    coons_model_free(m);
+}
+
 static void test_rich(void **state)
 {
     (void)state;
@@ -228,9 +266,9 @@ static void test_rich(void **state)
 static void test_nomem(void **state)
 {
     (void)state;
-    const char *texts[] = {RICH, "{\"coons\": 1, \"bodies\": [" BOX ", {\"type\": \"body0\", "
+    const char *texts[] = {RICH, FACES, "{\"coons\": 1, \"bodies\": [" BOX ", {\"type\": \"body0\", "
                                  "\"name\": \"x\", \"corners\": " BOX_CORNERS "}]}"};
-    for (size_t k = 0; k < 2; k++) {
+    for (size_t k = 0; k < 3; k++) {
         long n = 0;
         for (;; n++) {
             coons_error err = COONS_ERROR_INIT;
@@ -383,7 +421,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults),       cmocka_unit_test(test_settings),
         cmocka_unit_test(test_bad),            cmocka_unit_test(test_pointer_escape),
-        cmocka_unit_test(test_rich),           cmocka_unit_test(test_nomem),
+        cmocka_unit_test(test_rich),           cmocka_unit_test(test_faces),
+        cmocka_unit_test(test_nomem),
         cmocka_unit_test(test_limits),         cmocka_unit_test(test_not_terminated),
         cmocka_unit_test(test_file_errors),    cmocka_unit_test(test_locale),
     };
