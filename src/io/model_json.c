@@ -106,12 +106,18 @@ static size_t push_key(ld *L, const char *k)
     return old;
 }
 
+/* Called for every array element: digits by hand, not snprintf (which
+ * took a fifth of the time of loading a large net). */
 static size_t push_index(ld *L, size_t i)
 {
-    char b[32];
-    int n = snprintf(b, sizeof b, "%zu", i);
+    char b[24];
+    size_t n = sizeof b;
+    do {
+        b[--n] = (char)('0' + i % 10);
+        i /= 10;
+    } while (i);
     size_t old = L->plen;
-    L->plen = coons__json_pointer_push(L->path, sizeof L->path, L->plen, b, (size_t)n);
+    L->plen = coons__json_pointer_push(L->path, sizeof L->path, L->plen, b + n, sizeof b - n);
     return old;
 }
 
