@@ -103,6 +103,9 @@ static const bad_case BAD[] = {
     {"{\"a\": \"\xc0\xaf\"}", COONS_E_PARSE, 1, 8, "/a"},           /* overlong '/' */
     {"{\"a\":\r\n [\r\n\r\n  \"\xe2\x82\xac\", 1 1]}", COONS_E_PARSE, 4, 10, "/a/1"},
     {"{\"a\":\r [\r  1 1]}", COONS_E_PARSE, 3, 5, "/a/0"}, /* lone CR ends a line too */
+    /* a UTF-8 byte order mark is skipped and not counted as a column */
+    {"\xef\xbb\xbf{\"coons\": 1, \"bodies\": []}", COONS_E_INVALID, 1, 24, "/bodies"},
+    {"\xef\xbb\xbf{\"coons\": 1} x", COONS_E_PARSE, 1, 14, ""},
     /* version and top level */
     {"{\"bodies\": []}", COONS_E_INVALID, 1, 1, ""},
     {"{\"coons\": 2, \"bodies\": [" BOX "]}", COONS_E_UNSUPPORTED, 1, 11, "/coons"},
@@ -167,6 +170,16 @@ static void test_bad(void **state)
         if (strncmp(err.message, head, strlen(head)) != 0)
             fail_msg("case %zu: message '%s' does not start with '%s'", i, err.message, head);
     }
+}
+
+static void test_bom(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_model *m = NULL;
+    assert_coons_ok(load("\xef\xbb\xbf{\"coons\": 1, \"bodies\": [" BOX "]}", &m, &err), &err);
+    assert_int_equal(coons_model_body_count(m), 1);
+    coons_model_free(m);
 }
 
 static void test_pointer_escape(void **state)
@@ -420,6 +433,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults),       cmocka_unit_test(test_settings),
+        cmocka_unit_test(test_bom),
         cmocka_unit_test(test_bad),            cmocka_unit_test(test_pointer_escape),
         cmocka_unit_test(test_rich),           cmocka_unit_test(test_faces),
         cmocka_unit_test(test_nomem),
