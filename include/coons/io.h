@@ -14,7 +14,8 @@
  *   a little-endian uint32 triangle count, then per triangle the unit facet
  *   normal and the three vertices as little-endian IEEE float32 and a zero
  *   attribute word. Vertices are rounded to float32 by the format; a mesh of
- *   2^32 or more triangles is refused (::COONS_E_LIMIT).
+ *   2^32 or more triangles, or with a coordinate beyond the float32 range,
+ *   is refused (::COONS_E_LIMIT).
  * - ::COONS_FORMAT_STL_ASCII: `solid NAME` ... `endsolid NAME`. The numbers
  *   are the same float32 values the binary writer stores, each printed as
  *   the shortest text that reads back (strtof) to exactly that float.
@@ -152,7 +153,8 @@ COONS_EXPORT const char *coons_format_name(coons_format format);
  *         bad options version, `path` names `opts->protect_path` or a
  *         directory or another non-regular file, a non-finite vertex or a
  *         triangle index out of range;
- *         ::COONS_E_LIMIT: 2^32 triangles or more in binary STL;
+ *         ::COONS_E_LIMIT: 2^32 triangles or more in binary STL, or (both
+ *         STL formats) a coordinate beyond the float32 range, +-3.4e38;
  *         ::COONS_E_IO: the file could not be created, written, synced,
  *         closed or renamed, or the write was cancelled (the message names
  *         the file and the system error);

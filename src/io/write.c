@@ -15,6 +15,7 @@
  * umask can only be read by setting it (not thread-safe). */
 #define _XOPEN_SOURCE 700
 #include <errno.h>
+#include <float.h>
 #include <fcntl.h>
 #include <limits.h>
 #include <stdlib.h>
@@ -200,6 +201,15 @@ static coons_status prepare(const coons_mesh *m, coons_format format,
     for (size_t i = 0; i < 3 * nv; i++)
         if (!isfinite(xyz[i]))
             return coons__error_set(err, COONS_E_INVALID, "vertex %zu is not finite", i / 3);
+    /* STL stores float32: a larger coordinate would become infinite. */
+    if (format == COONS_FORMAT_STL_BINARY || format == COONS_FORMAT_STL_ASCII)
+        for (size_t i = 0; i < 3 * nv; i++)
+            if (fabs(xyz[i]) > FLT_MAX)
+                return coons__error_set(err, COONS_E_LIMIT,
+                                        "vertex %zu has the coordinate %.17g, outside the range "
+                                        "of STL's 32-bit floats (+-%.9g): write OFF or SCAD, "
+                                        "which keep doubles",
+                                        i / 3, xyz[i], (double)FLT_MAX);
     const uint32_t *tri = coons_mesh_triangles(m);
     for (size_t i = 0; i < 3 * nt; i++)
         if (tri[i] >= nv)

@@ -9,7 +9,10 @@
  * Each input is loaded three times:
  *  1. normally, with limits small enough that one input stays cheap;
  *  2. on success, the bodies are evaluated (points, Jacobians, a small grid,
- *     the volume to a coarse tolerance, the minimum Jacobian);
+ *     the volume to a coarse tolerance, the minimum Jacobian), sampled into
+ *     meshes (a fixed coarse lattice and adaptively to a coarse tolerance,
+ *     under a small triangle limit), checked, and written in every format
+ *     to a memory stream; sampling is repeated with an allocation failing;
  *  3. again with an allocator that fails the k-th allocation, k chosen from
  *     the input's hash among the allocations the first load made: the load
  *     must then report COONS_E_NOMEM (or the same error as before, if the
@@ -19,6 +22,7 @@
  * COONS_FUZZ CMake option) and, with replay_main.c, as an ordinary program
  * that runs the files named on its command line (the regression test).
  */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <limits.h>
 #include <math.h>
 #include <stdint.h>
@@ -27,6 +31,7 @@
 #include <string.h>
 
 #include <coons.h>
+#include <coons/io.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -69,11 +74,25 @@ static void f_free(void *p)
     free(p);
 }
 
+/* Counts from zero with a new failure point, keeping the live count. */
+static void alloc_reset_keep(long fail_at)
+{
+    g_fail_at = fail_at;
+    g_count = 0;
+}
+
 static void alloc_reset(long fail_at)
 {
     g_fail_at = fail_at;
     g_count = 0;
     g_live = 0;
+}
+
+static uint64_t fnv1a(const uint8_t *d, size_t n)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < n; i++) h = (h ^ d[i]) * 1099511628211ull;
+    return h;
 }
 
 /* ---- evaluation of what loaded ------------------------------------------- */
@@ -151,7 +170,80 @@ static void exercise_body(const coons_body *b)
         for (int c = 0; c < 3; c++) CHECK(where[c] >= 0.0 && where[c] <= 1.0, "where %g", where[c]);
 }
 
-static void exercise_model(const coons_model *m)
+/* Every writer on a memory stream. */
+static void write_all(const coons_mesh *mesh)
+{
+    static const coons_format F[] = {COONS_FORMAT_STL_BINARY, COONS_FORMAT_STL_ASCII,
+                                     COONS_FORMAT_OFF, COONS_FORMAT_SCAD};
+    for (size_t i = 0; i < sizeof F / sizeof F[0]; i++) {
+        char *text = NULL;
+        size_t len = 0;
+        FILE *fp = open_memstream(&text, &len);
+        if (!fp) return;
+        coons_error err = COONS_ERROR_INIT;
+        coons_write_options wo = COONS_WRITE_OPTIONS_INIT;
+        wo.units = "mm";
+        coons_status rc = coons_mesh_write_stream(mesh, fp, F[i], &wo, &err);
+        fclose(fp);
+        int stl = F[i] == COONS_FORMAT_STL_BINARY || F[i] == COONS_FORMAT_STL_ASCII;
+        CHECK(rc == COONS_OK || rc == COONS_E_NOMEM || (stl && rc == COONS_E_LIMIT),
+              "writing %s: %d %s", coons_format_name(F[i]), rc, err.message);
+        if (rc == COONS_OK) CHECK(len > 0, "empty %s output", coons_format_name(F[i]));
+        free(text);
+    }
+}
+
+static void check_mesh(const coons_mesh *mesh)
+{
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    coons_error err = COONS_ERROR_INIT;
+    coons_status rc = coons_mesh_check(mesh, &r, &err);
+    CHECK(rc == COONS_OK || rc == COONS_E_NOMEM, "mesh check: %d %s", rc, err.message);
+    CHECK(r.triangles == coons_mesh_triangle_count(mesh), "report counts %zu triangles of %zu",
+          r.triangles, coons_mesh_triangle_count(mesh));
+}
+
+/* Samples with opts, then again failing one allocation of the ones that
+ * sampling made: the error must be COONS_E_NOMEM with nothing leaked. */
+static void sample_body(const coons_body *b, const coons_sample_options *so, uint64_t h, int deep)
+{
+    coons_mesh *mesh = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    long live0 = g_live;
+    alloc_reset_keep(LONG_MAX);
+    coons_status rc = coons_body_sample(b, so, "fuzz", &mesh, &err);
+    long total = g_count;
+    alloc_reset_keep(-1);
+    if (getenv("FUZZ_MODEL_VERBOSE"))
+        fprintf(stderr, "  sample res %u tol %g: %d %s (%zu triangles)\n", so->resolution,
+                so->tolerance, rc, rc ? err.message : "", rc ? 0 : coons_mesh_triangle_count(mesh));
+    CHECK(rc == COONS_OK || rc == COONS_E_LIMIT || rc == COONS_E_INVALID,
+          "sampling: %d %s", rc, err.message);
+    CHECK(rc == COONS_OK || err.message[0], "sampling error %d without a message", rc);
+    if (rc == COONS_OK) {
+        CHECK(mesh != NULL, "sampling OK without a mesh");
+        if (deep) {
+            check_mesh(mesh);
+            write_all(mesh);
+        }
+        coons_mesh_free(mesh);
+    }
+    CHECK(g_live == live0, "sampling leaked %ld blocks", g_live - live0);
+    if (total > 0 && rc == COONS_OK) {
+        long k = (long)(h % (uint64_t)total);
+        alloc_reset_keep(k);
+        mesh = NULL;
+        rc = coons_body_sample(b, so, "fuzz", &mesh, &err);
+        alloc_reset_keep(-1);
+        CHECK(rc == COONS_E_NOMEM, "allocation %ld of %ld failed, sampling returned %d: %s", k,
+              total, rc, err.message);
+        CHECK(mesh == NULL, "a mesh despite a failed allocation");
+        CHECK(g_live == live0, "sampling leaked %ld blocks after allocation %ld failed",
+              g_live - live0, k);
+    }
+}
+
+static void exercise_model(const coons_model *m, uint64_t h)
 {
     size_t n = coons_model_body_count(m);
     CHECK(n >= 1, "a model with no body");
@@ -168,17 +260,33 @@ static void exercise_model(const coons_model *m)
         long k = coons_model_find_body(m, name);
         CHECK(k >= 0 && (size_t)k <= i, "body %zu (%s) found at %ld", i, name, k);
         exercise_body(b);
+        coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+        so.resolution = 2;
+        so.max_triangles = 4000;
+        sample_body(b, &so, h, 1);
+        so.resolution = 0;
+        double blo[3], bhi[3];
+        coons_body_control_bbox(b, blo, bhi);
+        double dx = bhi[0] - blo[0], dy = bhi[1] - blo[1], dz = bhi[2] - blo[2];
+        so.tolerance = 0.02 * sqrt(dx * dx + dy * dy + dz * dz);
+        sample_body(b, &so, h >> 17, 0);
     }
+    /* The whole model: disjoint bodies are put together, others refused. */
+    coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+    so.resolution = 2;
+    so.max_triangles = 4000 * n;
+    coons_mesh *mesh = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    coons_status rc = coons_model_mesh(m, &so, &mesh, &err);
+    CHECK(rc == COONS_OK || rc == COONS_E_LIMIT || rc == COONS_E_INVALID ||
+              rc == COONS_E_UNSUPPORTED,
+          "model mesh: %d %s", rc, err.message);
+    if (rc == COONS_OK) CHECK(coons_mesh_part_count(mesh) == n, "%zu parts for %zu bodies",
+                              coons_mesh_part_count(mesh), n);
+    coons_mesh_free(mesh);
 }
 
 /* ---- the target ------------------------------------------------------------ */
-
-static uint64_t fnv1a(const uint8_t *d, size_t n)
-{
-    uint64_t h = 1469598103934665603ull;
-    for (size_t i = 0; i < n; i++) h = (h ^ d[i]) * 1099511628211ull;
-    return h;
-}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -200,6 +308,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     coons_error err = COONS_ERROR_INIT;
     alloc_reset(-1);
     coons_status rc = coons_model_load_buffer_opts((const char *)data, size, "fuzz", &o, &m, &err);
+    if (getenv("FUZZ_MODEL_VERBOSE"))
+        fprintf(stderr, "load: %d %s\n", rc, rc ? err.message : "");
     if (rc != COONS_OK) {
         CHECK(m == NULL, "error %d but a model", rc);
         CHECK(err.code == rc, "err.code %d, returned %d", err.code, rc);
@@ -212,7 +322,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         CHECK(g_live == 0, "%ld blocks live after a failed load", g_live);
     } else {
         CHECK(m != NULL, "COONS_OK without a model");
-        exercise_model(m);
+        exercise_model(m, fnv1a(data, size) >> 7);
         coons_model_free(m);
         CHECK(g_live == 0, "%ld blocks live after coons_model_free", g_live);
     }
