@@ -125,12 +125,14 @@ typedef struct coons_sample_options {
  * shorter diagonal. The mesh is oriented so that its enclosed volume is
  * positive, whatever the body's handedness.
  *
- * Adaptive sampling refines the lattices until the distance between exact
- * boundary points and their parametric images on the mesh, measured at
- * edge midpoints, quarter points and triangle centroids of every cell, is
- * within the tolerance. That measured deviation (an upper bound of the
- * distance from those exact points to the mesh) is stored with the part:
- * coons_mesh_part_sampling().
+ * Adaptive sampling starts from lattices that contain the breakpoints of
+ * the body's data (knots, segment ends) and halves intervals until exact
+ * boundary points at the quarter points and triangle centroids of every
+ * cell lie within 0.9 times the tolerance of the cell's two triangles (the
+ * margin covers maxima between the samples). That measured deviation (an
+ * upper bound of the distance from those exact points to the mesh) is
+ * stored with the part: coons_mesh_part_sampling(). With a fixed
+ * `resolution` it is measured the same way but not enforced.
  *
  * @param[in]  b     the body (not modified)
  * @param[in]  opts  NULL or options (see ::coons_sample_options)

@@ -57,6 +57,14 @@ static inline int coons__size_addmul(size_t *acc, size_t n, size_t k)
     return 1;
 }
 
+/* Cell boundaries 0 = x_0 < ... < x_m = 1 along direction d (0: u, 1: v,
+ * 2: w): the breakpoints of the body's data where the map may lose
+ * smoothness (knots, Coons cubic segment ends; only 0 and 1 beyond 64
+ * breakpoints). *out (m + 1 values in *n) is freed with coons__free().
+ * Used by the volume quadrature and the boundary sampler (src/mesh). */
+coons_status coons__body_breaks(const coons_body *b, int d, double **out, size_t *n,
+                                coons_error *err);
+
 /* Name of an edge ("u00" .. "w11") or a face ("u0" .. "w1"). */
 const char *coons__body_edge_name(int e);
 const char *coons__body_face_name(int f);

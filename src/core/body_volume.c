@@ -293,3 +293,19 @@ coons_status coons_body_min_jacobian(const coons_body *b, unsigned n, double *mi
     if (where) v3_copy(where, at);
     return COONS_OK;
 }
+
+coons_status coons__body_breaks(const coons_body *b, int d, double **out, size_t *n,
+                                coons_error *err)
+{
+    breaks B = {0};
+    cell_bounds(b, d, &B);
+    if (B.nomem) {
+        coons__free(B.v);
+        *out = NULL;
+        *n = 0;
+        return coons__error_nomem(err);
+    }
+    *out = B.v;
+    *n = B.n;
+    return COONS_OK;
+}
