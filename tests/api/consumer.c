@@ -199,6 +199,87 @@ static void test_body2(void)
     coons_body_free(b);
 }
 
+static double absd(double x) { return x < 0 ? -x : x; }
+
+/* A body 0 box [lo, hi] (an axis-aligned hexahedron). */
+static coons_status box(const double lo[3], const double hi[3], coons_body **out, coons_error *err)
+{
+    double c[8][3];
+    for (int n = 0; n < 8; n++) {
+        int ijk[3] = {n >> 2, (n >> 1) & 1, n & 1};
+        for (int d = 0; d < 3; d++)
+            c[n][d] = ijk[d] ? hi[d] : lo[d];
+    }
+    return coons_body_body0((const double (*)[3])c, COONS_BLEND_LINEAR, out, err);
+}
+
+/* Appends the single part of `from` to `to`. */
+static coons_status append(coons_mesh *to, const coons_mesh *from, const char *name,
+                           coons_error *err)
+{
+    return coons_mesh_add_part(to, name, coons_mesh_vertices(from),
+                               coons_mesh_vertex_count(from), coons_mesh_triangles(from),
+                               coons_mesh_triangle_count(from), err);
+}
+
+/*
+ * The mesh layers (C, OpenMesh and CGAL when built in): a sampled box is a
+ * closed, oriented shell enclosing exactly its volume, and the union of two
+ * crossing boxes encloses 8 + 2 - 1 = 9. Through a static link this pulls
+ * in the C++ objects, so their private dependencies must be linked too.
+ */
+static void test_mesh(void)
+{
+    const double lo_a[3] = {0, 0, 0}, hi_a[3] = {2, 2, 2};
+    const double lo_b[3] = {1, 0.5, 0.5}, hi_b[3] = {3, 1.5, 1.5};
+    coons_body *a = NULL, *b = NULL;
+    coons_mesh *ma = NULL, *mb = NULL, *both = NULL, *u = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    coons_status st = box(lo_a, hi_a, &a, &err);
+    if (st == COONS_OK) st = box(lo_b, hi_b, &b, &err);
+    if (st == COONS_OK) st = coons_body_sample(a, NULL, "a", &ma, &err);
+    if (st == COONS_OK) st = coons_body_sample(b, NULL, "b", &mb, &err);
+    check("two boxes sampled", st == COONS_OK);
+    if (st != COONS_OK) {
+        printf("  %s: %s\n", coons_strerror(st), err.message);
+        goto done;
+    }
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    st = coons_mesh_check(ma, &r, &err);
+    check("coons_mesh_check succeeds", st == COONS_OK);
+    check("sampled box is closed, manifold, oriented", r.closed && r.manifold && r.oriented);
+    check("sampled box is one sphere-like shell", r.shells == 1 && r.euler == 2);
+    check("sampled box encloses 8", absd(coons_mesh_volume(ma) - 8) <= 1e-12);
+    check("sampled box has area 24", absd(coons_mesh_area(ma) - 24) <= 1e-12);
+
+    st = coons_mesh_new(&both, &err);
+    if (st == COONS_OK) st = append(both, ma, "a", &err);
+    if (st == COONS_OK) st = append(both, mb, "b", &err);
+    check("two-part mesh", st == COONS_OK && coons_mesh_part_count(both) == 2);
+    if (st != COONS_OK)
+        goto done;
+    coons_csg_report cr;
+    st = coons_mesh_solidify(both, NULL, &u, &cr, &err);
+    if (!coons_csg_available()) {
+        check("without CGAL, solidify is COONS_E_UNSUPPORTED", st == COONS_E_UNSUPPORTED);
+        goto done;
+    }
+    check("coons_mesh_solidify succeeds", st == COONS_OK && u != NULL);
+    if (st != COONS_OK) {
+        printf("  %s: %s\n", coons_strerror(st), err.message);
+        goto done;
+    }
+    check("union is one closed part", cr.closed && coons_mesh_part_count(u) == 1);
+    check("union encloses 9", absd(coons_mesh_volume(u) - 9) <= 1e-9);
+done:
+    coons_mesh_free(u);
+    coons_mesh_free(both);
+    coons_mesh_free(mb);
+    coons_mesh_free(ma);
+    coons_body_free(b);
+    coons_body_free(a);
+}
+
 int main(void)
 {
     test_version();
@@ -206,6 +287,7 @@ int main(void)
     test_error();
     test_body0();
     test_body2();
+    test_mesh();
     if (failures) {
         printf("%d check(s) failed\n", failures);
         return 1;
