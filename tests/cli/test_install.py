@@ -221,14 +221,14 @@ target_link_libraries(consumer_static PRIVATE coons::coons_static)
                            "-DCMAKE_C_FLAGS=" + " ".join(cflags)] + gen + extra)
             if not check(f"(c) configure with find_package(coons){variant}", rc == 0, out):
                 continue
-            targets = ["consumer_shared", "consumer_static"] if not extra else ["consumer_static"]
+            targets = ["consumer_shared", "consumer_static"]
             rc, out = run(["cmake", "--build", bdir, "--target"] + targets)
             if not check(f"(c) build {' '.join(targets)}{variant}", rc == 0, out):
                 continue
             for t in targets:
                 exe = os.path.join(bdir, t)
                 is_static = t.endswith("static")
-                check(f"(c) {t} links libcoons {'statically' if is_static else 'shared'}",
+                check(f"(c) {t} links libcoons {'statically' if is_static else 'shared'}{variant}",
                       any(n.startswith("libcoons") for n in needed(exe)) != is_static,
                       str(needed(exe)))
                 rc, out = run([exe])  # the shared one finds the library via its RPATH
