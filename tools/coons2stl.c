@@ -27,6 +27,8 @@ typedef struct options {
     const char *format; /* resolved: stl, stl-ascii, off, scad */
     const char *body;   /* --body argument or NULL */
     double tolerance;   /* > 0 when given */
+    unsigned resolution;  /* --resolution: 0 = adaptive */
+    size_t max_triangles; /* --max-triangles: 0 = the library's default */
     int eval, jacobian, info, quiet;
 } options;
 
@@ -42,6 +44,9 @@ static void usage(FILE *f)
             "                         from the extension of FILE (.stl, .off, .scad), else stl\n"
             "  -t, --tolerance D      largest distance between mesh and surface (> 0),\n"
             "                         instead of the model's \"tolerance\"\n"
+            "      --resolution N     sample each body on a fixed lattice of N intervals along\n"
+            "                         u, v and w instead of adapting it to the tolerance\n"
+            "      --max-triangles N  refuse to make more than N triangles (default %zu)\n"
             "      --body NAME|INDEX  use that body (a 0-based index if all digits, else a\n"
             "                         name); default: all bodies, or body 0 for --eval\n"
             "      --eval             read lines \"u v w\" from standard input and print\n"
@@ -55,7 +60,7 @@ static void usage(FILE *f)
             "\n"
             "Exit status: 0 success, 1 bad input, 2 bad usage, 3 a geometric operation\n"
             "or writing the output failed.\n",
-            PROG);
+            PROG, COONS_DEFAULT_MAX_TRIANGLES);
 }
 
 static int usage_error(const char *fmt, const char *arg)
@@ -96,7 +101,7 @@ static const char *format_from_extension(const char *path)
 static int parse_args(int argc, char **argv, options *o)
 {
     int only_files = 0;
-    const char *format = NULL, *tol = NULL;
+    const char *format = NULL, *tol = NULL, *res = NULL, *maxt = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
@@ -134,12 +139,13 @@ static int parse_args(int argc, char **argv, options *o)
         memcpy(lname, name, nl);
         lname[nl] = '\0';
         if (eq) value = eq + 1;
-        static const char *const with_value[] = {"output", "format", "tolerance", "body"};
+        static const char *const with_value[] = {"output", "format",     "tolerance",
+                                                 "body",   "resolution", "max-triangles"};
         static const char *const flags[] = {"eval", "jacobian", "info", "quiet", "help", "version"};
         int takes = -1;
-        for (size_t k = 0; k < 4; k++)
+        for (size_t k = 0; k < sizeof with_value / sizeof *with_value; k++)
             if (strcmp(lname, with_value[k]) == 0) takes = 1;
-        for (size_t k = 0; k < 6; k++)
+        for (size_t k = 0; k < sizeof flags / sizeof *flags; k++)
             if (strcmp(lname, flags[k]) == 0) takes = 0;
         if (takes < 0) return usage_error("unknown option '%s'", a);
         if (takes == 0 && value) return usage_error("option '%s' takes no value", a);
@@ -152,6 +158,8 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(lname, "format") == 0) format = value;
         else if (strcmp(lname, "tolerance") == 0) tol = value;
         else if (strcmp(lname, "body") == 0) o->body = value;
+        else if (strcmp(lname, "resolution") == 0) res = value;
+        else if (strcmp(lname, "max-triangles") == 0) maxt = value;
         else if (strcmp(lname, "eval") == 0) o->eval = 1;
         else if (strcmp(lname, "jacobian") == 0) o->jacobian = o->eval = 1;
         else if (strcmp(lname, "info") == 0) o->info = 1;
@@ -173,6 +181,25 @@ static int parse_args(int argc, char **argv, options *o)
         if (end == tol || *end || !isfinite(o->tolerance) || !(o->tolerance > 0))
             return usage_error("--tolerance needs a number > 0, not '%s'", tol);
     }
+    if (res) {
+        char *end = NULL;
+        errno = 0;
+        unsigned long long v = strtoull(res, &end, 10);
+        if (res[0] < '0' || res[0] > '9' || *end || errno || v < 1 || v > 1u << 20)
+            return usage_error("--resolution needs a whole number from 1 to 1048576, not '%s'",
+                               res);
+        o->resolution = (unsigned)v;
+    }
+    if (maxt) {
+        char *end = NULL;
+        errno = 0;
+        unsigned long long v = strtoull(maxt, &end, 10);
+        if (maxt[0] < '0' || maxt[0] > '9' || *end || errno || v < 1 || v > SIZE_MAX)
+            return usage_error("--max-triangles needs a whole number > 0, not '%s'", maxt);
+        o->max_triangles = (size_t)v;
+    }
+    if (o->eval && (res || maxt))
+        return usage_error("%s", "--resolution and --max-triangles are for meshes and --info");
     if (o->eval && o->info) return usage_error("%s", "--eval and --info cannot be combined");
     if ((o->eval || o->info) && (o->output || format))
         return usage_error("%s", "-o and -f are for meshes: --eval and --info print to "
@@ -419,7 +446,55 @@ static int sampled_box(const coons_body *b, double lo[3], double hi[3], coons_er
     return 0;
 }
 
-static int info(const coons_model *m, long only, int quiet)
+/* The body's sampled boundary mesh and its checks, as "mesh": {...}. */
+static int info_mesh(const coons_model *m, size_t i, const coons_sample_options *so, int quiet)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh = NULL;
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    if (coons_body_sample(coons_model_body(m, i), so, coons_model_body_name(m, i), &mesh, &err) ||
+        coons_mesh_check(mesh, &r, &err)) {
+        fflush(stdout);
+        fprintf(stderr, "%s: body %zu (%s): %s\n", PROG, i, coons_model_body_name(m, i),
+                err.message);
+        coons_mesh_free(mesh);
+        return EXIT_GEOMETRY;
+    }
+    double tol, dev;
+    size_t lat[3];
+    coons_mesh_part_sampling(mesh, 0, &tol, &dev, lat);
+    if (dev > tol && !quiet) {
+        fflush(stdout);
+        fprintf(stderr,
+                "%s: warning: body %zu (%s): the fixed resolution leaves a deviation of %.6g, "
+                "more than the tolerance %.6g\n",
+                PROG, i, coons_model_body_name(m, i), dev, tol);
+    }
+    printf(",\n     \"mesh\": {\"tolerance\": ");
+    json_number(tol);
+    printf(", \"deviation\": ");
+    json_number(dev);
+    printf(", \"lattice\": [%zu, %zu, %zu], \"vertices\": %zu, \"triangles\": %zu,\n", lat[0],
+           lat[1], lat[2], r.vertices, r.triangles);
+    printf("      \"closed\": %s, \"manifold\": %s, \"oriented\": %s, \"euler\": %ld, "
+           "\"expected_euler\": %ld, \"shells\": %zu,\n",
+           r.closed ? "true" : "false", r.manifold ? "true" : "false",
+           r.oriented ? "true" : "false", r.euler, r.expected_euler, r.shells);
+    printf("      \"boundary_edges\": %zu, \"nonmanifold_edges\": %zu, "
+           "\"nonmanifold_vertices\": %zu, \"misoriented_edges\": %zu, \"openmesh\": %s",
+           r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices, r.misoriented_edges,
+           r.openmesh ? "true" : "false");
+    if (r.openmesh) printf(", \"openmesh_rejected\": %zu", r.openmesh_rejected);
+    printf(",\n      \"volume\": ");
+    json_number(r.volume);
+    printf(", \"area\": ");
+    json_number(r.area);
+    printf("}");
+    coons_mesh_free(mesh);
+    return 0;
+}
+
+static int info(const coons_model *m, long only, const coons_sample_options *so, int quiet)
 {
     size_t n = coons_model_body_count(m);
     double clo[3], chi[3];
@@ -475,7 +550,10 @@ static int info(const coons_model *m, long only, int quiet)
         json_number(vol);
         printf(", \"min_det_jacobian\": ");
         json_number(mindet);
-        printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]}", where[0], where[1], where[2]);
+        printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
+        int rc = info_mesh(m, i, so, quiet);
+        if (rc) return rc;
+        printf("}");
         listed++;
     }
     printf("\n  ],\n  \"body_count\": %zu,\n  \"total_volume\": ", listed);
@@ -489,7 +567,8 @@ static int info(const coons_model *m, long only, int quiet)
 /*
  * Writes the boundary mesh of the model (all bodies, or only body `body`
  * when >= 0) to `output` (NULL or "-": standard output) in `format` ("stl",
- * "stl-ascii", "off" or "scad"), sampled to `tolerance`. It must not create,
+ * "stl-ascii", "off" or "scad"), sampled with `so` (its tolerance is set:
+ * -t or the model's; --resolution, --max-triangles). It must not create,
  * truncate or change `output` unless everything succeeded (write a
  * temporary file in the same directory, then rename() it). Prints its own
  * diagnostics and returns the exit status.
@@ -498,12 +577,12 @@ static int info(const coons_model *m, long only, int quiet)
  * change.
  */
 static int write_output(const coons_model *m, long body, const char *format, const char *output,
-                        double tolerance, int quiet)
+                        const coons_sample_options *so, int quiet)
 {
     (void)m;
     (void)body;
     (void)format;
-    (void)tolerance;
+    (void)so;
     (void)quiet;
     fprintf(stderr, "%s: %s: writing meshes is not available yet; nothing was written\n", PROG,
             output && strcmp(output, "-") != 0 ? output : "<stdout>");
@@ -523,13 +602,16 @@ int main(int argc, char **argv)
         coons_model_free(m);
         return EXIT_USAGE;
     }
+    coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+    so.tolerance = o.tolerance > 0 ? o.tolerance : coons_model_tolerance(m);
+    so.resolution = o.resolution;
+    so.max_triangles = o.max_triangles;
     if (o.eval)
         rc = eval_lines(coons_model_body(m, body < 0 ? 0 : (size_t)body), o.jacobian);
     else if (o.info)
-        rc = info(m, body, o.quiet);
+        rc = info(m, body, &so, o.quiet);
     else
-        rc = write_output(m, body, o.format, o.output,
-                          o.tolerance > 0 ? o.tolerance : coons_model_tolerance(m), o.quiet);
+        rc = write_output(m, body, o.format, o.output, &so, o.quiet);
     coons_model_free(m);
     if ((o.eval || o.info) && (fflush(stdout) != 0 || ferror(stdout))) {
         fprintf(stderr, "%s: cannot write to standard output: %s\n", PROG, strerror(errno));
