@@ -194,6 +194,27 @@ static void test_random_floats(void **state)
     assert_true(checked > 150000);
 }
 
+/* Coordinate-like floats (uniform in [-1000, 1000], and in [-1, 1] like
+ * normal components), the ASCII STL writer's daily bread: exact and
+ * shortest too. */
+static void test_coordinate_floats(void **state)
+{
+    (void)state;
+    char out[COONS__FMT_MAX];
+    for (long i = 0; i < 400000; i++) {
+        double u = (double)(next_u64() >> 11) / 9007199254740992.0;
+        float v = (float)(i % 2 ? 2000.0 * u - 1000.0 : 2.0 * u - 1.0);
+        coons__fmt_float(out, v);
+        float back = strtof(out, NULL);
+        if (memcmp(&back, &v, sizeof v) != 0)
+            fail_msg("%a printed as '%s' reads back as %a", (double)v, out, (double)back);
+        if (i % 4 == 0 && v != 0.0f) {
+            int ref = libc_shortest_float(v), ours = our_digits(out);
+            if (ours > ref) fail_msg("%a: '%s' has %d digits, %d suffice", (double)v, out, ours, ref);
+        }
+    }
+}
+
 /* Notation: only digits, '-', one '.', 'e': no '+', no locale characters,
  * no leading zeros in exponents. */
 static void test_notation(void **state)
@@ -237,6 +258,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_awkward_doubles), cmocka_unit_test(test_random_doubles),
         cmocka_unit_test(test_awkward_floats),  cmocka_unit_test(test_random_floats),
+        cmocka_unit_test(test_coordinate_floats),
         cmocka_unit_test(test_notation),        cmocka_unit_test(test_u64),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

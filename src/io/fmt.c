@@ -55,13 +55,26 @@ void coons__fmt_resume(const coons__fmt_scope *s) { uselocale(s->c_locale); }
 
 size_t coons__fmt_u64(char *out, uint64_t v)
 {
-    char tmp[24];
-    size_t n = 0;
-    do {
-        tmp[n++] = (char)('0' + v % 10);
-        v /= 10;
-    } while (v);
-    for (size_t i = 0; i < n; i++) out[i] = tmp[n - 1 - i];
+    static const char d2[] = "00010203040506070809101112131415161718192021222324252627282930313233"
+                             "34353637383940414243444546474849505152535455565758596061626364656667"
+                             "6869707172737475767778798081828384858687888990919293949596979899";
+    char tmp[24], *p = tmp + sizeof tmp;
+    while (v >= 100) {
+        unsigned r = (unsigned)(v % 100);
+        v /= 100;
+        p -= 2;
+        p[0] = d2[2 * r];
+        p[1] = d2[2 * r + 1];
+    }
+    if (v >= 10) {
+        p -= 2;
+        p[0] = d2[2 * v];
+        p[1] = d2[2 * v + 1];
+    } else {
+        *--p = (char)('0' + v);
+    }
+    size_t n = (size_t)(tmp + sizeof tmp - p);
+    for (size_t i = 0; i < n; i++) out[i] = p[i]; /* short: no memcpy call */
     return n;
 }
 
@@ -91,29 +104,25 @@ static size_t compose(char *out, int neg, const char *digits, size_t nd, int e)
     char *p = out;
     if (neg) *p++ = '-';
     if (fixed_len <= sci_len) {
+        /* Short copies as loops: a memcpy call costs more than they do. */
         if (e >= (int)nd - 1) {
-            memcpy(p, digits, nd);
-            p += nd;
+            for (size_t i = 0; i < nd; i++) *p++ = digits[i];
             for (int i = (int)nd - 1; i < e; i++) *p++ = '0';
         } else if (e >= 0) {
-            memcpy(p, digits, (size_t)e + 1);
-            p += e + 1;
+            for (int i = 0; i <= e; i++) *p++ = digits[i];
             *p++ = '.';
-            memcpy(p, digits + e + 1, nd - (size_t)e - 1);
-            p += nd - (size_t)e - 1;
+            for (size_t i = (size_t)e + 1; i < nd; i++) *p++ = digits[i];
         } else {
             *p++ = '0';
             *p++ = '.';
             for (int i = -1; i > e; i--) *p++ = '0';
-            memcpy(p, digits, nd);
-            p += nd;
+            for (size_t i = 0; i < nd; i++) *p++ = digits[i];
         }
     } else {
         *p++ = digits[0];
         if (nd > 1) {
             *p++ = '.';
-            memcpy(p, digits + 1, nd - 1);
-            p += nd - 1;
+            for (size_t i = 1; i < nd; i++) *p++ = digits[i];
         }
         *p++ = 'e';
         if (e < 0) *p++ = '-';
@@ -157,22 +166,19 @@ size_t coons__fmt_double(char *out, double v)
     return len;
 }
 
-/* x * 10^e with each factor an exact power of ten (<= 1e22). */
-static double scale10(double x, int e)
-{
-    static const double p10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                 1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-    while (e > 22) {
-        x *= 1e22;
-        e -= 22;
-    }
-    while (e < -22) {
-        x /= 1e22;
-        e += 22;
-    }
-    return e >= 0 ? x * p10[e] : x / p10[-e];
-}
+/* 10^e for -32 <= e <= 56, correctly rounded by the compiler. */
+static const double pow10_tab[] = {
+    1e-32, 1e-31, 1e-30, 1e-29, 1e-28, 1e-27, 1e-26, 1e-25, 1e-24, 1e-23, 1e-22, 1e-21, 1e-20,
+    1e-19, 1e-18, 1e-17, 1e-16, 1e-15, 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9,  1e-8,  1e-7,
+    1e-6,  1e-5,  1e-4,  1e-3,  1e-2,  1e-1,  1e0,   1e1,   1e2,   1e3,   1e4,   1e5,   1e6,
+    1e7,   1e8,   1e9,   1e10,  1e11,  1e12,  1e13,  1e14,  1e15,  1e16,  1e17,  1e18,  1e19,
+    1e20,  1e21,  1e22,  1e23,  1e24,  1e25,  1e26,  1e27,  1e28,  1e29,  1e30,  1e31,  1e32,
+    1e33,  1e34,  1e35,  1e36,  1e37,  1e38,  1e39,  1e40,  1e41,  1e42,  1e43,  1e44,  1e45,
+    1e46,  1e47,  1e48,  1e49,  1e50,  1e51,  1e52,  1e53,  1e54,  1e55,  1e56};
+#define POW10(e) pow10_tab[(e) + 32]
+
+/* floor(x + 0.5) for 0 <= x < 2^62, without a libm call. */
+static inline double rnd_half_up(double x) { return (double)(int64_t)(x + 0.5); }
 
 size_t coons__fmt_float(char *out, float v)
 {
@@ -190,46 +196,73 @@ size_t coons__fmt_float(char *out, float v)
     memcpy(&fup, &bup, sizeof fup);
     double lo = (a - (double)fdown) * 0.5;
     double hi = isinf(fup) ? lo : ((double)fup - a) * 0.5;
-    double lo_m = lo * (1.0 - 1e-6), hi_m = hi * (1.0 - 1e-6);
     /* strtof rounds a tie to the even significand: if v's is even, a text
      * exactly half-way to a neighbour still reads back as v. */
     int even = (bits & 1u) == 0;
     /* Decimal exponent k of the first digit: 2^(e2-1) <= a < 2^e2 gives
      * floor((e2-1) log10 2) <= k <= that + 1. */
-    int e2;
-    (void)frexp(a, &e2);
+    int e2 = (int)((bits >> 23) & 0xffu) - 126;
+    if (e2 == -126) (void)frexp(a, &e2); /* subnormal */
     int k = (int)floor((e2 - 1) * 0.30102999566398120);
-    if (scale10(a, -k) >= 10.0) k++;
+    /* Work in units of 10^(k-8), where the value has 9 digits before the
+     * point. f is one rounded power of ten applied alike to the value and
+     * the half-gaps, so the comparisons below are off by ~1e-16 relative at
+     * most: far inside the 1e-6 margin. */
+    double f = POW10(8 - k), s9 = a * f;
+    if (s9 >= 1e9) {
+        k++;
+        f = POW10(8 - k);
+        s9 = a * f;
+    }
+    double lo9 = lo * f * (1.0 - 1e-6), hi9 = hi * f * (1.0 - 1e-6);
     static const double pow10p[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
-    /* Everything in units of 10^(k-8), where the value has 9 digits before
-     * the point; the candidates and half-gaps are rescaled once. */
-    double s9 = scale10(a, 8 - k), lo9 = scale10(lo_m, 8 - k), hi9 = scale10(hi_m, 8 - k);
+    static const double inv10p[] = {1, 1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9};
     uint32_t dig = 0;
     int q = 0;
-    /* Any float with a shortest form of <= 6 digits is found at p = 6
-     * (FLT_DIG): shorter forms come out by stripping trailing zeros.
-     * Subnormals carry fewer digits, so there the search starts at 1. */
-    for (int p = fa < FLT_MIN ? 1 : 6; p <= 9; p++) {
-        double unit = pow10p[9 - p];
-        double d = floor(s9 / unit + 0.5);
+    if (k < 5 && fa >= FLT_MIN) {
+        /* Common case (normal, below 1e5, so every candidate is a fraction):
+         * the candidates of 6..9 digits side by side, without a
+         * data-dependent loop exit. */
+        double d6 = rnd_half_up(s9 * 1e-3), d7 = rnd_half_up(s9 * 1e-2),
+               d8 = rnd_half_up(s9 * 1e-1), d9 = rnd_half_up(s9);
+        double c6 = d6 * 1e3, c7 = d7 * 1e2, c8 = d8 * 10.0;
+        int ok6 = fabs(c6 - s9) < (c6 >= s9 ? hi9 : lo9);
+        int ok7 = fabs(c7 - s9) < (c7 >= s9 ? hi9 : lo9);
+        int ok8 = fabs(c8 - s9) < (c8 >= s9 ? hi9 : lo9);
+        int p = ok6 ? 6 : ok7 ? 7 : ok8 ? 8 : 9;
+        double d = ok6 ? d6 : ok7 ? d7 : ok8 ? d8 : d9;
         q = k - p + 1;
         dig = (uint32_t)d;
         if (d >= pow10p[p]) {
             dig = (uint32_t)pow10p[p - 1];
             q++;
         }
-        /* An integer below 2^53 times an exact power of ten is computed
-         * exactly, and then so is c - a: decide exactly, ties included. */
-        if (q >= 0 && q <= 22) {
-            double c = scale10((double)dig, q);
-            if (c < 9007199254740992.0) {
-                double diff = c >= a ? c - a : a - c, gap = c >= a ? hi : lo;
-                if (diff < gap || (diff == gap && even)) break;
-                continue;
+    } else {
+        /* Any float with a shortest form of <= 6 digits is found at p = 6
+         * (FLT_DIG): shorter forms come out by stripping trailing zeros.
+         * Subnormals carry fewer digits, so there the search starts at 1. */
+        for (int p = fa < FLT_MIN ? 1 : 6; p <= 9; p++) {
+            double unit = pow10p[9 - p];
+            double d = rnd_half_up(s9 * inv10p[9 - p]);
+            q = k - p + 1;
+            dig = (uint32_t)d;
+            if (d >= pow10p[p]) {
+                dig = (uint32_t)pow10p[p - 1];
+                q++;
             }
+            /* An integer below 2^53 times an exact power of ten is computed
+             * exactly, and then so is c - a: decide exactly, ties included. */
+            if (q >= 0 && q <= 22) {
+                double c = (double)dig * POW10(q); /* 10^q exact for q <= 22 */
+                if (c < 9007199254740992.0) {
+                    double diff = c >= a ? c - a : a - c, gap = c >= a ? hi : lo;
+                    if (diff < gap || (diff == gap && even)) break;
+                    continue;
+                }
+            }
+            double c9 = d * unit;
+            if (c9 >= s9 ? c9 - s9 < hi9 : s9 - c9 < lo9) break;
         }
-        double c9 = d * unit;
-        if (c9 >= s9 ? c9 - s9 < hi9 : s9 - c9 < lo9) break;
     }
     while (dig % 10 == 0) {
         dig /= 10;

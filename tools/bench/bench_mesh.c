@@ -210,6 +210,7 @@ int main(int argc, char **argv)
     printf("resolution %u\n", n);
     printf("triangles %zu\n", nt);
     printf("vertices %zu\n", coons_mesh_vertex_count(mesh));
+    printf("volume %.9g\n", coons_mesh_volume(mesh));
     printf("binary_bytes %zu\n", bytes);
     printf("ascii_bytes %lld\n", (long long)file_size(asc));
     printf("sample_s %.4f\n", t_sample);
