@@ -11,9 +11,11 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <coons.h>
 
@@ -564,29 +566,143 @@ static int info(const coons_model *m, long only, const coons_sample_options *so,
 
 /* ---- output -------------------------------------------------------------- */
 
+/* SIGINT, SIGTERM and SIGHUP while the output file is being written only set
+ * this flag: the library polls it (coons_write_options.cancel), removes its
+ * temporary file and returns, leaving any previous output untouched; then
+ * the signal is raised again with its default action. Outside the write the
+ * default actions stay: before it nothing exists to clean up. */
+static volatile sig_atomic_t caught_signal;
+
+static void on_signal(int sig) { caught_signal = sig; }
+
+static int write_cancelled(void *ctx)
+{
+    (void)ctx;
+    return caught_signal != 0;
+}
+
+static const int handled_signals[] = {SIGINT, SIGTERM, SIGHUP};
+#define NSIG_HANDLED (sizeof handled_signals / sizeof handled_signals[0])
+
+static void catch_signals(struct sigaction old[NSIG_HANDLED])
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0; /* no SA_RESTART: a blocked write returns EINTR and the cancel is polled */
+    for (size_t i = 0; i < NSIG_HANDLED; i++) sigaction(handled_signals[i], &sa, &old[i]);
+}
+
+static void restore_signals(const struct sigaction old[NSIG_HANDLED])
+{
+    for (size_t i = 0; i < NSIG_HANDLED; i++) sigaction(handled_signals[i], &old[i], NULL);
+}
+
+/* "dir/part.scad" -> "part": the name of the module that renders the whole
+ * model in SCAD (what `use <part.scad>` users call) and of the ASCII STL
+ * solid; taken from the output file, else from the model file. */
+static void model_name(const char *path, char *out, size_t cap)
+{
+    out[0] = '\0';
+    if (!path || strcmp(path, "-") == 0) return;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    snprintf(out, cap, "%s", base);
+    char *dot = strrchr(out, '.');
+    if (dot && dot != out) *dot = '\0';
+}
+
 /*
  * Writes the boundary mesh of the model (all bodies, or only body `body`
  * when >= 0) to `output` (NULL or "-": standard output) in `format` ("stl",
  * "stl-ascii", "off" or "scad"), sampled with `so` (its tolerance is set:
- * -t or the model's; --resolution, --max-triangles). It must not create,
- * truncate or change `output` unless everything succeeded (write a
- * temporary file in the same directory, then rename() it). Prints its own
- * diagnostics and returns the exit status.
- *
- * The meshing work replaces this body; nothing else in this file needs to
- * change.
+ * -t or the model's; --resolution, --max-triangles). A file is written
+ * to a temporary file in the same directory and renamed into place only
+ * after everything succeeded (coons_mesh_write()); the model file itself is
+ * never overwritten. Prints its own diagnostics and returns the exit status.
  */
 static int write_output(const coons_model *m, long body, const char *format, const char *output,
-                        const coons_sample_options *so, int quiet)
+                        const coons_sample_options *so, int quiet, const char *input)
 {
-    (void)m;
-    (void)body;
-    (void)format;
-    (void)so;
-    (void)quiet;
-    fprintf(stderr, "%s: %s: writing meshes is not available yet; nothing was written\n", PROG,
-            output && strcmp(output, "-") != 0 ? output : "<stdout>");
-    return EXIT_GEOMETRY;
+    coons_error err = COONS_ERROR_INIT;
+    coons_format fmt;
+    int to_stdout = !output || strcmp(output, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : output;
+    if (coons_format_from_name(format, &fmt, &err) != COONS_OK) {
+        fprintf(stderr, "%s: %s\n", PROG, err.message);
+        return EXIT_USAGE;
+    }
+    /* Refuse before the (possibly long) meshing; the library checks again
+     * at write time. */
+    struct stat in_st, out_st;
+    int from_file = input && strcmp(input, "-") != 0;
+    if (!to_stdout && from_file && stat(input, &in_st) == 0 && stat(output, &out_st) == 0 &&
+        in_st.st_dev == out_st.st_dev && in_st.st_ino == out_st.st_ino) {
+        fprintf(stderr, "%s: the output '%s' is the model file '%s'; refusing to overwrite it\n",
+                PROG, output, input);
+        return EXIT_USAGE;
+    }
+
+    coons_sample_options sopts = *so;
+    coons_mesh *mesh = NULL;
+    coons_status rc;
+    if (body >= 0) {
+        rc = coons_body_sample(coons_model_body(m, (size_t)body), &sopts,
+                               coons_model_body_name(m, (size_t)body), &mesh, &err);
+        if (rc == COONS_OK && coons_csg_available()) {
+            /* One body: still resolve it if it crosses itself. */
+            coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
+            copts.unite = 0;
+            coons_mesh *solid = NULL;
+            rc = coons_mesh_solidify(mesh, &copts, &solid, NULL, &err);
+            coons_mesh_free(mesh);
+            mesh = solid;
+        }
+    } else {
+        coons_csg_report rep;
+        memset(&rep, 0, sizeof rep);
+        rc = coons_model_solid(m, &sopts, NULL, &mesh, &rep, &err);
+        if (rc == COONS_OK && rep.triangles_out > 0 && !rep.closed && !quiet)
+            fprintf(stderr, "%s: warning: the united mesh is not closed\n", PROG);
+    }
+    if (rc != COONS_OK) {
+        fprintf(stderr, "%s: %s: %s; nothing was written\n", PROG, shown, err.message);
+        coons_mesh_free(mesh);
+        return EXIT_GEOMETRY;
+    }
+
+    char name[256];
+    model_name(to_stdout ? input : output, name, sizeof name);
+    coons_write_options wopts = COONS_WRITE_OPTIONS_INIT;
+    wopts.units = coons_model_units(m);
+    wopts.name = name[0] ? name : NULL;
+    wopts.protect_path = from_file ? input : NULL;
+    wopts.cancel = write_cancelled;
+    if (to_stdout) {
+        rc = coons_mesh_write_stream(mesh, stdout, fmt, &wopts, &err);
+    } else {
+        struct sigaction old[NSIG_HANDLED];
+        catch_signals(old);
+        rc = coons_mesh_write(mesh, output, fmt, &wopts, &err);
+        restore_signals(old);
+    }
+    coons_mesh_free(mesh);
+    if (caught_signal) {
+        /* Whatever happened, nothing partial is left: either the write was
+         * cancelled (temporary file removed, old output untouched) or it
+         * had already completed. Die of the signal as expected. */
+        if (rc != COONS_OK)
+            fprintf(stderr, "%s: %s: interrupted; nothing was written\n", PROG, shown);
+        int sig = caught_signal;
+        signal(sig, SIG_DFL);
+        raise(sig);
+    }
+    if (rc != COONS_OK) {
+        fprintf(stderr, "%s: %s\n", PROG, err.message);
+        return EXIT_GEOMETRY;
+    }
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -611,7 +727,7 @@ int main(int argc, char **argv)
     else if (o.info)
         rc = info(m, body, &so, o.quiet);
     else
-        rc = write_output(m, body, o.format, o.output, &so, o.quiet);
+        rc = write_output(m, body, o.format, o.output, &so, o.quiet, o.input);
     coons_model_free(m);
     if ((o.eval || o.info) && (fflush(stdout) != 0 || ferror(stdout))) {
         fprintf(stderr, "%s: cannot write to standard output: %s\n", PROG, strerror(errno));

@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Every example's OpenSCAD output, rendered by the real `openscad` binary.
+
+For each examples/*.json: `coons2stl -o x.scad` and `coons2stl -o x.stl`;
+`openscad -o r.stl x.scad` must exit 0 with no WARNING/ERROR and no
+'not manifold' / 'may not be a valid 2-manifold' / 'not closed' on stderr;
+the volume of OpenSCAD's STL (computed here, from its own ASCII or binary
+STL) must match the volume of our binary STL (relative 1e-5: both are
+float32). OpenSCAD renders a multi-body "none" model as the union of the
+shells: that is compared with coons2stl's own union of the same model when
+this libcoons has CGAL, else with the sum of the shells when those turn out
+disjoint (equal volumes), and the volume check is skipped otherwise.
+Models whose union needs CGAL are skipped in a build without it.
+Also: `use <x.scad>` renders nothing by itself and gives a module per
+body, `include` renders the model.
+
+Usage: test_openscad.py --bin <coons2stl> --src <source dir> --build <build dir>
+"""
+import glob
+import json
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from clitest import Runner  # noqa: E402
+
+BAD = ("WARNING", "ERROR", "not manifold", "2-manifold", "not closed")
+
+
+def read_stl(path):
+    """Triangles of an ASCII or binary STL, as 9-tuples of floats."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:5] == b"solid" and b"facet" in data[:1024]:
+        tris, cur = [], []
+        for line in data.decode("ascii").splitlines():
+            w = line.split()
+            if w and w[0] == "vertex":
+                cur.extend(float(x) for x in w[1:4])
+                if len(cur) == 9:
+                    tris.append(tuple(cur))
+                    cur = []
+        return tris
+    (n,) = struct.unpack_from("<I", data, 80)
+    if len(data) != 84 + 50 * n:
+        raise ValueError(f"{path}: {len(data)} bytes for {n} triangles")
+    return [struct.unpack_from("<12f", data, 84 + 50 * i)[3:] for i in range(n)]
+
+
+def volume(tris):
+    v = 0.0
+    for t in tris:
+        ax, ay, az, bx, by, bz, cx, cy, cz = t
+        v += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+    return v / 6.0
+
+
+def openscad(scad, out, cwd):
+    p = subprocess.run(["openscad", "-o", out, scad], cwd=cwd, stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, text=True, timeout=600)
+    return p.returncode, p.stdout + p.stderr
+
+
+def main():
+    r = Runner(__doc__)
+    if not shutil.which("openscad"):
+        print("openscad not installed: skipped")
+        print("0 passed, 0 failed")
+        sys.exit(0)
+    tmp = tempfile.mkdtemp(prefix="coons-openscad-")
+    try:
+        examples = sorted(glob.glob(os.path.join(r.src, "examples", "*.json")))
+        r.check("examples found", len(examples) > 10, f"{len(examples)}")
+        for ex in examples:
+            name = os.path.splitext(os.path.basename(ex))[0]
+            scad = os.path.join(tmp, name + ".scad")
+            ours = os.path.join(tmp, name + ".stl")
+            st, _, err = r.run(["-o", scad, ex])
+            if st == 3 and "CGAL" in err:
+                print(f"skip {name}: its union needs CGAL")
+                continue
+            if not r.check(f"{name}: coons2stl -o .scad", st == 0, err):
+                continue
+            st, _, err = r.run(["-o", ours, ex])
+            r.check(f"{name}: coons2stl -o .stl", st == 0, err)
+            rendered = os.path.join(tmp, name + ".openscad.stl")
+            rc, log = openscad(scad, rendered, tmp)
+            said = [b for b in BAD if b in log]
+            if not r.check(f"{name}: openscad renders it silently", rc == 0 and not said,
+                           f"exit {rc}, {said}:\n{log}"):
+                continue
+            v_os = volume(read_stl(rendered))
+            v_ours = volume(read_stl(ours))
+            with open(ex) as f:
+                model = json.load(f)
+            multi_none = model.get("operation", "union") == "none" and len(model["bodies"]) > 1
+            want, what = v_ours, "our STL"
+            if multi_none:
+                # OpenSCAD unites the shells; ask coons2stl for the union.
+                u = dict(model, operation="union")
+                uj = os.path.join(tmp, name + "-union.json")
+                with open(uj, "w") as f:
+                    json.dump(u, f)
+                us = os.path.join(tmp, name + "-union.stl")
+                st, _, err = r.run(["-o", us, uj])
+                if st == 0:
+                    want, what = volume(read_stl(us)), "coons2stl's union"
+                elif abs(v_os - v_ours) > 1e-5 * abs(v_ours):
+                    print(f"skip {name} volume: shells overlap and the union needs CGAL")
+                    continue
+                else:
+                    what = "the sum of its (disjoint) shells"
+            r.check(f"{name}: OpenSCAD's volume {v_os:.7g} = {what} {want:.7g}",
+                    abs(v_os - want) <= 1e-5 * abs(want) and want > 0)
+
+        # use <> / include <> on a two-body "none" model.
+        ex = os.path.join(r.src, "examples", "body-blend-cubic.json")
+        with open(ex) as f:
+            model = json.load(f)
+        scad = os.path.join(tmp, "model.scad")
+        st, _, err = r.run(["-o", scad, ex])
+        r.check("body-blend-cubic to scad", st == 0, err)
+        with open(scad) as f:
+            text = f.read()
+        modules = re.findall(r"^module (\w+)\(\)", text, re.M)
+        r.check("one module per body plus the model's",
+                len(modules) == len(model["bodies"]) + 1, f"{modules}")
+        r.check("the model module is named after the file", modules[-1] == "model", modules[-1])
+        r.check("a top-level call renders the model", text.rstrip().endswith(modules[-1] + "();"))
+        user = os.path.join(tmp, "user.scad")
+        with open(user, "w") as f:
+            f.write(f"use <model.scad>\n{modules[0]}();\n")
+        rc, log = openscad(user, os.path.join(tmp, "one.stl"), tmp)
+        r.check("use <>: the first body's module renders alone", rc == 0 and
+                not [b for b in BAD if b in log], log)
+        ours_one = os.path.join(tmp, "one-ours.stl")
+        st, _, err = r.run(["--body", "0", "-o", ours_one, ex])
+        if st == 0 and rc == 0:
+            a, b = volume(read_stl(os.path.join(tmp, "one.stl"))), volume(read_stl(ours_one))
+            r.check(f"use <>: volume {a:.7g} = body 0's {b:.7g}", abs(a - b) <= 1e-5 * abs(b))
+        with open(user, "w") as f:
+            f.write("use <model.scad>\n")
+        rc, log = openscad(user, os.path.join(tmp, "nothing.stl"), tmp)
+        r.check("use <> alone renders nothing", rc != 0 or "Current top level object is empty"
+                in log or "top level object is empty" in log.lower(), log)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    r.finish()
+
+
+if __name__ == "__main__":
+    main()
