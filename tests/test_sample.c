@@ -626,7 +626,47 @@ static void test_alloc_failures(void **state)
         assert_null(m);
         assert_true(n < 10000);
     }
+    /* the checks */
+    coons_mesh *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons_body_sample(b, &o, NULL, &m, &err), &err);
+    for (long n = 0;; n++) {
+        coons_mesh_report r = COONS_MESH_REPORT_INIT;
+        coons_test_fail_after(n);
+        int rc = coons_mesh_check(m, &r, &err);
+        coons_test_fail_after(-1);
+        if (rc == COONS_OK) {
+            assert_true(r.closed && r.manifold && r.oriented);
+            break;
+        }
+        assert_int_equal(rc, COONS_E_NOMEM);
+        assert_true(n < 100);
+    }
+    coons_mesh_free(m);
     coons_body_free(b);
+    /* a model of two bodies */
+    static const char *json =
+        "{\"coons\": 1, \"tolerance\": 0.05, \"operation\": \"none\", \"bodies\": ["
+        "{\"type\": \"body0\", \"corners\": [[0,0,0],[0,0,1],[0,1,0],[0,1,1],"
+        "[1,0,0],[1,0,1],[1,1,0],[1,1,1]]},"
+        "{\"type\": \"bezier-volume\", \"points\": [[[[0,0,2],[0,0,3]],[[0,1,2],[0,1,3]]],"
+        "[[[1,0,2],[1,0,3.5]],[[1,1,2],[1,1,3]]]]}]}";
+    coons_model *model = NULL;
+    assert_coons_ok(coons_model_load_buffer(json, strlen(json), NULL, &model, &err), &err);
+    for (long n = 0;; n++) {
+        coons_test_fail_after(n);
+        int rc = coons_model_mesh(model, NULL, &m, &err);
+        coons_test_fail_after(-1);
+        if (rc == COONS_OK) {
+            assert_int_equal(coons_mesh_part_count(m), 2);
+            coons_mesh_free(m);
+            break;
+        }
+        assert_int_equal(rc, COONS_E_NOMEM);
+        assert_null(m);
+        assert_true(n < 10000);
+    }
+    coons_model_free(model);
 }
 
 static const char *TWO_BOXES =

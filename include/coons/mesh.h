@@ -127,8 +127,8 @@ typedef struct coons_sample_options {
  *
  * Adaptive sampling starts from lattices that contain the breakpoints of
  * the body's data (knots, segment ends) and halves intervals until exact
- * boundary points at the quarter points and triangle centroids of every
- * cell lie within 0.9 times the tolerance of the cell's two triangles (the
+ * boundary points on a 7 x 7 sampling of every cell (steps of 1/6: edge
+ * midpoints and triangle centroids included) lie within 0.9 times the tolerance of the cell's two triangles (the
  * margin covers maxima between the samples). That measured deviation (an
  * upper bound of the distance from those exact points to the mesh) is
  * stored with the part: coons_mesh_part_sampling(). With a fixed

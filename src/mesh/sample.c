@@ -29,9 +29,10 @@
  * distance to the cell's own triangles is an upper bound of the distance
  * to the mesh; unlike the parametric error |F(s,t) - L(s,t)| it ignores
  * sliding within the surface (a cone's straight generators need no
- * refinement). The final pass (quarter points and triangle centroids of
- * every cell, against the final merged vertices) measures the reported
- * deviation and accepts it below ACCEPT_FRACTION of the tolerance.
+ * refinement). The final pass (a 7 x 7 sampling of every cell, which holds
+ * the edge midpoints and triangle centroids, against the final merged
+ * vertices) measures the reported deviation and accepts it below
+ * ACCEPT_FRACTION of the tolerance.
  *
  * Shape: the starting lattice gives every direction enough intervals that
  * its cells are at most max_aspect times longer than the shortest
@@ -61,6 +62,9 @@ enum {
  * true maximum lies between the samples and was seen 5% above them (a
  * bicubic face of examples/body-blend-cubic.json, 1 mm cells). */
 #define ACCEPT_FRACTION 0.9
+/* The measuring pass samples every cell at multiples of 1/6 of its sides:
+ * edge midpoints and the centroids of both triangles are among them. */
+#define MEASURE_STEPS 6
 
 typedef struct face_desc {
     int fixed, a, b; /* fixed direction; the face's (s,t) directions, a < b */
@@ -506,73 +510,72 @@ static void mark(sampler *s, int d, size_t i)
     if (s->t[d][i + 1] - s->t[d][i] >= 2 * MIN_WIDTH) s->mark[d][i] = 1;
 }
 
-/* Compares F with the mesh at the (r+1)^2 sub-samples of every cell (and at
- * the triangle centroids), keeps the largest distance in s->dev and, when
- * thr > 0, marks the intervals to halve. */
-static coons_status scan(sampler *s, int r, int centroids, double thr)
+/* Compares F with the mesh at the (r+1)^2 sub-samples of every cell, keeps
+ * the largest distance in s->dev and, when thr > 0, marks the intervals to
+ * halve. Rows of sub-samples are evaluated in blocks of cells along a, so
+ * that the basis along b is computed once per block. */
+static coons_status scan(sampler *s, int r, double thr)
 {
+    enum { BLOCK_POINTS = 1 << 15 };
     s->dev = 0;
     for (int f = 0; f < 6; f++) {
         const face_desc *F = &FACES[f];
         if (s->glued & 1 << F->fixed) continue;
         size_t na = s->n[F->a], nb = s->n[F->b], nbs = (size_t)r * nb + 1;
+        size_t block = BLOCK_POINTS / ((size_t)r * nbs);
+        if (block < 1) block = 1;
+        if (block > na) block = na;
         const double *ta = s->t[F->a], *tb = s->t[F->b];
-        coons_status st = ensure(&s->bs, &s->bs_cap, nbs, s->err);
-        if (!st) st = ensure(&s->buf, &s->buf_cap, 3 * (size_t)(r + 1) * nbs, s->err);
+        coons_status st = ensure(&s->bs, &s->bs_cap, nbs + (size_t)r * block + 1, s->err);
+        if (!st) st = ensure(&s->buf, &s->buf_cap, 3 * ((size_t)r * block + 1) * nbs, s->err);
         if (st) return st;
+        double *as = s->bs + nbs;
         for (size_t q = 0; q < nb; q++)
             for (int j = 0; j < r; j++) s->bs[q * r + j] = tb[q] + (tb[q + 1] - tb[q]) * j / r;
         s->bs[nb * r] = tb[nb];
-        for (size_t p = 0; p < na; p++) {
-            double as[5];
-            for (int i = 0; i < r; i++) as[i] = ta[p] + (ta[p + 1] - ta[p]) * i / r;
-            as[r] = ta[p + 1];
-            if ((st = eval_face(s, f, as, (size_t)r + 1, s->bs, nbs, s->buf))) return st;
-            for (size_t q = 0; q < nb; q++) {
-                const uint32_t *id = s->ids[f];
-                const double *P00 = rep_pos(s, id[p * (nb + 1) + q]);
-                const double *P10 = rep_pos(s, id[(p + 1) * (nb + 1) + q]);
-                const double *P01 = rep_pos(s, id[p * (nb + 1) + q + 1]);
-                const double *P11 = rep_pos(s, id[(p + 1) * (nb + 1) + q + 1]);
-                int dg = s->diag[f][p * nb + q];
-                double ea = 0, eb = 0, ec = 0;
-                for (int i = 0; i <= r; i++)
-                    for (int j = 0; j <= r; j++) {
-                        int ei = i == 0 || i == r, ej = j == 0 || j == r;
-                        if (ei && ej) continue; /* lattice point */
-                        const double *X = s->buf + 3 * (i * nbs + q * r + j);
-                        double e = cell_dist(X, P00, P10, P01, P11, dg);
-                        if (ej)
-                            ea = fmax(ea, e);
-                        else if (ei)
-                            eb = fmax(eb, e);
-                        else
-                            ec = fmax(ec, e);
+        for (size_t p0 = 0; p0 < na; p0 += block) {
+            size_t p1 = p0 + block < na ? p0 + block : na, rows = (p1 - p0) * (size_t)r + 1;
+            for (size_t p = p0; p < p1; p++)
+                for (int i = 0; i < r; i++)
+                    as[(p - p0) * r + i] = ta[p] + (ta[p + 1] - ta[p]) * i / r;
+            as[rows - 1] = ta[p1];
+            if ((st = eval_face(s, f, as, rows, s->bs, nbs, s->buf))) return st;
+            for (size_t p = p0; p < p1; p++)
+                for (size_t q = 0; q < nb; q++) {
+                    const uint32_t *id = s->ids[f];
+                    const double *P00 = rep_pos(s, id[p * (nb + 1) + q]);
+                    const double *P10 = rep_pos(s, id[(p + 1) * (nb + 1) + q]);
+                    const double *P01 = rep_pos(s, id[p * (nb + 1) + q + 1]);
+                    const double *P11 = rep_pos(s, id[(p + 1) * (nb + 1) + q + 1]);
+                    int dg = s->diag[f][p * nb + q];
+                    double ea = 0, eb = 0, ec = 0;
+                    for (int i = 0; i <= r; i++)
+                        for (int j = 0; j <= r; j++) {
+                            int ei = i == 0 || i == r, ej = j == 0 || j == r;
+                            if (ei && ej) continue; /* lattice point */
+                            size_t row = (p - p0) * (size_t)r + (size_t)i;
+                            const double *X = s->buf + 3 * (row * nbs + q * r + j);
+                            double e = cell_dist(X, P00, P10, P01, P11, dg);
+                            if (ej)
+                                ea = fmax(ea, e);
+                            else if (ei)
+                                eb = fmax(eb, e);
+                            else
+                                ec = fmax(ec, e);
+                        }
+                    double e = fmax(ea, fmax(eb, ec));
+                    if (e > s->dev) s->dev = e;
+                    if (!(thr > 0)) continue;
+                    double la = fmax(v3_dist(P00, P10), v3_dist(P01, P11));
+                    double lb = fmax(v3_dist(P00, P01), v3_dist(P10, P11));
+                    int ma = ea > thr, mb = eb > thr;
+                    if (ec > thr && !ma && !mb) {
+                        ma = la >= lb;
+                        mb = lb >= la;
                     }
-                if (centroids) {
-                    static const double cx[2][2][2] = {{{2. / 3, 1. / 3}, {1. / 3, 2. / 3}},
-                                                       {{1. / 3, 1. / 3}, {2. / 3, 2. / 3}}};
-                    for (int k = 0; k < 2; k++) {
-                        double x = cx[dg][k][0], y = cx[dg][k][1], P[3];
-                        double a1 = ta[p] + (ta[p + 1] - ta[p]) * x;
-                        double b1 = tb[q] + (tb[q + 1] - tb[q]) * y;
-                        if ((st = eval_face(s, f, &a1, 1, &b1, 1, P))) return st;
-                        ec = fmax(ec, cell_dist(P, P00, P10, P01, P11, dg));
-                    }
+                    if (ma) mark(s, F->a, p);
+                    if (mb) mark(s, F->b, q);
                 }
-                double e = fmax(ea, fmax(eb, ec));
-                if (e > s->dev) s->dev = e;
-                if (!(thr > 0)) continue;
-                double la = fmax(v3_dist(P00, P10), v3_dist(P01, P11));
-                double lb = fmax(v3_dist(P00, P01), v3_dist(P10, P11));
-                int ma = ea > thr, mb = eb > thr;
-                if (ec > thr && !ma && !mb) {
-                    ma = la >= lb;
-                    mb = lb >= la;
-                }
-                if (ma) mark(s, F->a, p);
-                if (mb) mark(s, F->b, q);
-            }
         }
     }
     return COONS_OK;
@@ -614,16 +617,16 @@ static coons_status run(sampler *s)
     if (st) return st;
     if (s->o->resolution) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
-        return scan(s, 4, 1, 0.0);
+        return scan(s, MEASURE_STEPS, 0.0);
     }
     for (int round = 0; round < MAX_ROUNDS; round++) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
-        if ((st = scan(s, 2, 0, LOOP_FRACTION * s->o->tolerance))) return st;
+        if ((st = scan(s, 2, LOOP_FRACTION * s->o->tolerance))) return st;
         size_t split;
         if ((st = refine(s, &split))) return st;
         if (split) continue;
         /* The coarse estimate is satisfied: measure on the finer samples. */
-        if ((st = scan(s, 4, 1, ACCEPT_FRACTION * s->o->tolerance))) return st;
+        if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->o->tolerance))) return st;
         if (s->dev <= ACCEPT_FRACTION * s->o->tolerance) return COONS_OK;
         if ((st = refine(s, &split))) return st;
         if (!split) break;
