@@ -67,8 +67,11 @@ typedef struct coons_csg_report {
     size_t passed_through;      /**< parts that needed no Boolean work */
     size_t patches;             /**< patches classified by ray casting */
     size_t patches_kept;        /**< of which kept */
+    size_t fallbacks;           /**< groups the corefinement refused, done by the soup pass */
     size_t triangles_out;       /**< triangles of the result */
     size_t rounding_merged;     /**< vertices merged by rounding to double */
+    size_t close_merged;        /**< vertices within 1e-11 of the size of another, merged */
+    size_t slivers_fixed;       /**< triangles flattened by rounding, removed by an edge split */
     int closed;                 /**< the result has no border edge */
     size_t nonmanifold_edges;   /**< edges with more than two faces in the result */
 } coons_csg_report;

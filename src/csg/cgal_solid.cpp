@@ -27,6 +27,10 @@
 // self-intersections, and exact results rounded later reintroduced some
 // (BUILD-NOTES): step 6 makes that an error instead of a silent result.
 
+// CGAL checks its preconditions only without NDEBUG; with them, inputs it
+// cannot handle throw instead of crashing (autorefinement in 5.5 segfaults
+// on some coplanar configurations otherwise). Measured cost: see README.
+#undef NDEBUG
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -38,6 +42,8 @@
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cmath>
 #include <cstring>
 #include <new>
@@ -161,7 +167,8 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
 // Pairs of triangles of an indexed soup that intersect other than along
 // shared edges or at shared vertices, with exact predicates on the double
 // coordinates. Works on non-manifold soups (a pinched solid) as they are.
-size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tri, size_t nt)
+size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tri, size_t nt,
+                                size_t *degenerate = nullptr)
 {
     std::vector<IK::Point_3> P;
     P.reserve(nv);
@@ -172,6 +179,11 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
     for (size_t t = 0; t < nt; t++) {
         const uint32_t *q = tri + 3 * t;
         if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
+        if (CGAL::collinear(P[q[0]], P[q[1]], P[q[2]])) {
+            // A zero-area triangle bounds nothing; it is counted, not tested.
+            if (degenerate) (*degenerate)++;
+            continue;
+        }
         CGAL::Bbox_3 bb = P[q[0]].bbox() + P[q[1]].bbox() + P[q[2]].bbox();
         boxes.emplace_back(bb, t);
     }
@@ -181,6 +193,32 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
             if (pair_intersects(P, tri + 3 * x.info(), tri + 3 * y.info())) count++;
         });
     return count;
+}
+
+struct LessXYZ {
+    bool operator()(const EPoint &a, const EPoint &b) const
+    {
+        return CGAL::compare_xyz(a, b) == CGAL::SMALLER;
+    }
+};
+
+struct ExactSoup {
+    std::vector<EPoint> pts;
+    std::vector<std::array<uint32_t, 3>> tri;
+};
+
+// A closed 2-manifold exact mesh from an indexed soup, or false.
+bool exact_mesh(const ExactSoup &s, EMesh &m)
+{
+    m.clear();
+    std::vector<EVert> vs;
+    vs.reserve(s.pts.size());
+    for (const EPoint &p : s.pts) vs.push_back(m.add_vertex(p));
+    for (const auto &t : s.tri)
+        if (m.add_face(vs[t[0]], vs[t[1]], vs[t[2]]) == EMesh::null_face()) return false;
+    for (EVert v : m.vertices())
+        if (m.is_isolated(v) || m.is_border(v)) return false;
+    return CGAL::is_closed(m);
 }
 
 // The exact pass over the parts `ids` of the input (see the file comment).
@@ -194,7 +232,7 @@ class Solidifier {
     {
     }
 
-    void run(Soup &out)
+    bool run(EMesh &out, ExactSoup &soup)
     {
         build();
         prog_("autorefine", p0_ + 0.1 * (p1_ - p0_));
@@ -206,7 +244,7 @@ class Solidifier {
         make_patches(ecm);
         classify();
         prog_("assemble", p0_ + 0.9 * (p1_ - p0_));
-        assemble(out);
+        return assemble(out, soup);
     }
 
   private:
@@ -454,40 +492,35 @@ class Solidifier {
             if (verdict_[pid]) rep_.patches_kept++;
     }
 
-    void assemble(Soup &out)
+    // Kept faces as an exact mesh: coincident vertices of different sheets
+    // become one vertex (exact comparison). Returns false when the result
+    // is not a 2-manifold surface (solids touching along a curve or at a
+    // point); `soup` always receives the kept triangles.
+    bool assemble(EMesh &out, ExactSoup &soup)
     {
-        std::unordered_map<Key3, uint32_t, Key3Hash> index;
+        std::map<EPoint, uint32_t, LessXYZ> index;
         std::vector<uint32_t> vmap(mesh_.number_of_vertices(), UINT32_MAX);
-        size_t merged = 0;
         auto vid = [&](EVert v) -> uint32_t {
             if (vmap[v] != UINT32_MAX) return vmap[v];
             const EPoint &p = mesh_.point(v);
-            Key3 k{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
-            for (double &x : k.v)
-                if (x == 0.0) x = 0.0; // -0 and +0 are one vertex
-            auto it = index.find(k);
-            if (it != index.end()) {
-                merged++;
-                return vmap[v] = it->second;
-            }
-            if (out.xyz.size() / 3 >= UINT32_MAX) throw Failure(COONS_E_LIMIT, "too many vertices");
-            uint32_t id = (uint32_t)(out.xyz.size() / 3);
-            out.xyz.insert(out.xyz.end(), k.v, k.v + 3);
-            index.emplace(k, id);
+            auto it = index.find(p);
+            if (it != index.end()) return vmap[v] = it->second;
+            uint32_t id = (uint32_t)soup.pts.size();
+            soup.pts.push_back(p);
+            index.emplace(p, id);
             return vmap[v] = id;
         };
         for (size_t pid = 0; pid < members_.size(); pid++) {
             if (!verdict_[pid]) continue;
             for (EFace f : members_[pid]) {
-                uint32_t t[3];
+                std::array<uint32_t, 3> t;
                 int i = 0;
                 for (EVert v : CGAL::vertices_around_face(mesh_.halfedge(f), mesh_)) t[i++] = vid(v);
-                if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
                 if (verdict_[pid] < 0) std::swap(t[1], t[2]);
-                out.tri.insert(out.tri.end(), t, t + 3);
+                soup.tri.push_back(t);
             }
         }
-        rep_.rounding_merged += merged;
+        return exact_mesh(soup, out);
     }
 };
 
@@ -539,6 +572,273 @@ void edge_stats(const Soup &s, coons_csg_report &rep)
     }
     rep.closed = border == 0;
     rep.nonmanifold_edges += nonman;
+}
+
+void soup_of(const EMesh &m, ExactSoup &e)
+{
+    e.pts.clear();
+    e.tri.clear();
+    std::vector<uint32_t> id(m.number_of_vertices(), UINT32_MAX);
+    for (EVert v : m.vertices()) {
+        id[v] = (uint32_t)e.pts.size();
+        e.pts.push_back(m.point(v));
+    }
+    for (EFace f : m.faces()) {
+        std::array<uint32_t, 3> t;
+        int i = 0;
+        for (EVert v : CGAL::vertices_around_face(m.halfedge(f), m)) t[i++] = id[v];
+        e.tri.push_back(t);
+    }
+}
+
+// Exact intersections of inputs whose own rounding noise differs (a NURBS
+// point at x = 2e-16 against a wall at x = 0) give features narrower than
+// doubles can hold, which rounding turns into overlaps. Vertices closer
+// than 1e-11 of the part's size (far below any tolerance) are merged, and
+// the triangles that this collapses or doubles (two opposite copies) go.
+void merge_close(Soup &s, coons_csg_report &rep)
+{
+    size_t nv = s.xyz.size() / 3;
+    if (!nv) return;
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    for (size_t v = 0; v < nv; v++) bbox_add(lo, hi, &s.xyz[3 * v]);
+    double eps = 1e-11 * bbox_diag(lo, hi);
+    if (!(eps > 0)) return;
+    auto cell = [&](size_t v, int c) { return (int64_t)std::floor((s.xyz[3 * v + c] - lo[c]) / eps); };
+    struct H {
+        size_t operator()(const std::array<int64_t, 3> &k) const
+        {
+            return (size_t)(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
+        }
+    };
+    std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, H> grid;
+    std::vector<uint32_t> rep_of(nv);
+    for (size_t v = 0; v < nv; v++) {
+        std::array<int64_t, 3> k{cell(v, 0), cell(v, 1), cell(v, 2)};
+        uint32_t found = UINT32_MAX;
+        for (int dx = -1; dx <= 1 && found == UINT32_MAX; dx++)
+            for (int dy = -1; dy <= 1 && found == UINT32_MAX; dy++)
+                for (int dz = -1; dz <= 1 && found == UINT32_MAX; dz++) {
+                    auto it = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
+                    if (it == grid.end()) continue;
+                    for (uint32_t w : it->second) {
+                        double d = 0;
+                        for (int c = 0; c < 3; c++) d = std::max(d, std::fabs(s.xyz[3 * v + c] - s.xyz[3 * w + c]));
+                        if (d <= eps) {
+                            found = w;
+                            break;
+                        }
+                    }
+                }
+        if (found != UINT32_MAX) {
+            rep_of[v] = found;
+            rep.close_merged++;
+        } else {
+            rep_of[v] = (uint32_t)v;
+            grid[k].push_back((uint32_t)v);
+        }
+    }
+    if (!rep.close_merged) return;
+    std::vector<uint32_t> out;
+    std::unordered_map<uint64_t, size_t> seen; // sorted vertex triple -> index in out/3
+    std::vector<char> dead;
+    auto key = [](uint32_t a, uint32_t b, uint32_t c) {
+        uint32_t v[3] = {a, b, c};
+        std::sort(v, v + 3);
+        return ((uint64_t)v[0] * 2654435761u) ^ ((uint64_t)v[1] << 21) ^ ((uint64_t)v[2] << 42);
+    };
+    for (size_t t = 0; t < s.tri.size() / 3; t++) {
+        uint32_t a = rep_of[s.tri[3 * t]], b = rep_of[s.tri[3 * t + 1]], c = rep_of[s.tri[3 * t + 2]];
+        if (a == b || b == c || a == c) continue;
+        uint64_t k = key(a, b, c);
+        auto it = seen.find(k);
+        if (it != seen.end() && !dead[it->second]) {
+            const uint32_t *o = &out[3 * it->second];
+            uint32_t x[3] = {a, b, c}, y[3] = {o[0], o[1], o[2]};
+            std::sort(x, x + 3);
+            std::sort(y, y + 3);
+            if (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) {
+                dead[it->second] = 1; // two copies: opposite ones cancel, equal ones are one
+                bool same = (o[0] == a && o[1] == b) || (o[1] == a && o[2] == b) || (o[2] == a && o[0] == b);
+                if (same) dead[it->second] = 0;
+                continue;
+            }
+        }
+        seen[k] = out.size() / 3;
+        out.insert(out.end(), {a, b, c});
+        dead.push_back(0);
+    }
+    s.tri.clear();
+    for (size_t t = 0; t < out.size() / 3; t++)
+        if (!dead[t]) s.tri.insert(s.tri.end(), out.begin() + 3 * t, out.begin() + 3 * t + 3);
+}
+
+// Rounding can flatten a thin exact triangle (a, b, c) so that one vertex
+// m lies on the segment between the other two, p and q. Such a sliver is
+// removed and the triangle across its long edge (q, p, d) is split at m into
+// (q, m, d) and (m, p, d): the surface stays closed and oriented, and the
+// split triangles lie in the plane of the old one.
+void fix_slivers(Soup &s, coons_csg_report &rep)
+{
+    auto P = [&](uint32_t i) { return IK::Point_3(s.xyz[3 * i], s.xyz[3 * i + 1], s.xyz[3 * i + 2]); };
+    for (int round = 0; round < 8; round++) {
+        size_t nt = s.tri.size() / 3;
+        std::unordered_map<uint64_t, size_t> edge; // directed edge -> triangle
+        for (size_t t = 0; t < nt; t++)
+            for (int k = 0; k < 3; k++)
+                edge[((uint64_t)s.tri[3 * t + k] << 32) | s.tri[3 * t + (k + 1) % 3]] = t;
+        std::vector<char> dead(nt, 0);
+        std::vector<uint32_t> extra;
+        size_t fixed = 0;
+        for (size_t t = 0; t < nt; t++) {
+            if (dead[t]) continue;
+            uint32_t v[3] = {s.tri[3 * t], s.tri[3 * t + 1], s.tri[3 * t + 2]};
+            if (!CGAL::collinear(P(v[0]), P(v[1]), P(v[2]))) continue;
+            // k: index of the middle vertex m; the long edge is v[k+1] -> v[k+2].
+            int k = -1;
+            for (int i = 0; i < 3 && k < 0; i++)
+                if (CGAL::collinear_are_ordered_along_line(P(v[(i + 1) % 3]), P(v[i]), P(v[(i + 2) % 3])))
+                    k = i;
+            if (k < 0) continue;
+            uint32_t m = v[k], p = v[(k + 1) % 3], q = v[(k + 2) % 3];
+            auto it = edge.find(((uint64_t)q << 32) | p);
+            if (it == edge.end() || dead[it->second] || it->second == t) continue;
+            size_t n = it->second;
+            uint32_t d = UINT32_MAX;
+            for (int i = 0; i < 3; i++)
+                if (s.tri[3 * n + i] != q && s.tri[3 * n + i] != p) d = s.tri[3 * n + i];
+            if (d == UINT32_MAX || d == m) continue;
+            dead[t] = dead[n] = 1;
+            extra.insert(extra.end(), {q, m, d, m, p, d});
+            fixed++;
+        }
+        if (!fixed) return;
+        rep.slivers_fixed += fixed;
+        std::vector<uint32_t> keep;
+        keep.reserve(s.tri.size());
+        for (size_t t = 0; t < nt; t++)
+            if (!dead[t]) keep.insert(keep.end(), s.tri.begin() + 3 * t, s.tri.begin() + 3 * t + 3);
+        keep.insert(keep.end(), extra.begin(), extra.end());
+        s.tri.swap(keep);
+    }
+}
+
+// The one rounding of an exact result to doubles; vertices that round to
+// the same point become one, triangles that collapse are dropped.
+void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep)
+{
+    std::unordered_map<Key3, uint32_t, Key3Hash> index;
+    std::vector<uint32_t> id(e.pts.size());
+    for (size_t i = 0; i < e.pts.size(); i++) {
+        const EPoint &p = e.pts[i];
+        Key3 k{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+        for (double &x : k.v)
+            if (x == 0.0) x = 0.0; // -0 and +0 are one vertex
+        auto it = index.find(k);
+        if (it != index.end()) {
+            rep.rounding_merged++;
+            id[i] = it->second;
+            continue;
+        }
+        if (out.xyz.size() / 3 >= UINT32_MAX) throw Failure(COONS_E_LIMIT, "too many vertices");
+        id[i] = (uint32_t)(out.xyz.size() / 3);
+        out.xyz.insert(out.xyz.end(), k.v, k.v + 3);
+        index.emplace(k, id[i]);
+    }
+    for (const auto &t : e.tri) {
+        uint32_t a = id[t[0]], b = id[t[1]], c = id[t[2]];
+        if (a == b || b == c || a == c) continue;
+        out.tri.insert(out.tri.end(), {a, b, c});
+    }
+    merge_close(out, rep);
+    fix_slivers(out, rep);
+}
+
+// One group of parts whose boxes meet. Returns true when the result was
+// passed through unchanged (no rounding, no check needed).
+//  - a part that meets nothing and does not cross itself passes through;
+//  - otherwise each part becomes an exact closed 2-manifold solid (as it
+//    is, or repaired by the soup pass), and the solids are united by
+//    chained corefinement on the exact kernel, rounded once at the end;
+//  - a repaired part that is not 2-manifold (a pinch) cannot enter a
+//    corefinement: then the whole group goes through the soup pass at once.
+bool solidify_group(const double *xyz, const uint32_t *tri, const std::vector<Part> &parts,
+                    const std::vector<size_t> &ids, const coons_csg_options &o,
+                    coons_csg_report &rep, Progress prog, double p0, double p1, Soup &s)
+{
+    std::vector<EMesh> solids(ids.size());
+    ExactSoup result;
+    bool manifold_all = true;
+    for (size_t k = 0; k < ids.size(); k++) {
+        const Part &p = parts[ids[k]];
+        std::vector<uint32_t> local(3 * p.tri_count);
+        for (size_t t = 0; t < local.size(); t++)
+            local[t] = tri[3 * p.tri_first + t] - (uint32_t)p.vert_first;
+        size_t pairs = o.repair || ids.size() > 1
+                           ? count_self_intersections(xyz + 3 * p.vert_first, p.vert_count,
+                                                      local.data(), p.tri_count)
+                           : 0;
+        rep.intersecting_pairs += pairs;
+        if (pairs == 0 && ids.size() == 1) {
+            rep.passed_through++;
+            s.xyz.assign(xyz + 3 * p.vert_first, xyz + 3 * (p.vert_first + p.vert_count));
+            s.tri = local;
+            return true;
+        }
+        ExactSoup es;
+        if (pairs == 0) {
+            for (size_t v = 0; v < p.vert_count; v++) {
+                const double *q = xyz + 3 * (p.vert_first + v);
+                es.pts.emplace_back(q[0], q[1], q[2]);
+            }
+            for (size_t t = 0; t < p.tri_count; t++)
+                es.tri.push_back({local[3 * t], local[3 * t + 1], local[3 * t + 2]});
+            if (exact_mesh(es, solids[k])) continue;
+            es = ExactSoup();
+        }
+        std::vector<size_t> one{ids[k]};
+        double q0 = p0 + (p1 - p0) * k / (2.0 * ids.size());
+        Solidifier sol(xyz, tri, parts, one, rep, prog, q0, q0 + (p1 - p0) / (2.0 * ids.size()));
+        if (!sol.run(solids[k], es)) {
+            manifold_all = false;
+            if (ids.size() == 1) result = es;
+            break;
+        }
+    }
+    if (ids.size() == 1 && !manifold_all) {
+        // a pinched solid of one body: as it is
+    } else if (!manifold_all) {
+        Solidifier sol(xyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
+        EMesh m;
+        sol.run(m, result);
+    } else {
+        std::string why;
+        try {
+            EMesh acc = std::move(solids[0]);
+            for (size_t k = 1; k < ids.size(); k++) {
+                prog("union", p0 + (p1 - p0) * (0.5 + 0.5 * k / ids.size()));
+                if (!PMP::corefine_and_compute_union(acc, solids[k], acc))
+                    throw Failure(COONS_E_CSG, "corefinement refused '" + parts[ids[k]].name + "'");
+            }
+            soup_of(acc, result);
+        } catch (const std::bad_alloc &) {
+            throw;
+        } catch (const std::exception &e) {
+            // CGAL 5.5's corefinement rejects some coplanar contacts that
+            // the soup pass handles: try that before giving up.
+            why = e.what();
+        }
+        if (!why.empty()) {
+            rep.fallbacks++;
+            Solidifier sol(xyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
+            EMesh m;
+            result = ExactSoup();
+            sol.run(m, result);
+        }
+    }
+    round_soup(result, s, rep);
+    return false;
 }
 
 coons_status fail(coons_error *err, coons_status code, const std::string &msg)
@@ -594,38 +894,16 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
             double p0 = (double)gi / groups.size(), p1 = (double)(gi + 1) / groups.size();
             prog("check", p0);
             Soup s;
-            bool pass = false;
-            if (current.size() == 1 && !opts->repair) {
-                const Part &p = parts[current[0]];
-                pass = true;
-                rep.passed_through++;
-                s.xyz.assign(xyz + 3 * p.vert_first, xyz + 3 * (p.vert_first + p.vert_count));
-                for (size_t t = 0; t < 3 * p.tri_count; t++)
-                    s.tri.push_back(tri[3 * p.tri_first + t] - (uint32_t)p.vert_first);
-            } else if (current.size() == 1) {
-                const Part &p = parts[current[0]];
-                std::vector<uint32_t> local(3 * p.tri_count);
-                for (size_t t = 0; t < local.size(); t++)
-                    local[t] = tri[3 * p.tri_first + t] - (uint32_t)p.vert_first;
-                size_t pairs = count_self_intersections(xyz + 3 * p.vert_first, p.vert_count,
-                                                        local.data(), p.tri_count);
-                rep.intersecting_pairs += pairs;
-                if (pairs == 0) {
-                    pass = true;
-                    rep.passed_through++;
-                    s.xyz.assign(xyz + 3 * p.vert_first, xyz + 3 * (p.vert_first + p.vert_count));
-                    s.tri = local;
-                }
-            }
-            if (!pass) {
-                Solidifier sol(xyz, tri, parts, current, rep, prog, p0, p1);
-                sol.run(s);
+            if (!solidify_group(xyz, tri, parts, current, *opts, rep, prog, p0, p1, s)) {
+                size_t degenerate = 0;
                 size_t pairs = count_self_intersections(s.xyz.data(), s.xyz.size() / 3,
-                                                        s.tri.data(), s.tri.size() / 3);
-                if (pairs)
+                                                        s.tri.data(), s.tri.size() / 3,
+                                                        &degenerate);
+                if (pairs || degenerate)
                     throw Failure(COONS_E_CSG,
                                   "rounding the exact result to doubles made " +
-                                      std::to_string(pairs) + " triangle pairs intersect");
+                                      std::to_string(pairs) + " triangle pairs intersect and " +
+                                      std::to_string(degenerate) + " triangles flat");
             }
             edge_stats(s, rep);
             if (opts->unite) {
