@@ -539,6 +539,17 @@ static void test_fixed_resolution(void **state)
      * random points cannot be farther than the true maximum */
     assert_true(dev > 1e-3);
     assert_closed_oriented(m);
+    /* the same lattice without the measurement */
+    o.flags = COONS_SAMPLE_UNMEASURED;
+    coons_mesh *u = NULL;
+    assert_coons_ok(coons_body_sample(b, &o, NULL, &u, &err), &err);
+    assert_int_equal(coons_mesh_triangle_count(u), 108);
+    assert_memory_equal(coons_mesh_vertices(u), coons_mesh_vertices(m), 56 * 3 * sizeof(double));
+    assert_memory_equal(coons_mesh_triangles(u), coons_mesh_triangles(m), 108 * 3 * sizeof(uint32_t));
+    assert_int_equal(coons_mesh_part_sampling(u, 0, NULL, &dev, lat), 1);
+    assert_true(isnan(dev));
+    assert_true(isnan(coons_mesh_deviation(u)));
+    coons_mesh_free(u);
     coons_mesh_free(m);
     coons_body_free(b);
 }
@@ -565,6 +576,9 @@ static void test_limits_and_options(void **state)
     assert_int_equal(coons_body_sample(b, &o, "p", &m, &err), COONS_E_INVALID);
     o = (coons_sample_options)COONS_SAMPLE_OPTIONS_INIT;
     o.max_aspect = 0.5;
+    assert_int_equal(coons_body_sample(b, &o, "p", &m, &err), COONS_E_INVALID);
+    o = (coons_sample_options)COONS_SAMPLE_OPTIONS_INIT;
+    o.flags = 6;
     assert_int_equal(coons_body_sample(b, &o, "p", &m, &err), COONS_E_INVALID);
     coons_body_free(b);
 }

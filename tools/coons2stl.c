@@ -722,6 +722,9 @@ int main(int argc, char **argv)
     so.tolerance = o.tolerance > 0 ? o.tolerance : coons_model_tolerance(m);
     so.resolution = o.resolution;
     so.max_triangles = o.max_triangles;
+    /* A mesh on a fixed lattice needs no measured deviation (--info reports
+     * it); measuring would be most of the sampling time. */
+    if (o.resolution && !o.info) so.flags |= COONS_SAMPLE_UNMEASURED;
     if (o.eval)
         rc = eval_lines(coons_model_body(m, body < 0 ? 0 : (size_t)body), o.jacobian);
     else if (o.info)

@@ -106,9 +106,19 @@ typedef struct coons_sample_options {
      * invalid; INFINITY disables it.
      */
     double max_aspect;
+    /** Zero or more ::COONS_SAMPLE_UNMEASURED. */
+    unsigned int flags;
 } coons_sample_options;
 
-#define COONS_SAMPLE_OPTIONS_INIT {COONS_SAMPLE_OPTIONS_VERSION, 0.0, 0u, 0u, 0.0}
+/**
+ * Flag of ::coons_sample_options: with a fixed `resolution`, skip measuring
+ * the deviation (it then reads NaN); the measurement evaluates each cell at
+ * 36 more points and is most of the work of a fixed lattice. Adaptive
+ * sampling always measures.
+ */
+#define COONS_SAMPLE_UNMEASURED 1u
+
+#define COONS_SAMPLE_OPTIONS_INIT {COONS_SAMPLE_OPTIONS_VERSION, 0.0, 0u, 0u, 0.0, 0u}
 
 /**
  * Samples the boundary of a body into a closed, outward-oriented triangle
@@ -166,15 +176,19 @@ COONS_EXPORT coons_status coons_model_mesh(const coons_model *m,
 
 /**
  * What sampling recorded for part i: the tolerance it aimed at, the
- * measured deviation (see coons_body_sample()) and the number of lattice
- * intervals along u, v, w. Any output pointer may be NULL.
+ * measured deviation (see coons_body_sample(); NaN if not measured, see
+ * ::COONS_SAMPLE_UNMEASURED) and the number of lattice intervals along
+ * u, v, w. Any output pointer may be NULL.
  * @return 1 if the part came from sampling, 0 otherwise (hand-built or
  *         read parts; outputs are then -1 and 0).
  */
 COONS_EXPORT int coons_mesh_part_sampling(const coons_mesh *m, size_t i, double *tolerance,
                                           double *deviation, size_t lattice[3]);
 
-/** Largest measured deviation over all sampled parts, or -1 if none was sampled. */
+/**
+ * Largest measured deviation over all sampled parts: -1 if none was
+ * sampled, NaN if one was not measured.
+ */
 COONS_EXPORT double coons_mesh_deviation(const coons_mesh *m);
 
 /* ------------------------------------------------------------------------ */

@@ -186,7 +186,7 @@ coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coon
      * assumed to be spheres, one per shell. */
     for (size_t p = 0; p < m->nparts; p++) {
         const coons__mesh_part *P = &m->parts[p];
-        if (P->deviation >= 0) {
+        if (P->sampled) {
             r->expected_euler += P->glued ? 0 : 2;
             continue;
         }

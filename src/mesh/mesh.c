@@ -79,6 +79,7 @@ coons_status coons_mesh_add_part(coons_mesh *m, const char *name, const double *
     p->vert_first = m->nv;
     p->vert_count = nv;
     p->tolerance = -1.0;
+    p->sampled = 0;
     p->deviation = -1.0;
     p->lattice[0] = p->lattice[1] = p->lattice[2] = 0;
     p->glued = 0;
@@ -111,7 +112,7 @@ int coons_mesh_part_sampling(const coons_mesh *m, size_t i, double *tolerance,
                              double *deviation, size_t lattice[3])
 {
     const coons__mesh_part *p = i < m->nparts ? &m->parts[i] : NULL;
-    int sampled = p && p->deviation >= 0.0;
+    int sampled = p && p->sampled;
     if (tolerance) *tolerance = sampled ? p->tolerance : -1.0;
     if (deviation) *deviation = sampled ? p->deviation : -1.0;
     if (lattice)
@@ -122,8 +123,11 @@ int coons_mesh_part_sampling(const coons_mesh *m, size_t i, double *tolerance,
 double coons_mesh_deviation(const coons_mesh *m)
 {
     double dev = -1.0;
-    for (size_t i = 0; i < m->nparts; i++)
+    for (size_t i = 0; i < m->nparts; i++) {
+        if (!m->parts[i].sampled) continue;
+        if (isnan(m->parts[i].deviation)) return NAN;
         if (m->parts[i].deviation > dev) dev = m->parts[i].deviation;
+    }
     return dev;
 }
 

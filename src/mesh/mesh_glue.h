@@ -17,6 +17,7 @@ typedef struct coons__sample_opts {
     unsigned resolution;
     size_t max_triangles;
     double max_aspect;
+    unsigned flags;
 } coons__sample_opts;
 
 /* Checks a public options struct (NULL: defaults) and resolves it;

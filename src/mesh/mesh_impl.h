@@ -9,7 +9,9 @@ typedef struct coons__mesh_part {
     char *name;
     size_t tri_first, tri_count;
     size_t vert_first, vert_count;
-    /* Set by the sampler (sample.c); deviation < 0 for parts not sampled. */
+    /* Set by the sampler (sample.c); sampled = 0 for other parts. deviation
+     * is NaN when it was not measured (COONS_SAMPLE_UNMEASURED). */
+    int sampled;
     double tolerance, deviation;
     size_t lattice[3];
     int glued; /* bit d: the body closes on itself along direction d */

@@ -22,14 +22,14 @@
  *
  * Density: the lattices start proportional to the body's extent along each
  * direction, plus the breakpoints of the body's data (knots, segment ends,
- * where the surface may have kinks), and are refined (intervals halved) where exact points F(s,t) at
- * sub-samples of a cell lie farther than the tolerance from the cell's two
- * triangles: points on the cell's sides along a direction refine that
- * direction, interior points the direction with the longer side. The
- * distance to the cell's own triangles is an upper bound of the distance
- * to the mesh; unlike the parametric error |F(s,t) - L(s,t)| it ignores
- * sliding within the surface (a cone's straight generators need no
- * refinement). The final pass (a 7 x 7 sampling of every cell, which holds
+ * where the surface may have kinks), and are refined (intervals halved)
+ * where exact points F(s,t) at sub-samples of a cell lie farther than the
+ * tolerance from the cell's triangle that holds (s,t): points on the cell's
+ * sides along a direction refine that direction, interior points the
+ * direction with the longer side. The distance to that triangle is an upper
+ * bound of the distance to the mesh; unlike the parametric error
+ * |F(s,t) - L(s,t)| it ignores sliding within the surface (a cone's
+ * straight generators need no refinement). The final pass (a 7 x 7 sampling of every cell, which holds
  * the edge midpoints and triangle centroids, against the final merged
  * vertices) measures the reported deviation and accepts it below
  * ACCEPT_FRACTION of the tolerance.
@@ -96,6 +96,7 @@ typedef struct sampler {
     double *buf, *bs;      /* evaluation scratch */
     size_t buf_cap, bs_cap;
     int glued;             /* bit d: faces d0 and d1 coincide and are left out */
+    int measured;          /* s->dev holds the final measurement */
     double dev;            /* largest deviation found by the last scan */
 } sampler;
 
@@ -463,46 +464,82 @@ static coons_status build(sampler *s)
     return COONS_OK;
 }
 
-/* Distance from p to segment ab. */
-static double seg_dist(const double p[3], const double a[3], const double b[3])
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+static inline double dmax(double a, double b) { return a > b ? a : b; }
+
+/* Squared distance from p to segment ab. */
+static double seg_dist2(const double p[3], const double a[3], const double b[3])
 {
-    double ab[3], ap[3], q[3];
+    double ab[3], q[3];
     v3_sub(ab, b, a);
-    v3_sub(ap, p, a);
-    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(ap, ab) / l2 : 0;
+    v3_sub(q, p, a);
+    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(q, ab) / l2 : 0;
     t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    v3_copy(q, a);
-    v3_axpy(q, t, ab);
-    return v3_dist(p, q);
+    v3_axpy(q, -t, ab);
+    return v3_dot(q, q);
 }
 
-/* Distance from p to triangle abc: to its plane when the projection falls
- * inside, else to the nearest side (also for degenerate triangles). */
-static double tri_dist(const double p[3], const double a[3], const double b[3], const double c[3])
+/* Squared distance from p to triangle abc (closest point by Voronoi
+ * regions: Ericson, Real-Time Collision Detection, 5.1.5); also right for
+ * degenerate triangles, whose regions reduce to sides and corners. */
+static double tri_dist2(const double p[3], const double a[3], const double b[3],
+                        const double c[3])
 {
-    double ab[3], ac[3], ap[3], n[3];
+    double ab[3], ac[3], ap[3], q[3];
     v3_sub(ab, b, a);
     v3_sub(ac, c, a);
     v3_sub(ap, p, a);
-    v3_cross(n, ab, ac);
-    double n2 = v3_dot(n, n);
-    if (n2 > 0) {
-        /* barycentric coordinates of the projection of p */
-        double t1[3], t2[3];
-        v3_cross(t1, ap, ac);
-        v3_cross(t2, ab, ap);
-        double beta = v3_dot(t1, n) / n2, gamma = v3_dot(t2, n) / n2;
-        if (beta >= 0 && gamma >= 0 && beta + gamma <= 1) return fabs(v3_dot(ap, n)) / sqrt(n2);
+    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return v3_dot(ap, ap);
+    double bp[3];
+    v3_sub(bp, p, b);
+    double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return v3_dot(bp, bp);
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        double v = d1 / (d1 - d3);
+        v3_copy(q, ap);
+        v3_axpy(q, -v, ab);
+        return v3_dot(q, q);
     }
-    return fmin(seg_dist(p, a, b), fmin(seg_dist(p, b, c), seg_dist(p, c, a)));
+    double cp[3];
+    v3_sub(cp, p, c);
+    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return v3_dot(cp, cp);
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        double w = d2 / (d2 - d6);
+        v3_copy(q, ap);
+        v3_axpy(q, -w, ac);
+        return v3_dot(q, q);
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        double bc[3];
+        v3_sub(bc, c, b);
+        v3_copy(q, bp);
+        v3_axpy(q, -w, bc);
+        return v3_dot(q, q);
+    }
+    double den = va + vb + vc;
+    if (!(den > 0)) /* degenerate (collinear): the nearest side */
+        return dmin(seg_dist2(p, a, b), dmin(seg_dist2(p, b, c), seg_dist2(p, c, a)));
+    double v = vb / den, w = vc / den;
+    v3_copy(q, ap);
+    v3_axpy(q, -v, ab);
+    v3_axpy(q, -w, ac);
+    return v3_dot(q, q);
 }
 
-/* Distance from p to the two triangles of a cell split along diagonal dg. */
-static double cell_dist(const double p[3], const double *P00, const double *P10,
-                        const double *P01, const double *P11, int dg)
+/* Distance from the exact point p at local cell coordinates (x,y) to the
+ * cell's triangle that holds (x,y) (diagonal dg): an upper bound of the
+ * distance from p to the mesh. */
+static double cell_dist(const double p[3], double x, double y, const double *P00,
+                        const double *P10, const double *P01, const double *P11, int dg)
 {
-    if (!dg) return fmin(tri_dist(p, P00, P10, P11), tri_dist(p, P00, P11, P01));
-    return fmin(tri_dist(p, P00, P10, P01), tri_dist(p, P10, P11, P01));
+    if (!dg) return sqrt(x >= y ? tri_dist2(p, P00, P10, P11) : tri_dist2(p, P00, P11, P01));
+    return sqrt(x + y <= 1 ? tri_dist2(p, P00, P10, P01) : tri_dist2(p, P10, P11, P01));
 }
 
 static void mark(sampler *s, int d, size_t i)
@@ -555,19 +592,20 @@ static coons_status scan(sampler *s, int r, double thr)
                             if (ei && ej) continue; /* lattice point */
                             size_t row = (p - p0) * (size_t)r + (size_t)i;
                             const double *X = s->buf + 3 * (row * nbs + q * r + j);
-                            double e = cell_dist(X, P00, P10, P01, P11, dg);
+                            double e = cell_dist(X, (double)i / r, (double)j / r, P00, P10,
+                                                 P01, P11, dg);
                             if (ej)
-                                ea = fmax(ea, e);
+                                ea = dmax(ea, e);
                             else if (ei)
-                                eb = fmax(eb, e);
+                                eb = dmax(eb, e);
                             else
-                                ec = fmax(ec, e);
+                                ec = dmax(ec, e);
                         }
-                    double e = fmax(ea, fmax(eb, ec));
+                    double e = dmax(ea, dmax(eb, ec));
                     if (e > s->dev) s->dev = e;
                     if (!(thr > 0)) continue;
-                    double la = fmax(v3_dist(P00, P10), v3_dist(P01, P11));
-                    double lb = fmax(v3_dist(P00, P01), v3_dist(P10, P11));
+                    double la = dmax(v3_dist(P00, P10), v3_dist(P01, P11));
+                    double lb = dmax(v3_dist(P00, P01), v3_dist(P10, P11));
                     int ma = ea > thr, mb = eb > thr;
                     if (ec > thr && !ma && !mb) {
                         ma = la >= lb;
@@ -617,6 +655,8 @@ static coons_status run(sampler *s)
     if (st) return st;
     if (s->o->resolution) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
+        if (s->o->flags & COONS_SAMPLE_UNMEASURED) return COONS_OK;
+        s->measured = 1;
         return scan(s, MEASURE_STEPS, 0.0);
     }
     for (int round = 0; round < MAX_ROUNDS; round++) {
@@ -627,6 +667,7 @@ static coons_status run(sampler *s)
         if (split) continue;
         /* The coarse estimate is satisfied: measure on the finer samples. */
         if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->o->tolerance))) return st;
+        s->measured = 1;
         if (s->dev <= ACCEPT_FRACTION * s->o->tolerance) return COONS_OK;
         if ((st = refine(s, &split))) return st;
         if (!split) break;
@@ -667,7 +708,8 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
     if (!st) {
         coons__mesh_part *P = &mesh->parts[part];
         P->tolerance = s->o->tolerance;
-        P->deviation = s->dev;
+        P->sampled = 1;
+        P->deviation = s->measured ? s->dev : NAN;
         for (int d = 0; d < 3; d++) P->lattice[d] = s->n[d];
         P->glued = s->glued;
         if (triangles) *triangles = s->nt;
@@ -726,6 +768,10 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
     out->resolution = in->resolution;
     out->max_triangles = in->max_triangles ? in->max_triangles : COONS_DEFAULT_MAX_TRIANGLES;
     out->max_aspect = in->max_aspect != 0.0 ? in->max_aspect : COONS_DEFAULT_MAX_ASPECT;
+    if (in->flags & ~COONS_SAMPLE_UNMEASURED)
+        return coons__error_set(err, COONS_E_INVALID, "unknown sample option flags 0x%x",
+                                in->flags & ~COONS_SAMPLE_UNMEASURED);
+    out->flags = in->flags;
     return COONS_OK;
 }
 
