@@ -24,10 +24,10 @@
  * direction, plus the breakpoints of the body's data (knots, segment ends,
  * where the surface may have kinks), and are refined (intervals halved)
  * where exact points F(s,t) at sub-samples of a cell lie farther than the
- * tolerance from the cell's triangle that holds (s,t): points on the cell's
- * sides along a direction refine that direction, interior points the
- * direction with the longer side. The distance to that triangle is an upper
- * bound of the distance to the mesh; unlike the parametric error
+ * tolerance from the cell's two triangles: points on the cell's sides along
+ * a direction refine that direction, interior points the direction with
+ * the longer side. The distance to those triangles is an upper bound of the
+ * distance to the mesh; unlike the parametric error
  * |F(s,t) - L(s,t)| it ignores sliding within the surface (a cone's
  * straight generators need no refinement). The final pass (a 7 x 7 sampling of every cell, which holds
  * the edge midpoints and triangle centroids, against the final merged
@@ -532,14 +532,16 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
     return v3_dot(q, q);
 }
 
-/* Distance from the exact point p at local cell coordinates (x,y) to the
- * cell's triangle that holds (x,y) (diagonal dg): an upper bound of the
- * distance from p to the mesh. */
-static double cell_dist(const double p[3], double x, double y, const double *P00,
-                        const double *P10, const double *P01, const double *P11, int dg)
+/* Distance from p to the cell's two triangles (diagonal dg): an upper bound
+ * of the distance from p to the mesh. Both count: on a twisted cell the
+ * tilted neighbour of the triangle that holds p's parameters is often the
+ * nearer one (taking only that triangle gave the deformed cube example 4
+ * times the lattice lines along w). */
+static double cell_dist(const double p[3], const double *P00, const double *P10,
+                        const double *P01, const double *P11, int dg)
 {
-    if (!dg) return sqrt(x >= y ? tri_dist2(p, P00, P10, P11) : tri_dist2(p, P00, P11, P01));
-    return sqrt(x + y <= 1 ? tri_dist2(p, P00, P10, P01) : tri_dist2(p, P10, P11, P01));
+    if (!dg) return sqrt(dmin(tri_dist2(p, P00, P10, P11), tri_dist2(p, P00, P11, P01)));
+    return sqrt(dmin(tri_dist2(p, P00, P10, P01), tri_dist2(p, P10, P11, P01)));
 }
 
 static void mark(sampler *s, int d, size_t i)
@@ -592,8 +594,7 @@ static coons_status scan(sampler *s, int r, double thr)
                             if (ei && ej) continue; /* lattice point */
                             size_t row = (p - p0) * (size_t)r + (size_t)i;
                             const double *X = s->buf + 3 * (row * nbs + q * r + j);
-                            double e = cell_dist(X, (double)i / r, (double)j / r, P00, P10,
-                                                 P01, P11, dg);
+                            double e = cell_dist(X, P00, P10, P01, P11, dg);
                             if (ej)
                                 ea = dmax(ea, e);
                             else if (ei)
