@@ -707,6 +707,10 @@ static int write_output(const coons_model *m, long body, const char *format, con
 
 int main(int argc, char **argv)
 {
+    /* A file size limit (ulimit -f) must end in a write error (EFBIG),
+     * after which the writer removes its temporary file, not in SIGXFSZ
+     * killing the process with the temporary file left behind. */
+    signal(SIGXFSZ, SIG_IGN);
     options o;
     memset(&o, 0, sizeof o);
     int rc = parse_args(argc, argv, &o);

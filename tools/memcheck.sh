@@ -63,10 +63,10 @@ for t in "$build"/tests/test_*; do
 done
 # The fuzz target on its regression inputs and the malformed models (the
 # examples, which are large, go through the CLI tests).
-steps+=("fuzz_regressions|${VG[*]} $build/tests/fuzz_replay $here/tests/fuzz/regressions $here/tests/data/bad")
+steps+=("fuzz_regressions|${VG[*]} $build/tests/fuzz_replay $here/tests/fuzz/regressions $here/tests/data/bad $here/tests/data/hostile")
 if [ -x "$build/tools/coons2stl" ]; then
   for t in "$here"/tests/cli/test_cli_*.py; do
-    steps+=("cli_$(basename "$t" .py)|python3 $t --bin $wrap --src $here --build $build")
+    steps+=("cli_$(basename "$t" .py)|env COONS_TEST_UNDER_VALGRIND=1 python3 $t --bin $wrap --src $here --build $build")
   done
 fi
 

@@ -1,0 +1,165 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""coons2stl under adverse conditions: mesh sizes above the limits, a full
+disk, a file size limit, an unwritable standard output, signals before the
+output exists.
+
+In every case the run must fail with a message (exit status 3 for a limit
+or a write failure), an earlier file at the output path must keep its bytes
+and no other file (no temporary .NAME.coons-XXXXXX) may be left in the
+directory. The full disk is a 256 KiB tmpfs mounted in a private mount
+namespace (unshare -rm); where that is not permitted the case is skipped
+with a note.
+"""
+import os
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from clitest import Runner  # noqa: E402
+
+OLD = b"solid previous\nan earlier output that must survive\n\x00\xff"
+UNDER_VALGRIND = bool(os.environ.get("COONS_TEST_UNDER_VALGRIND"))
+
+
+def prepare(root):
+    d = tempfile.mkdtemp(dir=root)
+    out = os.path.join(d, "out.stl")
+    with open(out, "wb") as f:
+        f.write(OLD)
+    return d, out
+
+
+def kept(d, out):
+    with open(out, "rb") as f:
+        same = f.read() == OLD
+    return same and os.listdir(d) == ["out.stl"], f"unchanged {same}, files {os.listdir(d)}"
+
+
+def main():
+    T = Runner(__doc__)
+    spool = os.path.join(T.src, "examples", "spool.json")
+    root = tempfile.mkdtemp(prefix="coons_limits_")
+    try:
+        # ---- mesh size limits: refused before the mesh is made ----------------
+        cases = [
+            (["--resolution", "5000"], ["resolution 5000", "300000000 triangles",
+                                        "limit of 20000000", "--max-triangles"]),
+            (["--resolution", "1048576"], ["resolution 1048576", "limit of 20000000",
+                                           "--max-triangles"]),
+            (["--resolution", "40", "--max-triangles", "1000"],
+             ["resolution 40", "limit of 1000", "--max-triangles"]),
+            (["-t", "1e-300", "--max-triangles", "100000"],
+             ["tolerance 1e-300", "more than 100000 triangles", "--max-triangles",
+              "loosen the tolerance"]),
+        ]
+        for args, words in cases:
+            d, out = prepare(root)
+            t0 = time.monotonic()
+            rc, _, err = T.run(args + ["-o", out, spool])
+            dt = time.monotonic() - t0
+            missing = [w for w in words if w not in err]
+            label = " ".join(args)
+            T.check(f"{label}: exit 3, message says {words}", rc == 3 and not missing,
+                    f"status {rc}, missing {missing}: {err!r}")
+            T.check(f"{label}: refused in {dt:.2f} s", dt < (60 if UNDER_VALGRIND else 10))
+            ok, why = kept(d, out)
+            T.check(f"{label}: earlier output unchanged, nothing created", ok, why)
+        for args, words in [(["--resolution", "0"], ["--resolution", "1 to 1048576"]),
+                            (["--resolution", "1048577"], ["--resolution", "1 to 1048576"]),
+                            (["--max-triangles", "0"], ["--max-triangles", "> 0"]),
+                            (["--max-triangles", "1e9"], ["--max-triangles", "whole number"])]:
+            d, out = prepare(root)
+            rc, _, err = T.run(args + ["-o", out, spool])
+            missing = [w for w in words if w not in err]
+            T.check(f"{' '.join(args)}: usage error (exit 2) naming the range",
+                    rc == 2 and not missing, f"status {rc}: {err!r}")
+            ok, why = kept(d, out)
+            T.check(f"{' '.join(args)}: earlier output unchanged", ok, why)
+
+        # ---- a file size limit (ulimit -f) --------------------------------------
+        for fmt in ("stl", "stl-ascii", "off", "scad"):
+            d, out = prepare(root)
+
+            def limit():
+                resource.setrlimit(resource.RLIMIT_FSIZE, (64 * 1024, 64 * 1024))
+            p = subprocess.run([T.bin, "-f", fmt, "-t", "0.005", "-o", out, spool],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               preexec_fn=limit, timeout=600)
+            T.check(f"ulimit -f 64 KiB, {fmt}: exit 3, 'File too large'",
+                    p.returncode == 3 and "File too large" in p.stderr and "out.stl" in p.stderr,
+                    f"status {p.returncode}: {p.stderr!r}")
+            ok, why = kept(d, out)
+            T.check(f"ulimit -f 64 KiB, {fmt}: earlier output unchanged, no temporary file",
+                    ok, why)
+
+        # ---- a full disk -----------------------------------------------------------
+        mnt = tempfile.mkdtemp(dir=root)
+        script = ('m=$1; old=$2; shift 2\n'
+                  'mount -t tmpfs -o size=256k coons-test "$m" || exit 97\n'
+                  'printf "%s" "$old" > "$m/out.stl"\n'
+                  '"$@"\n'
+                  'echo "status=$?"\n'
+                  'ls -A "$m" | tr "\\n" " "; echo\n'
+                  'cat "$m/out.stl"\n')
+        old_text = "an earlier output that must survive"
+        for fmt in ("stl", "off"):
+            try:
+                p = subprocess.run(
+                    ["unshare", "-rm", "sh", "-c", script, "sh", mnt, old_text, T.bin, "-f", fmt,
+                     "-t", "0.002", "-o", os.path.join(mnt, "out.stl"), spool],
+                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=600)
+            except (OSError, subprocess.TimeoutExpired) as e:
+                print(f"note: full disk: skipped ({e})")
+                break
+            if p.returncode != 0 or not p.stdout.startswith("status="):
+                print(f"note: full disk: no private tmpfs here, skipped ({p.stderr.strip()!r})")
+                break
+            lines = p.stdout.split("\n")
+            status = int(lines[0].split("=")[1])
+            T.check(f"full disk, {fmt}: exit 3, 'No space left on device'",
+                    status == 3 and "No space left on device" in p.stderr,
+                    f"status {status}: {p.stderr!r}")
+            T.check(f"full disk, {fmt}: earlier output unchanged, no temporary file",
+                    lines[1].split() == ["out.stl"] and lines[2] == old_text, f"{lines[:3]}")
+
+        # ---- standard output that cannot be written -------------------------------
+        if os.path.exists("/dev/full"):
+            for fmt in ("stl", "stl-ascii", "off", "scad"):
+                with open("/dev/full", "wb") as full:
+                    p = subprocess.run([T.bin, "-f", fmt, spool], stdout=full,
+                                       stderr=subprocess.PIPE, text=True, timeout=600)
+                T.check(f"standard output on /dev/full, {fmt}: exit 3, says so",
+                        p.returncode == 3 and "No space left on device" in p.stderr,
+                        f"status {p.returncode}: {p.stderr!r}")
+
+        # ---- signals before the output exists ---------------------------------------
+        # A fine tolerance keeps coons2stl sampling for a while; the signal
+        # comes before the temporary file is made (if the run gets further,
+        # the writer's own handling applies and the same must hold).
+        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            d, out = prepare(root)
+            proc = subprocess.Popen([T.bin, "-t", "0.0004", "-o", out, spool],
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            time.sleep(3.0 if UNDER_VALGRIND else 0.3)
+            proc.send_signal(sig)
+            err = proc.communicate(timeout=600)[1]
+            name = signal.Signals(sig).name
+            if proc.returncode == 0:
+                print(f"note: {name}: the run finished before the signal")
+                continue
+            T.check(f"{name} while sampling: died of it", proc.returncode == -sig,
+                    f"{proc.returncode} {err!r}")
+            ok, why = kept(d, out)
+            T.check(f"{name} while sampling: earlier output unchanged, nothing created", ok, why)
+    finally:
+        shutil.rmtree(root, ignore_errors=True)
+    T.finish()
+
+
+if __name__ == "__main__":
+    main()
