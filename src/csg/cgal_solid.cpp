@@ -152,6 +152,18 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
     const IK::Point_3 &v = P[s[si[0]]];
     const IK::Point_3 &s1 = P[s[(si[0] + 1) % 3]], &s2 = P[s[(si[0] + 2) % 3]];
     const IK::Point_3 &t1 = P[t[(ti[0] + 1) % 3]], &t2 = P[t[(ti[0] + 2) % 3]];
+    // One triangle strictly on one side of the other's plane (but for v):
+    // they meet only at v. This settles almost every pair of a fan.
+    CGAL::Orientation a1 = CGAL::orientation(v, s1, s2, t1), a2 = CGAL::orientation(v, s1, s2, t2);
+    if (a1 == a2 && a1 != CGAL::COPLANAR) return false;
+    CGAL::Orientation b1 = CGAL::orientation(v, t1, t2, s1), b2 = CGAL::orientation(v, t1, t2, s2);
+    if (b1 == b2 && b1 != CGAL::COPLANAR) return false;
+    if (a1 == CGAL::COPLANAR && a2 == CGAL::COPLANAR) {
+        // Coplanar, sharing v: each lies in its angle at v (< 180 degrees),
+        // so they overlap exactly when a side of one enters the other's angle.
+        return in_wedge(v, t1, t2, s1) || in_wedge(v, t1, t2, s2) || in_wedge(v, s1, s2, t1) ||
+               in_wedge(v, s1, s2, t2);
+    }
     IK::Triangle_3 S(v, s1, s2), T(v, t1, t2);
     if (CGAL::do_intersect(IK::Segment_3(s1, s2), T)) return true;
     if (CGAL::do_intersect(IK::Segment_3(t1, t2), S)) return true;
@@ -215,7 +227,9 @@ bool exact_mesh(const ExactSoup &s, EMesh &m)
     vs.reserve(s.pts.size());
     for (const EPoint &p : s.pts) vs.push_back(m.add_vertex(p));
     for (const auto &t : s.tri)
-        if (m.add_face(vs[t[0]], vs[t[1]], vs[t[2]]) == EMesh::null_face()) return false;
+        if (CGAL::collinear(s.pts[t[0]], s.pts[t[1]], s.pts[t[2]]) ||
+            m.add_face(vs[t[0]], vs[t[1]], vs[t[2]]) == EMesh::null_face())
+            return false;
     for (EVert v : m.vertices())
         if (m.is_isolated(v) || m.is_border(v)) return false;
     return CGAL::is_closed(m);
@@ -763,7 +777,8 @@ void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep)
 //    chained corefinement on the exact kernel, rounded once at the end;
 //  - a repaired part that is not 2-manifold (a pinch) cannot enter a
 //    corefinement: then the whole group goes through the soup pass at once.
-bool solidify_group(const double *xyz, const uint32_t *tri, const std::vector<Part> &parts,
+bool solidify_group(const double *xyz, const double *sxyz, const uint32_t *tri,
+                    const std::vector<Part> &parts,
                     const std::vector<size_t> &ids, const coons_csg_options &o,
                     coons_csg_report &rep, Progress prog, double p0, double p1, Soup &s)
 {
@@ -789,7 +804,7 @@ bool solidify_group(const double *xyz, const uint32_t *tri, const std::vector<Pa
         ExactSoup es;
         if (pairs == 0) {
             for (size_t v = 0; v < p.vert_count; v++) {
-                const double *q = xyz + 3 * (p.vert_first + v);
+                const double *q = sxyz + 3 * (p.vert_first + v);
                 es.pts.emplace_back(q[0], q[1], q[2]);
             }
             for (size_t t = 0; t < p.tri_count; t++)
@@ -799,7 +814,7 @@ bool solidify_group(const double *xyz, const uint32_t *tri, const std::vector<Pa
         }
         std::vector<size_t> one{ids[k]};
         double q0 = p0 + (p1 - p0) * k / (2.0 * ids.size());
-        Solidifier sol(xyz, tri, parts, one, rep, prog, q0, q0 + (p1 - p0) / (2.0 * ids.size()));
+        Solidifier sol(sxyz, tri, parts, one, rep, prog, q0, q0 + (p1 - p0) / (2.0 * ids.size()));
         if (!sol.run(solids[k], es)) {
             manifold_all = false;
             if (ids.size() == 1) result = es;
@@ -809,7 +824,7 @@ bool solidify_group(const double *xyz, const uint32_t *tri, const std::vector<Pa
     if (ids.size() == 1 && !manifold_all) {
         // a pinched solid of one body: as it is
     } else if (!manifold_all) {
-        Solidifier sol(xyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
+        Solidifier sol(sxyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
         EMesh m;
         sol.run(m, result);
     } else {
@@ -831,7 +846,7 @@ bool solidify_group(const double *xyz, const uint32_t *tri, const std::vector<Pa
         }
         if (!why.empty()) {
             rep.fallbacks++;
-            Solidifier sol(xyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
+            Solidifier sol(sxyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
             EMesh m;
             result = ExactSoup();
             sol.run(m, result);
@@ -869,6 +884,27 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
         rep.triangles_in = coons_mesh_triangle_count(in);
         if (opts->inject_failure) throw CGAL::Failure_exception("libcoons", "injected", __FILE__, __LINE__, "injected failure (testing)");
 
+        // Parts that need exact work are first snapped to a grid of a power
+        // of two near 1e-12 of the input's size: sampling noise (a NURBS
+        // plane at z = 10.000000000000002 next to one at z = 10) otherwise
+        // makes near-coplanar contacts whose exact intersections are
+        // narrower than doubles, and the final rounding turns them into
+        // crossings. The snap moves no point by more than 1e-12 of the size.
+        std::vector<double> sxyz(xyz, xyz + 3 * coons_mesh_vertex_count(in));
+        {
+            double lo[3], hi[3];
+            bbox_empty(lo, hi);
+            for (size_t v = 0; v < sxyz.size() / 3; v++) bbox_add(lo, hi, &sxyz[3 * v]);
+            double diag = bbox_diag(lo, hi), mag = 0;
+            for (int c = 0; c < 3; c++) mag = std::max(mag, std::max(std::fabs(lo[c]), std::fabs(hi[c])));
+            if (diag > 0) {
+                int e;
+                std::frexp(std::max(diag, mag) * 1e-12, &e);
+                double g = std::ldexp(1.0, e);
+                for (double &x : sxyz) x = std::nearbyint(x / g) * g;
+            }
+        }
+
         // Groups: parts whose boxes meet, transitively (unite), or each part.
         std::vector<int> group(parts.size(), -1);
         std::vector<std::vector<size_t>> groups;
@@ -894,7 +930,7 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
             double p0 = (double)gi / groups.size(), p1 = (double)(gi + 1) / groups.size();
             prog("check", p0);
             Soup s;
-            if (!solidify_group(xyz, tri, parts, current, *opts, rep, prog, p0, p1, s)) {
+            if (!solidify_group(xyz, sxyz.data(), tri, parts, current, *opts, rep, prog, p0, p1, s)) {
                 size_t degenerate = 0;
                 size_t pairs = count_self_intersections(s.xyz.data(), s.xyz.size() / 3,
                                                         s.tri.data(), s.tri.size() / 3,
