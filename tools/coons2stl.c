@@ -31,8 +31,12 @@ typedef struct options {
     double tolerance;   /* > 0 when given */
     unsigned resolution;  /* --resolution: 0 = adaptive */
     size_t max_triangles; /* --max-triangles: 0 = the library's default */
+    coons_model_load_options load; /* --max-bytes, --max-values, --max-depth, --max-points */
     int eval, jacobian, info, quiet;
 } options;
+
+/* The loader caps max_depth here (coons-model(5)). */
+#define MAX_DEPTH_CEILING 256u
 
 static void usage(FILE *f)
 {
@@ -49,6 +53,12 @@ static void usage(FILE *f)
             "      --resolution N     sample each body on a fixed lattice of N intervals along\n"
             "                         u, v and w instead of adapting it to the tolerance\n"
             "      --max-triangles N  refuse to make more than N triangles (default %zu)\n"
+            "      --max-bytes N      refuse a model file of more than N bytes (default %zu)\n"
+            "      --max-values N     ... of more than N JSON values, keys included (default %zu)\n"
+            "      --max-depth N      ... with arrays and objects nested deeper than N\n"
+            "                         (default %u, at most %u)\n"
+            "      --max-points N     ... with more than N points in one curve, surface or\n"
+            "                         volume net (default %zu)\n"
             "      --body NAME|INDEX  use that body (a 0-based index if all digits, else a\n"
             "                         name); default: all bodies, or body 0 for --eval\n"
             "      --eval             read lines \"u v w\" from standard input and print\n"
@@ -62,7 +72,8 @@ static void usage(FILE *f)
             "\n"
             "Exit status: 0 success, 1 bad input, 2 bad usage, 3 a geometric operation\n"
             "or writing the output failed.\n",
-            PROG, COONS_DEFAULT_MAX_TRIANGLES);
+            PROG, COONS_DEFAULT_MAX_TRIANGLES, COONS_MODEL_MAX_BYTES, COONS_MODEL_MAX_VALUES,
+            COONS_MODEL_MAX_DEPTH, MAX_DEPTH_CEILING, COONS_MODEL_MAX_POINTS);
 }
 
 static int usage_error(const char *fmt, const char *arg)
@@ -104,6 +115,7 @@ static int parse_args(int argc, char **argv, options *o)
 {
     int only_files = 0;
     const char *format = NULL, *tol = NULL, *res = NULL, *maxt = NULL;
+    const char *lim[4] = {NULL, NULL, NULL, NULL};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
@@ -141,8 +153,9 @@ static int parse_args(int argc, char **argv, options *o)
         memcpy(lname, name, nl);
         lname[nl] = '\0';
         if (eq) value = eq + 1;
-        static const char *const with_value[] = {"output", "format",     "tolerance",
-                                                 "body",   "resolution", "max-triangles"};
+        static const char *const with_value[] = {
+            "output",        "format",    "tolerance",  "body",      "resolution",
+            "max-triangles", "max-bytes", "max-values", "max-depth", "max-points"};
         static const char *const flags[] = {"eval", "jacobian", "info", "quiet", "help", "version"};
         int takes = -1;
         for (size_t k = 0; k < sizeof with_value / sizeof *with_value; k++)
@@ -162,6 +175,10 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(lname, "body") == 0) o->body = value;
         else if (strcmp(lname, "resolution") == 0) res = value;
         else if (strcmp(lname, "max-triangles") == 0) maxt = value;
+        else if (strcmp(lname, "max-bytes") == 0) lim[0] = value;
+        else if (strcmp(lname, "max-values") == 0) lim[1] = value;
+        else if (strcmp(lname, "max-depth") == 0) lim[2] = value;
+        else if (strcmp(lname, "max-points") == 0) lim[3] = value;
         else if (strcmp(lname, "eval") == 0) o->eval = 1;
         else if (strcmp(lname, "jacobian") == 0) o->jacobian = o->eval = 1;
         else if (strcmp(lname, "info") == 0) o->info = 1;
@@ -200,6 +217,26 @@ static int parse_args(int argc, char **argv, options *o)
             return usage_error("--max-triangles needs a whole number > 0, not '%s'", maxt);
         o->max_triangles = (size_t)v;
     }
+    /* Loader limits: whole numbers > 0 (the depth at most the ceiling). */
+    static const char *const lim_names[4] = {"--max-bytes", "--max-values", "--max-depth",
+                                             "--max-points"};
+    for (int k = 0; k < 4; k++) {
+        if (!lim[k]) continue;
+        char *end = NULL;
+        errno = 0;
+        unsigned long long v = strtoull(lim[k], &end, 10);
+        unsigned long long top = k == 2 ? MAX_DEPTH_CEILING : SIZE_MAX;
+        if (lim[k][0] < '0' || lim[k][0] > '9' || *end || errno || v < 1 || v > top) {
+            fprintf(stderr, "%s: %s needs a whole number from 1 to %llu, not '%s'\n", PROG,
+                    lim_names[k], top, lim[k]);
+            fprintf(stderr, "Try '%s --help' for more information.\n", PROG);
+            return EXIT_USAGE;
+        }
+        if (k == 0) o->load.max_bytes = (size_t)v;
+        if (k == 1) o->load.max_values = (size_t)v;
+        if (k == 2) o->load.max_depth = (unsigned)v;
+        if (k == 3) o->load.max_points = (size_t)v;
+    }
     if (o->eval && (res || maxt))
         return usage_error("%s", "--resolution and --max-triangles are for meshes and --info");
     if (o->eval && o->info) return usage_error("%s", "--eval and --info cannot be combined");
@@ -232,7 +269,8 @@ static int load_model(const options *o, coons_model **m)
     if (strcmp(o->input, "-") == 0) {
         /* Read at most one byte more than the loader accepts, so that it
          * reports the limit itself. */
-        size_t cap = 1 << 16, len = 0, max = COONS_MODEL_MAX_BYTES + 1;
+        size_t max_bytes = o->load.max_bytes ? o->load.max_bytes : COONS_MODEL_MAX_BYTES;
+        size_t cap = 1 << 16, len = 0, max = max_bytes < SIZE_MAX ? max_bytes + 1 : max_bytes;
         char *buf = malloc(cap);
         while (buf) {
             if (len == cap) {
@@ -260,10 +298,18 @@ static int load_model(const options *o, coons_model **m)
             free(buf);
             return EXIT_INPUT;
         }
-        rc = coons_model_load_buffer(buf, len, "<stdin>", m, &err);
+        if (len > max_bytes) {
+            fprintf(stderr,
+                    "%s: <stdin>: the model is more than %zu bytes, the limit (raise it with "
+                    "--max-bytes N)\n",
+                    PROG, max_bytes);
+            free(buf);
+            return EXIT_INPUT;
+        }
+        rc = coons_model_load_buffer_opts(buf, len, "<stdin>", &o->load, m, &err);
         free(buf);
     } else {
-        rc = coons_model_load(o->input, m, &err);
+        rc = coons_model_load_opts(o->input, &o->load, m, &err);
     }
     if (rc != COONS_OK) {
         /* The message carries FILE:LINE:COL: /json/path: ... already. */
@@ -713,6 +759,7 @@ int main(int argc, char **argv)
     signal(SIGXFSZ, SIG_IGN);
     options o;
     memset(&o, 0, sizeof o);
+    o.load.version = COONS_MODEL_LOAD_OPTIONS_VERSION;
     int rc = parse_args(argc, argv, &o);
     if (rc >= 0) return rc;
     coons_model *m = NULL;

@@ -69,7 +69,8 @@ COONS_EXPORT coons_status coons_model_load_buffer(const char *data, size_t size,
 
 /**
  * Limits that guard the loader's allocations; exceeding one gives
- * ::COONS_E_LIMIT with a message that names the limit. A field left 0 takes
+ * ::COONS_E_LIMIT with a message that names the limit and how to raise it
+ * (the field, and the coons2stl option). A field left 0 takes
  * the default. Initialise with ::COONS_MODEL_LOAD_OPTIONS_INIT.
  */
 typedef struct coons_model_load_options {

@@ -271,15 +271,17 @@ static coons_status scan(scanner *sc, size_t max_tokens, unsigned max_depth, siz
                 return scan_fail(sc, COONS_E_PARSE, i, "unexpected end of input: expected a value");
             if (++ntok > max_tokens)
                 return scan_fail(sc, COONS_E_LIMIT, i,
-                                 "more than %zu JSON values: above the limit of the loader",
+                                 "more than %zu JSON values, the limit (raise max_values; "
+                                 "coons2stl --max-values N)",
                                  max_tokens);
             char c = b[i];
             if (c == '{' || c == '[') {
                 if (sc->depth >= max_depth)
                     return scan_fail(sc, COONS_E_LIMIT, i,
                                      "arrays and objects nested deeper than the limit of %u "
-                                     "levels",
-                                     max_depth);
+                                     "levels (raise max_depth, at most %u; coons2stl "
+                                     "--max-depth N)",
+                                     max_depth, (unsigned)COONS__JSON_DEPTH_CEILING);
                 frame *f = &sc->st[sc->depth++];
                 memset(f, 0, sizeof *f);
                 f->is_object = (c == '{');
@@ -318,7 +320,8 @@ static coons_status scan(scanner *sc, size_t max_tokens, unsigned max_depth, siz
                                  describe(sc, i, d));
             if (++ntok > max_tokens)
                 return scan_fail(sc, COONS_E_LIMIT, i,
-                                 "more than %zu JSON values: above the limit of the loader",
+                                 "more than %zu JSON values, the limit (raise max_values; "
+                                 "coons2stl --max-values N)",
                                  max_tokens);
             size_t ks = i;
             if ((rc = scan_string(sc, i, &i))) return rc;

@@ -400,7 +400,7 @@ static coons_status net(ld *L, size_t tok, const netspec *ns, size_t shape[3], d
         else if (n > L->max_points || (n && total > L->max_points / n))
             rc = fail(L, t, COONS_E_LIMIT,
                       "%s has more than %zu %s: above the limit of %zu points per curve, "
-                      "surface or volume",
+                      "surface or volume (raise max_points; coons2stl --max-points N)",
                       ns->what, L->max_points, ns->noun, L->max_points);
         else if (ns->maxdir && n > ns->maxdir)
             rc = fail(L, t, COONS_E_LIMIT,
@@ -1472,8 +1472,9 @@ coons_status coons_model_load_buffer_opts(const char *data, size_t size, const c
     resolve(opts, &o);
     if (size > o.max_bytes)
         return file_error(err, COONS_E_LIMIT, file,
-                          "the model is %zu bytes, above the limit of %zu bytes", size,
-                          o.max_bytes);
+                          "the model is %zu bytes, above the limit of %zu bytes (raise "
+                          "max_bytes; coons2stl --max-bytes N)",
+                          size, o.max_bytes);
     ld L;
     memset(&L, 0, sizeof L);
     L.buf = data ? data : "";
@@ -1533,7 +1534,8 @@ coons_status coons_model_load_opts(const char *path, const coons_model_load_opti
         if ((uintmax_t)st.st_size > o.max_bytes) {
             fclose(f);
             return file_error(err, COONS_E_LIMIT, path,
-                              "the model is %jd bytes, above the limit of %zu bytes",
+                              "the model is %jd bytes, above the limit of %zu bytes (raise "
+                              "max_bytes; coons2stl --max-bytes N)",
                               (intmax_t)st.st_size, o.max_bytes);
         }
         cap = (size_t)st.st_size + 1; /* +1: notices a file that grew */
@@ -1567,6 +1569,13 @@ coons_status coons_model_load_opts(const char *path, const coons_model_load_opti
     if (bad) {
         coons__free(buf);
         return io_error(err, path, "read the model", errnum);
+    }
+    if (len > o.max_bytes) { /* not a regular file: reading stopped past the limit */
+        coons__free(buf);
+        return file_error(err, COONS_E_LIMIT, path,
+                          "the model is more than %zu bytes, the limit (raise max_bytes; "
+                          "coons2stl --max-bytes N)",
+                          o.max_bytes);
     }
     coons_status rc = coons_model_load_buffer_opts(buf, len, path, &o, out, err);
     coons__free(buf);

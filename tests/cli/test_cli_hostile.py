@@ -232,28 +232,29 @@ def main():
 
         big("a million nested arrays", "deep.json",
             write_parts(('{"coons": 1, "bodies": ', 1), ("[", 1000000)), 1,
-            ["deep.json:1:", "nested deeper than the limit of 64 levels"])
+            ["deep.json:1:", "nested deeper than the limit of 64 levels", "--max-depth"])
         big("a million nested objects", "deepobj.json",
             write_parts(('{"coons": 1, "bodies": ', 1), ('{"a": ', 1000000)), 1,
-            ["nested deeper than the limit of 64 levels"])
+            ["nested deeper than the limit of 64 levels", "--max-depth"])
         big("9 million values in one array", "values.json",
             write_parts(('{"coons": 1, "bodies": [', 1), ("0," * 1000, 9000), ("0]}", 1)), 1,
-            ["more than 8388608 JSON values", "limit"])
+            ["more than 8388608 JSON values", "limit", "--max-values"])
         row = "[" + ",".join(["[[0,0,0],[0,0,1]]"] * 500) + "]"
         big("a volume of 1001 x 500 x 2 points", "points.json",
             write_parts(('{"coons": 1, "bodies": [{"type": "bspline-volume", '
                          '"degree": [1, 1, 1], "points": [', 1), (row + ",", 1000),
                         (row + "]}]}", 1)), 1,
-            ["/bodies/0/points/0/0", "limit of 1000000 points"], max_mib=400.0)
+            ["/bodies/0/points/0/0", "limit of 1000000 points", "--max-points"], max_mib=400.0)
 
         def sparse(path):
             with open(path, "wb") as f:
                 f.truncate(1100 * 1024 * 1024)
         big("a 1.1 GB file", "huge.json", sparse, 1,
-            ["huge.json: the model is 1153433600 bytes", "limit of 268435456 bytes"],
+            ["huge.json: the model is 1153433600 bytes", "limit of 268435456 bytes",
+             "--max-bytes"],
             max_s=2.0, max_mib=50.0)
         big("a 1.1 GB file on standard input", "huge.json", sparse, 1,
-            ["<stdin>:", "limit of 268435456 bytes"], stdin=True, max_s=20.0, max_mib=1200.0)
+            ["<stdin>:", "more than 268435456 bytes", "--max-bytes"], stdin=True, max_s=20.0, max_mib=1200.0)
     finally:
         shutil.rmtree(root, ignore_errors=True)
     T.finish()

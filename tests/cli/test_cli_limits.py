@@ -81,6 +81,47 @@ def main():
             ok, why = kept(d, out)
             T.check(f"{' '.join(args)}: earlier output unchanged", ok, why)
 
+        # ---- the loader's limits can be raised ----------------------------------------
+        model = os.path.join(root, "m.json")
+        box = ('"type": "body0", "corners": [[0, 0, 0], [0, 0, 1], [0, 1, 0], [0, 1, 1], '
+               '[1, 0, 0], [1, 0, 1], [1, 1, 0], [1, 1, 1]]')
+        nested = '{"coons": 1, "bodies": [{' + box + '}], "units": ' + "[" * 80 + "]" * 80 + "}"
+        line = '{"coons": 1, "bodies": [{' + box + '}]}'
+        cube = ('{"coons": 1, "bodies": [{"type": "bezier-volume", "points": '
+                '[[[[0,0,0],[0,0,1]],[[0,1,0],[0,1,1]]],[[[1,0,0],[1,0,1]],[[1,1,0],[1,1,1]]]]}]}')
+        raise_cases = [
+            # (text, limit option, too low, enough, words when too low, words when enough)
+            (nested, "--max-depth", "64", "100", ["nested deeper than the limit of 64 levels"],
+             ["/units", "expected a string"]),
+            (line, "--max-values", "30", "100", ["more than 30 JSON values"], None),
+            (line, "--max-bytes", str(len(line) - 1), str(len(line)),
+             [f"the model is {len(line)} bytes, above the limit of {len(line) - 1} bytes"], None),
+            (cube, "--max-points", "7", "8", ["more than 7 points", "limit of 7 points"], None),
+        ]
+        for text, opt, low, enough, words, after in raise_cases:
+            with open(model, "w") as f:
+                f.write(text)
+            rc, _, err = T.run(["--info", opt, low, model])
+            missing = [w for w in words + [opt + " N"] if w not in err]
+            T.check(f"{opt} {low}: exit 1, the limit and how to raise it",
+                    rc == 1 and not missing, f"status {rc}, missing {missing}: {err!r}")
+            rc, out, err = T.run(["--info", opt, enough, model])
+            if after is None:
+                T.check(f"{opt} {enough}: loads", rc == 0 and '"body_count": 1' in out, err)
+            else:
+                T.check(f"{opt} {enough}: past the limit, the next error",
+                        rc == 1 and all(w in err for w in after) and opt not in err, err)
+        for opt, bad in (("--max-depth", "257"), ("--max-depth", "0"), ("--max-points", "-1"),
+                         ("--max-values", "x"), ("--max-bytes", "")):
+            rc, _, err = T.run(["--info", opt, bad, spool])
+            T.check(f"{opt} '{bad}': usage error (exit 2)",
+                    rc == 2 and opt in err and "whole number" in err, f"{rc} {err!r}")
+        with open(spool, "rb") as f:
+            rc, _, err = T.run(["--info", "--max-bytes", "100", "-"], stdin=f.read(), binary=True)
+        T.check("--max-bytes 100 on standard input: exit 1, the limit and how to raise it",
+                rc == 1 and b"<stdin>: the model is more than 100 bytes" in err and
+                b"--max-bytes N" in err, repr(err))
+
         # ---- a file size limit (ulimit -f) --------------------------------------
         for fmt in ("stl", "stl-ascii", "off", "scad"):
             d, out = prepare(root)
