@@ -67,6 +67,7 @@ typedef struct coons_csg_report {
     size_t passed_through;      /**< parts that needed no Boolean work */
     size_t patches;             /**< patches classified by ray casting */
     size_t patches_kept;        /**< of which kept */
+    size_t fast_unions;         /**< groups united on the inexact-constructions kernel, result verified */
     size_t fallbacks;           /**< groups the corefinement refused, done by the soup pass */
     size_t triangles_out;       /**< triangles of the result */
     size_t rounding_merged;     /**< vertices merged by rounding to double */

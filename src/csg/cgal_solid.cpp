@@ -64,6 +64,7 @@ typedef CGAL::Exact_predicates_exact_constructions_kernel EK;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel IK;
 typedef EK::Point_3 EPoint;
 typedef CGAL::Surface_mesh<EPoint> EMesh;
+typedef CGAL::Surface_mesh<IK::Point_3> IMesh;
 typedef EMesh::Face_index EFace;
 typedef EMesh::Vertex_index EVert;
 
@@ -769,6 +770,67 @@ void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep)
     fix_slivers(out, rep);
 }
 
+// The fast path for bodies that do not cross themselves: chained
+// corefinement on the inexact-constructions kernel (exact predicates,
+// intersection points rounded as they are made). Such chains can leave
+// crossings (BUILD-NOTES), so the result is accepted only when the exact
+// check of the finished double mesh finds none; otherwise the exact path
+// runs. Returns true with `s` filled, or false.
+bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part> &parts,
+                const std::vector<size_t> &ids, coons_csg_report &rep, Progress prog, double p0,
+                double p1, Soup &s)
+{
+    try {
+        std::vector<IMesh> ms(ids.size());
+        for (size_t k = 0; k < ids.size(); k++) {
+            const Part &p = parts[ids[k]];
+            std::vector<IMesh::Vertex_index> vs;
+            for (size_t v = 0; v < p.vert_count; v++) {
+                const double *q = sxyz + 3 * (p.vert_first + v);
+                vs.push_back(ms[k].add_vertex(IK::Point_3(q[0], q[1], q[2])));
+            }
+            for (size_t t = 0; t < p.tri_count; t++) {
+                const uint32_t *q = tri + 3 * (p.tri_first + t);
+                auto a = vs[q[0] - p.vert_first], b = vs[q[1] - p.vert_first], c = vs[q[2] - p.vert_first];
+                if (CGAL::collinear(ms[k].point(a), ms[k].point(b), ms[k].point(c)) ||
+                    ms[k].add_face(a, b, c) == IMesh::null_face())
+                    return false;
+            }
+            if (!CGAL::is_closed(ms[k])) return false;
+        }
+        IMesh acc = std::move(ms[0]);
+        for (size_t k = 1; k < ids.size(); k++) {
+            prog("union", p0 + (p1 - p0) * k / ids.size());
+            if (!PMP::corefine_and_compute_union(acc, ms[k], acc)) return false;
+        }
+        Soup r;
+        std::vector<uint32_t> id(acc.number_of_vertices(), UINT32_MAX);
+        for (auto v : acc.vertices()) {
+            id[v] = (uint32_t)(r.xyz.size() / 3);
+            const IK::Point_3 &q = acc.point(v);
+            r.xyz.insert(r.xyz.end(), {q.x(), q.y(), q.z()});
+        }
+        for (auto f : acc.faces())
+            for (auto v : CGAL::vertices_around_face(acc.halfedge(f), acc)) r.tri.push_back(id[v]);
+        coons_csg_report scratch = rep;
+        merge_close(r, scratch);
+        fix_slivers(r, scratch);
+        size_t degenerate = 0;
+        if (count_self_intersections(r.xyz.data(), r.xyz.size() / 3, r.tri.data(),
+                                     r.tri.size() / 3, &degenerate) ||
+            degenerate)
+            return false;
+        rep = scratch;
+        rep.fast_unions++;
+        s = std::move(r);
+        return true;
+    } catch (const std::bad_alloc &) {
+        throw;
+    } catch (...) {
+        return false;
+    }
+}
+
 // One group of parts whose boxes meet. Returns true when the result was
 // passed through unchanged (no rounding, no check needed).
 //  - a part that meets nothing and does not cross itself passes through;
@@ -785,16 +847,28 @@ bool solidify_group(const double *xyz, const double *sxyz, const uint32_t *tri,
     std::vector<EMesh> solids(ids.size());
     ExactSoup result;
     bool manifold_all = true;
+    std::vector<size_t> crossing(ids.size());
+    bool clean = true;
     for (size_t k = 0; k < ids.size(); k++) {
         const Part &p = parts[ids[k]];
         std::vector<uint32_t> local(3 * p.tri_count);
         for (size_t t = 0; t < local.size(); t++)
             local[t] = tri[3 * p.tri_first + t] - (uint32_t)p.vert_first;
-        size_t pairs = o.repair || ids.size() > 1
-                           ? count_self_intersections(xyz + 3 * p.vert_first, p.vert_count,
-                                                      local.data(), p.tri_count)
-                           : 0;
-        rep.intersecting_pairs += pairs;
+        crossing[k] = o.repair || ids.size() > 1
+                          ? count_self_intersections(xyz + 3 * p.vert_first, p.vert_count,
+                                                     local.data(), p.tri_count)
+                          : 0;
+        rep.intersecting_pairs += crossing[k];
+        if (crossing[k]) clean = false;
+    }
+    if (clean && ids.size() > 1 && fast_union(sxyz, tri, parts, ids, rep, prog, p0, p1, s))
+        return true;
+    for (size_t k = 0; k < ids.size(); k++) {
+        const Part &p = parts[ids[k]];
+        std::vector<uint32_t> local(3 * p.tri_count);
+        for (size_t t = 0; t < local.size(); t++)
+            local[t] = tri[3 * p.tri_first + t] - (uint32_t)p.vert_first;
+        size_t pairs = crossing[k];
         if (pairs == 0 && ids.size() == 1) {
             rep.passed_through++;
             s.xyz.assign(xyz + 3 * p.vert_first, xyz + 3 * (p.vert_first + p.vert_count));

@@ -52,6 +52,8 @@ int main(int argc, char **argv)
     char path[4096];
     double best[5] = {1e30, 1e30, 1e30, 1e30, 1e30}; /* load, sample, union, write, total */
     size_t tin = 0, tout = 0;
+    coons_csg_report last;
+    memset(&last, 0, sizeof last);
     double vol = 0;
     for (int r = 0; r < repeat; r++) {
         double t0 = now();
@@ -90,6 +92,7 @@ int main(int argc, char **argv)
         double t[5] = {t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0};
         for (int k = 0; k < 5; k++)
             if (t[k] < best[k]) best[k] = t[k];
+        last = rep;
         tin = coons_mesh_triangle_count(all);
         tout = coons_mesh_triangle_count(u);
         vol = coons_mesh_volume(u);
@@ -98,6 +101,10 @@ int main(int argc, char **argv)
         coons_model_free(m);
     }
     printf("triangles_in %zu\ntriangles_out %zu\nvolume %.9g\n", tin, tout, vol);
+    printf("groups %zu\nfast_unions %zu\nfallbacks %zu\npatches %zu\nclose_merged %zu\n"
+           "slivers_fixed %zu\n",
+           last.groups, last.fast_unions, last.fallbacks, last.patches, last.close_merged,
+           last.slivers_fixed);
     printf("load_s %.4f\nsample_s %.4f\nunion_s %.4f\nwrite_s %.4f\ntotal_s %.4f\n", best[0],
            best[1], best[2], best[3], best[4]);
     return 0;
