@@ -249,6 +249,54 @@ static void test_fold_is_repaired(void **state)
     coons_body_free(b);
 }
 
+/* A body that crosses itself united with a box: the fold is repaired on
+ * its own first (soup pass), then united with the box on the exact path
+ * (the fast path needs bodies that do not cross themselves). */
+static void test_fold_united_with_box(void **state)
+{
+    (void)state;
+    /* u folds back: x = 4u - 3u^2 (0 -> 4/3 -> 1), the cross-section grows
+     * and sinks with u, so the folded layers cross transversally. */
+    double X[3] = {0, 2, 1}, h[3] = {0.3, 0.4, 0.8}, c[3] = {0, -0.1, -0.3}, g[3] = {1, 1.2, 1.6};
+    double P[3][2][2][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 2; k++) {
+                P[i][j][k][0] = X[i];
+                P[i][j][k][1] = (2 * j - 1) * h[i];
+                P[i][j][k][2] = c[i] + k * g[i];
+            }
+    size_t dims[3] = {3, 2, 2};
+    coons_body *f = NULL, *b = box(-0.5, -0.2, 0.3, 1.0, 0.4, 0.4);
+    coons_error err;
+    assert_coons_ok(coons_body_bezier(&P[0][0][0][0], dims, &f, &err), &err);
+    coons_mesh *m = NULL, *u = NULL, *alone = NULL;
+    assert_coons_ok(coons_mesh_new(&m, &err), &err);
+    int nf[3] = {24, 6, 6}, nb[3] = {4, 4, 4};
+    add_body(m, f, nf, "fold");
+    coons_csg_options o = COONS_CSG_OPTIONS_INIT;
+    o.unite = 0;
+    coons_csg_report rep;
+    assert_coons_ok(coons_mesh_solidify(m, &o, &alone, &rep, &err), &err);
+    assert_true(rep.intersecting_pairs > 0);
+    add_body(m, b, nb, "box");
+    o.unite = 1;
+    assert_coons_ok(coons_mesh_solidify(m, &o, &u, &rep, &err), &err);
+    assert_int_equal(rep.fast_unions, 0);
+    size_t pairs = 99;
+    assert_coons_ok(coons_mesh_self_intersections(u, &pairs, &err), &err);
+    assert_int_equal(pairs, 0);
+    assert_true(rep.closed);
+    double vf = coons_mesh_volume(alone), vb = 0.4 * 0.4 * 1.0, vu = coons_mesh_volume(u);
+    printf("fold %.6f box %.6f union %.6f\n", vf, vb, vu);
+    assert_true(vu > vf + 1e-3 && vu < vf + vb - 1e-3); /* the box sticks out of the fold */
+    coons_mesh_free(u);
+    coons_mesh_free(alone);
+    coons_mesh_free(m);
+    coons_body_free(f);
+    coons_body_free(b);
+}
+
 static void test_injected_failure(void **state)
 {
     (void)state;
@@ -274,6 +322,7 @@ int main(void)
         cmocka_unit_test(test_boxes_sharing_a_face),
         cmocka_unit_test(test_disjoint_bodies_pass_through),
         cmocka_unit_test(test_fold_is_repaired),
+        cmocka_unit_test(test_fold_united_with_box),
         cmocka_unit_test(test_injected_failure),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
