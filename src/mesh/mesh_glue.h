@@ -33,6 +33,16 @@ coons_status coons__body_sample_into(const coons_body *b, const coons__sample_op
 
 /* The index-array checks of coons_mesh_check() (check.c): everything but
  * the OpenMesh fields, which are left 0. */
+/* Samples every body of a model into one mesh, a part per body, within one
+ * triangle budget; *tolerance receives the tolerance used. */
+coons_status coons__model_sample(const coons_model *model, const coons_sample_options *opts,
+                                 coons_mesh **out, double *tolerance, coons_error *err);
+/* 1 and the first pair (i < j) of parts whose sampled boxes, grown by 2 tol,
+ * meet; 0 when all are apart. */
+int coons__parts_meet(const coons_mesh *m, double tol, size_t *i, size_t *j);
+/* The error for a union that needs CGAL in a build without it. */
+coons_status coons__union_unavailable(const coons_mesh *m, size_t i, size_t j, coons_error *err);
+
 coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coons_error *err);
 
 #ifdef __cplusplus
