@@ -74,6 +74,15 @@ static void test_three_examples(void **state)
     check_union("tests/data/ok/three-examples-union.json", 0.05);
 }
 
+/* Finer: the chained in-place corefinement leaves removed vertices behind,
+ * whose indices once overflowed the output's vertex map (heap overflow,
+ * "double free or corruption" at tolerances <= 0.015). */
+static void test_three_examples_fine(void **state)
+{
+    (void)state;
+    check_union("tests/data/ok/three-examples-union.json", 0.01);
+}
+
 static void test_union_example(void **state)
 {
     (void)state;
@@ -84,6 +93,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_three_examples),
+        cmocka_unit_test(test_three_examples_fine),
         cmocka_unit_test(test_union_example),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

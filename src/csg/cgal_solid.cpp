@@ -514,7 +514,7 @@ class Solidifier {
     bool assemble(EMesh &out, ExactSoup &soup)
     {
         std::map<EPoint, uint32_t, LessXYZ> index;
-        std::vector<uint32_t> vmap(mesh_.number_of_vertices(), UINT32_MAX);
+        std::vector<uint32_t> vmap(mesh_.num_vertices(), UINT32_MAX); // index range
         auto vid = [&](EVert v) -> uint32_t {
             if (vmap[v] != UINT32_MAX) return vmap[v];
             const EPoint &p = mesh_.point(v);
@@ -593,7 +593,10 @@ void soup_of(const EMesh &m, ExactSoup &e)
 {
     e.pts.clear();
     e.tri.clear();
-    std::vector<uint32_t> id(m.number_of_vertices(), UINT32_MAX);
+    // Indexed by vertex index: num_vertices() is their range, removed ones
+    // included (an in-place corefinement leaves some); number_of_vertices()
+    // counts only the live ones and was too short (heap overflow).
+    std::vector<uint32_t> id(m.num_vertices(), UINT32_MAX);
     for (EVert v : m.vertices()) {
         id[v] = (uint32_t)e.pts.size();
         e.pts.push_back(m.point(v));
