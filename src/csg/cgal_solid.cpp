@@ -807,7 +807,7 @@ bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part>
             if (!PMP::corefine_and_compute_union(acc, ms[k], acc)) return false;
         }
         Soup r;
-        std::vector<uint32_t> id(acc.number_of_vertices(), UINT32_MAX);
+        std::vector<uint32_t> id(acc.num_vertices(), UINT32_MAX);
         for (auto v : acc.vertices()) {
             id[v] = (uint32_t)(r.xyz.size() / 3);
             const IK::Point_3 &q = acc.point(v);
