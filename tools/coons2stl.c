@@ -12,10 +12,12 @@
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <coons.h>
 
@@ -33,6 +35,9 @@ typedef struct options {
     size_t max_triangles; /* --max-triangles: 0 = the library's default */
     coons_model_load_options load; /* --max-bytes, --max-values, --max-depth, --max-points */
     int eval, jacobian, info, quiet;
+    int no_repair;      /* --no-repair */
+    int no_solid;       /* --no-solid (with --info) */
+    int force_progress; /* --progress */
 } options;
 
 /* The loader caps max_depth here (coons-model(5)). */
@@ -65,8 +70,15 @@ static void usage(FILE *f)
             "                         \"x y z\" of the body (17 significant digits)\n"
             "      --jacobian         with --eval, also print the Jacobian (row-major,\n"
             "                         columns d/du d/dv d/dw) and its determinant\n"
-            "      --info             print a JSON description of the model and its bodies\n"
-            "  -q, --quiet            no warnings\n"
+            "      --info             print a JSON description of the model and its bodies,\n"
+            "                         with what repair and union make of them (\"solid\")\n"
+            "      --no-solid         with --info, skip the solid and the self-intersection\n"
+            "                         checks (fast on big models)\n"
+            "      --no-repair        write bodies that meet no other body as sampled, even\n"
+            "                         if their boundary crosses itself\n"
+            "      --progress         report progress on standard error even when it is not\n"
+            "                         a terminal\n"
+            "  -q, --quiet            no warnings and no progress report\n"
             "  -h, --help             show this help and exit\n"
             "      --version          show the version and exit\n"
             "\n"
@@ -156,7 +168,9 @@ static int parse_args(int argc, char **argv, options *o)
         static const char *const with_value[] = {
             "output",        "format",    "tolerance",  "body",      "resolution",
             "max-triangles", "max-bytes", "max-values", "max-depth", "max-points"};
-        static const char *const flags[] = {"eval", "jacobian", "info", "quiet", "help", "version"};
+        static const char *const flags[] = {"eval",      "jacobian", "info",     "quiet",
+                                            "help",      "version",  "no-repair", "no-solid",
+                                            "progress"};
         int takes = -1;
         for (size_t k = 0; k < sizeof with_value / sizeof *with_value; k++)
             if (strcmp(lname, with_value[k]) == 0) takes = 1;
@@ -183,6 +197,9 @@ static int parse_args(int argc, char **argv, options *o)
         else if (strcmp(lname, "jacobian") == 0) o->jacobian = o->eval = 1;
         else if (strcmp(lname, "info") == 0) o->info = 1;
         else if (strcmp(lname, "quiet") == 0) o->quiet = 1;
+        else if (strcmp(lname, "no-repair") == 0) o->no_repair = 1;
+        else if (strcmp(lname, "no-solid") == 0) o->no_solid = 1;
+        else if (strcmp(lname, "progress") == 0) o->force_progress = 1;
         else if (strcmp(lname, "help") == 0) {
             usage(stdout);
             return fflush(stdout) == 0 ? 0 : EXIT_GEOMETRY;
@@ -240,6 +257,9 @@ static int parse_args(int argc, char **argv, options *o)
     if (o->eval && (res || maxt))
         return usage_error("%s", "--resolution and --max-triangles are for meshes and --info");
     if (o->eval && o->info) return usage_error("%s", "--eval and --info cannot be combined");
+    if (o->eval && (o->no_repair || o->force_progress))
+        return usage_error("%s", "--no-repair and --progress are for meshes and --info");
+    if (o->no_solid && !o->info) return usage_error("%s", "--no-solid is for --info");
     if ((o->eval || o->info) && (o->output || format))
         return usage_error("%s", "-o and -f are for meshes: --eval and --info print to "
                                  "standard output");
@@ -258,6 +278,101 @@ static int parse_args(int argc, char **argv, options *o)
     } else
         o->format = "stl";
     return -1;
+}
+
+/* ---- messages and progress ----------------------------------------------- */
+
+/* The progress report is one line on standard error, rewritten in place
+ * with '\r' and finished with a newline before anything else is printed,
+ * so that warnings and errors never share its line. By default it is shown
+ * only when standard error is a terminal (a log file would fill up with
+ * rewrites); --progress forces it, -q turns it off. The library never
+ * prints: it reports through coons_csg_options.progress (stage names and
+ * the fraction done), and the CLI prints. */
+static struct {
+    int on;                   /* report progress */
+    int quiet;                /* -q: no warnings */
+    int open;                 /* a progress line is on the screen */
+    size_t width;             /* its length, to blank out what a shorter one leaves */
+    char last[160];           /* its text, to print only changes */
+    const coons_model *model; /* names the bodies of the stage "sample" */
+} ui;
+
+static void progress_end(void)
+{
+    if (!ui.open) return;
+    fputc('\n', stderr);
+    fflush(stderr);
+    ui.open = 0;
+    ui.width = 0;
+    ui.last[0] = '\0';
+}
+
+static void progress_line(const char *text)
+{
+    if (!ui.on || strcmp(text, ui.last) == 0) return;
+    size_t n = strlen(text);
+    fprintf(stderr, "\r%s: %s", PROG, text);
+    for (size_t k = n; k < ui.width; k++) fputc(' ', stderr);
+    fflush(stderr);
+    ui.open = 1;
+    ui.width = n;
+    snprintf(ui.last, sizeof ui.last, "%s", text);
+}
+
+/* A body name fit for the progress line: control characters shown as '?',
+ * at most cap - 1 bytes, cut at a UTF-8 character boundary. */
+static void printable(char *out, size_t cap, const char *s)
+{
+    size_t n = 0;
+    for (; s[n] && n + 1 < cap; n++) out[n] = (unsigned char)s[n] < 0x20 ? '?' : s[n];
+    if (s[n])
+        while (n > 0 && ((unsigned char)out[n] & 0xC0) == 0x80) n--;
+    out[n] = '\0';
+}
+
+static void progress_sampling(size_t i, size_t n, const char *name)
+{
+    if (!ui.on) return;
+    char nm[48], text[128];
+    printable(nm, sizeof nm, name);
+    snprintf(text, sizeof text, "sampling body %zu of %zu (%s)", i + 1, n, nm);
+    progress_line(text);
+}
+
+/* coons_csg_options.progress. coons_model_solid() reports the stage
+ * "sample" before each body with the share of bodies done, then the
+ * stages of repair and union with their own fraction. */
+static void on_progress(void *userdata, const char *stage, double fraction)
+{
+    (void)userdata;
+    if (strcmp(stage, "sample") == 0) {
+        size_t n = ui.model ? coons_model_body_count(ui.model) : 0;
+        size_t i = (size_t)(fraction * (double)n + 0.5);
+        if (i < n) progress_sampling(i, n, coons_model_body_name(ui.model, i));
+        return;
+    }
+    char text[128];
+    snprintf(text, sizeof text, "repair and union: %s %3d%%", stage, (int)(100 * fraction));
+    progress_line(text);
+}
+
+/* "coons2stl: [warning: ]message" on standard error, after the standard
+ * output so far and on a line of its own; warnings obey -q. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void message(int warning, const char *fmt, ...)
+{
+    if (warning && ui.quiet) return;
+    progress_end();
+    fflush(stdout);
+    fprintf(stderr, "%s: %s", PROG, warning ? "warning: " : "");
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
 }
 
 /* ---- input --------------------------------------------------------------- */
@@ -494,30 +609,77 @@ static int sampled_box(const coons_body *b, double lo[3], double hi[3], coons_er
     return 0;
 }
 
-/* The body's sampled boundary mesh and its checks, as "mesh": {...}. */
-static int info_mesh(const coons_model *m, size_t i, const coons_sample_options *so, int quiet)
+/* ---- the solid ------------------------------------------------------------ */
+
+/*
+ * The mesh that -o writes (--info reports on the very same one): with
+ * `body` < 0, every body sampled with `so` and made into the model's solid
+ * by coons_model_solid() (repaired and united as the model's "operation"
+ * says); else that body's shell alone, repaired if it crosses itself. Without
+ * CGAL the shells are as sampled (coons_model_solid() refuses a union that
+ * needs it). The environment variable COONS2STL_INJECT_CSG_FAILURE (testing
+ * aid, read here and nowhere in the library) makes the CGAL step fail.
+ */
+static coons_status make_solid(const coons_model *m, long body, const coons_sample_options *so,
+                               int repair, coons_mesh **out, coons_csg_report *rep,
+                               coons_error *err)
+{
+    coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
+    copts.repair = repair;
+    copts.progress = ui.on ? on_progress : NULL;
+    const char *inject = getenv("COONS2STL_INJECT_CSG_FAILURE");
+    copts.inject_failure = inject && *inject && strcmp(inject, "0") != 0;
+    memset(rep, 0, sizeof *rep);
+    *out = NULL;
+    coons_sample_options sopts = *so;
+    if (body < 0) return coons_model_solid(m, &sopts, &copts, out, rep, err);
+
+    size_t i = (size_t)body;
+    progress_sampling(i, coons_model_body_count(m), coons_model_body_name(m, i));
+    coons_mesh *mesh = NULL;
+    coons_status rc = coons_body_sample(coons_model_body(m, i), &sopts,
+                                        coons_model_body_name(m, i), &mesh, err);
+    if (rc != COONS_OK || !coons_csg_available()) {
+        *out = rc == COONS_OK ? mesh : NULL;
+        if (rc != COONS_OK) coons_mesh_free(mesh);
+        return rc;
+    }
+    copts.unite = 0;
+    rc = coons_mesh_solidify(mesh, &copts, out, rep, err);
+    coons_mesh_free(mesh);
+    return rc;
+}
+
+/* ---- --info (continued) ------------------------------------------------------ */
+
+/* The body's sampled boundary mesh and its checks, as "mesh": {...};
+ * `check_crossing`: also count its self-intersecting triangle pairs. */
+static int info_mesh(const coons_model *m, size_t i, const coons_sample_options *so,
+                     int check_crossing)
 {
     coons_error err = COONS_ERROR_INIT;
     coons_mesh *mesh = NULL;
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    size_t pairs = 0;
+    progress_sampling(i, coons_model_body_count(m), coons_model_body_name(m, i));
     if (coons_body_sample(coons_model_body(m, i), so, coons_model_body_name(m, i), &mesh, &err) ||
-        coons_mesh_check(mesh, &r, &err)) {
-        fflush(stdout);
-        fprintf(stderr, "%s: body %zu (%s): %s\n", PROG, i, coons_model_body_name(m, i),
-                err.message);
+        coons_mesh_check(mesh, &r, &err) ||
+        (check_crossing && coons_mesh_self_intersections(mesh, &pairs, &err))) {
+        message(0, "body %zu (%s): %s", i, coons_model_body_name(m, i), err.message);
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }
     double tol, dev;
     size_t lat[3];
     coons_mesh_part_sampling(mesh, 0, &tol, &dev, lat);
-    if (dev > tol && !quiet) {
-        fflush(stdout);
-        fprintf(stderr,
-                "%s: warning: body %zu (%s): the fixed resolution leaves a deviation of %.6g, "
-                "more than the tolerance %.6g\n",
-                PROG, i, coons_model_body_name(m, i), dev, tol);
-    }
+    if (dev > tol)
+        message(1,
+                "body %zu (%s): the fixed resolution leaves a deviation of %.6g, more than the "
+                "tolerance %.6g",
+                i, coons_model_body_name(m, i), dev, tol);
+    if (pairs)
+        message(1, "body %zu (%s): its sampled boundary crosses itself (%zu pairs of triangles)",
+                i, coons_model_body_name(m, i), pairs);
     printf(",\n     \"mesh\": {\"tolerance\": ");
     json_number(tol);
     printf(", \"deviation\": ");
@@ -537,12 +699,108 @@ static int info_mesh(const coons_model *m, size_t i, const coons_sample_options 
     json_number(r.volume);
     printf(", \"area\": ");
     json_number(r.area);
-    printf("}");
+    if (check_crossing)
+        printf(", \"self_intersections\": %zu}", pairs);
+    else
+        printf(", \"self_intersections\": null}");
     coons_mesh_free(mesh);
     return 0;
 }
 
-static int info(const coons_model *m, long only, const coons_sample_options *so, int quiet)
+static void json_bool(const char *key, int v) { printf("\"%s\": %s", key, v ? "true" : "false"); }
+
+/* "solid": what -o would write (make_solid()) and what repair and union
+ * found and did. A failure is reported in the JSON ("error") and warned
+ * about, not turned into an exit status: --info describes the model. */
+static int info_solid(const coons_model *m, long only, const coons_sample_options *so, int repair)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *solid = NULL;
+    coons_csg_report rep;
+    int csg = coons_csg_available();
+    coons_status rc = make_solid(m, only, so, repair, &solid, &rep, &err);
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    size_t pairs = 0, pairs32 = 0;
+    if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
+    if (rc == COONS_OK && csg) rc = coons_mesh_self_intersections(solid, &pairs, &err);
+    if (rc == COONS_OK && csg) rc = coons_mesh_self_intersections_float(solid, &pairs32, &err);
+    progress_end();
+    size_t parts = rc == COONS_OK ? coons_mesh_part_count(solid) : 0;
+    coons_mesh_free(solid);
+    if (rc == COONS_E_NOMEM) {
+        message(0, "%s", err.message);
+        return EXIT_GEOMETRY;
+    }
+    printf(",\n  \"solid\": ");
+    if (rc != COONS_OK) {
+        message(1, "no mesh can be made of %s: %s", only < 0 ? "this model" : "this body",
+                err.message);
+        printf("{\"error\": ");
+        json_string(err.message);
+        printf("}");
+        return 0;
+    }
+    if (!r.closed) message(1, "the solid's boundary is not closed");
+    if (pairs)
+        message(1, "the solid's boundary crosses itself (%zu pairs of triangles)%s", pairs,
+                repair ? "" : "; without --no-repair it would be repaired");
+    else if (pairs32)
+        message(1,
+                "rounding the solid's coordinates to float32, as STL stores them, makes %zu "
+                "pairs of its triangles intersect; OFF and SCAD keep double precision",
+                pairs32);
+    printf("{");
+    json_bool("repair", repair);
+    printf(", ");
+    json_bool("united", only < 0 && coons_model_operation(m) == COONS_OP_UNION);
+    printf(", \"parts\": %zu, \"vertices\": %zu, \"triangles\": %zu,\n   ", parts, r.vertices,
+           r.triangles);
+    json_bool("closed", r.closed);
+    printf(", ");
+    json_bool("manifold", r.manifold);
+    printf(", ");
+    json_bool("oriented", r.oriented);
+    printf(", \"euler\": %ld, \"shells\": %zu, \"boundary_edges\": %zu, \"nonmanifold_edges\": %zu,"
+           " \"nonmanifold_vertices\": %zu,\n   \"volume\": ",
+           r.euler, r.shells, r.boundary_edges, r.nonmanifold_edges, r.nonmanifold_vertices);
+    json_number(r.volume);
+    printf(", \"area\": ");
+    json_number(r.area);
+    if (!csg) {
+        printf(", \"self_intersections\": null, \"self_intersections_float32\": null, "
+               "\"csg\": null}");
+        return 0;
+    }
+    printf(", \"self_intersections\": %zu, \"self_intersections_float32\": %zu,\n", pairs,
+           pairs32);
+    printf("   \"csg\": {\"triangles_in\": %zu, \"degenerate_dropped\": %zu, "
+           "\"intersecting_pairs\": %zu, \"parts_in\": %zu, \"groups\": %zu,\n"
+           "    \"passed_through\": %zu, \"patches\": %zu, \"patches_kept\": %zu, "
+           "\"fast_unions\": %zu, \"fallbacks\": %zu, \"triangles_out\": %zu,\n"
+           "    \"rounding_merged\": %zu, \"close_merged\": %zu, \"slivers_fixed\": %zu, ",
+           rep.triangles_in, rep.degenerate_dropped, rep.intersecting_pairs, rep.parts_in,
+           rep.groups, rep.passed_through, rep.patches, rep.patches_kept, rep.fast_unions, rep.fallbacks,
+           rep.triangles_out, rep.rounding_merged, rep.close_merged, rep.slivers_fixed);
+    json_bool("closed", rep.closed);
+    printf(", \"nonmanifold_edges\": %zu}}", rep.nonmanifold_edges);
+    return 0;
+}
+
+/*
+ * Sampling and evaluation noise leaves det J a few units of rounding below
+ * zero where it is exactly 0 (the collapsed axis of a spool, the tip of a
+ * nail, the seam of a NURBS cylinder: -7e-14 on bodies ~20 mm across).
+ * det J is a triple product of first derivatives, each of the order of the
+ * body's control box diagonal d, so its rounding noise is ~1e-16 d^3 times
+ * a few basis factors; a fold whose det J stays above -1e-9 d^3 is thinner
+ * than ~1e-9 d, a million times below the default tolerance (d / 1000).
+ * Only det J below that threshold is warned about; the raw minimum is
+ * reported either way.
+ */
+#define FOLD_REL 1e-9
+
+static int info(const coons_model *m, long only, const coons_sample_options *so,
+                const options *o)
 {
     size_t n = coons_model_body_count(m);
     double clo[3], chi[3];
@@ -555,6 +813,7 @@ static int info(const coons_model *m, long only, const coons_sample_options *so,
     double rel = diag > 0 ? tol / diag : 1e-6;
     if (rel > 1e-6) rel = 1e-6;
     if (rel < 1e-12) rel = 1e-12;
+    int checks = !o->no_solid && coons_csg_available();
     double total = 0.0;
     size_t listed = 0;
     printf("{\n  \"units\": ");
@@ -572,22 +831,19 @@ static int info(const coons_model *m, long only, const coons_sample_options *so,
         double lo[3], hi[3], blo[3], bhi[3], vol = NAN, mindet = NAN, where[3] = {0, 0, 0};
         if (sampled_box(b, lo, hi, &err) || coons_body_volume(b, rel, &vol, &err) ||
             coons_body_min_jacobian(b, INFO_JAC, &mindet, where, &err)) {
-            fflush(stdout);
-            fprintf(stderr, "%s: body %zu (%s): %s\n", PROG, i, coons_model_body_name(m, i),
-                    err.message);
+            message(0, "body %zu (%s): %s", i, coons_model_body_name(m, i), err.message);
             return EXIT_GEOMETRY;
         }
         coons_body_control_bbox(b, blo, bhi);
+        double d3 = pow(sqrt((bhi[0] - blo[0]) * (bhi[0] - blo[0]) +
+                             (bhi[1] - blo[1]) * (bhi[1] - blo[1]) +
+                             (bhi[2] - blo[2]) * (bhi[2] - blo[2])),
+                        3);
         total += vol;
-        if (mindet < 0 && !quiet) {
-            fflush(stdout);
-            fprintf(stderr,
-                    "%s: warning: body %zu (%s): det J = %.6g < 0 at (u, v, w) = (%g, %g, %g): "
-                    "the body %s\n",
-                    PROG, i, coons_model_body_name(m, i), mindet, where[0], where[1], where[2],
-                    vol < 0 ? "is left-handed or folds over itself"
-                            : "folds over itself there");
-        }
+        if (mindet < -FOLD_REL * d3)
+            message(1, "body %zu (%s): det J = %.6g < 0 at (u, v, w) = (%g, %g, %g): the body %s",
+                    i, coons_model_body_name(m, i), mindet, where[0], where[1], where[2],
+                    vol < 0 ? "is left-handed or folds over itself" : "folds over itself there");
         printf("%s\n    {\"index\": %zu, \"name\": ", listed ? "," : "", i);
         json_string(coons_model_body_name(m, i));
         printf(", \"type\": \"%s\",\n     \"bbox\": ", body_type_name(coons_body_get_type(b)));
@@ -599,13 +855,20 @@ static int info(const coons_model *m, long only, const coons_sample_options *so,
         printf(", \"min_det_jacobian\": ");
         json_number(mindet);
         printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
-        int rc = info_mesh(m, i, so, quiet);
+        int rc = info_mesh(m, i, so, checks);
         if (rc) return rc;
         printf("}");
         listed++;
     }
+    progress_end();
     printf("\n  ],\n  \"body_count\": %zu,\n  \"total_volume\": ", listed);
     json_number(total);
+    if (o->no_solid) {
+        printf(",\n  \"solid\": null");
+    } else {
+        int rc = info_solid(m, only, so, !o->no_repair);
+        if (rc) return rc;
+    }
     printf("\n}\n");
     return 0;
 }
@@ -669,7 +932,7 @@ static void model_name(const char *path, char *out, size_t cap)
  * never overwritten. Prints its own diagnostics and returns the exit status.
  */
 static int write_output(const coons_model *m, long body, const char *format, const char *output,
-                        const coons_sample_options *so, int quiet, const char *input)
+                        const coons_sample_options *so, int repair, const char *input)
 {
     coons_error err = COONS_ERROR_INIT;
     coons_format fmt;
@@ -690,33 +953,17 @@ static int write_output(const coons_model *m, long body, const char *format, con
         return EXIT_USAGE;
     }
 
-    coons_sample_options sopts = *so;
     coons_mesh *mesh = NULL;
-    coons_status rc;
-    if (body >= 0) {
-        rc = coons_body_sample(coons_model_body(m, (size_t)body), &sopts,
-                               coons_model_body_name(m, (size_t)body), &mesh, &err);
-        if (rc == COONS_OK && coons_csg_available()) {
-            /* One body: still resolve it if it crosses itself. */
-            coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
-            copts.unite = 0;
-            coons_mesh *solid = NULL;
-            rc = coons_mesh_solidify(mesh, &copts, &solid, NULL, &err);
-            coons_mesh_free(mesh);
-            mesh = solid;
-        }
-    } else {
-        coons_csg_report rep;
-        memset(&rep, 0, sizeof rep);
-        rc = coons_model_solid(m, &sopts, NULL, &mesh, &rep, &err);
-        if (rc == COONS_OK && rep.triangles_out > 0 && !rep.closed && !quiet)
-            fprintf(stderr, "%s: warning: the united mesh is not closed\n", PROG);
-    }
+    coons_csg_report rep;
+    coons_status rc = make_solid(m, body, so, repair, &mesh, &rep, &err);
+    progress_end();
     if (rc != COONS_OK) {
-        fprintf(stderr, "%s: %s: %s; nothing was written\n", PROG, shown, err.message);
+        message(0, "%s: %s%s; nothing was written", shown,
+                rc == COONS_E_CSG ? "repair or union failed: " : "", err.message);
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }
+    if (rep.triangles_out > 0 && !rep.closed) message(1, "the mesh is not closed");
 
     char name[256];
     model_name(to_stdout ? input : output, name, sizeof name);
@@ -769,6 +1016,9 @@ int main(int argc, char **argv)
         coons_model_free(m);
         return EXIT_USAGE;
     }
+    ui.quiet = o.quiet;
+    ui.on = o.force_progress || (!o.quiet && isatty(STDERR_FILENO));
+    ui.model = m;
     coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
     so.tolerance = o.tolerance > 0 ? o.tolerance : coons_model_tolerance(m);
     so.resolution = o.resolution;
@@ -779,9 +1029,9 @@ int main(int argc, char **argv)
     if (o.eval)
         rc = eval_lines(coons_model_body(m, body < 0 ? 0 : (size_t)body), o.jacobian);
     else if (o.info)
-        rc = info(m, body, &so, o.quiet);
+        rc = info(m, body, &so, &o);
     else
-        rc = write_output(m, body, o.format, o.output, &so, o.quiet, o.input);
+        rc = write_output(m, body, o.format, o.output, &so, !o.no_repair, o.input);
     coons_model_free(m);
     if ((o.eval || o.info) && (fflush(stdout) != 0 || ferror(stdout))) {
         fprintf(stderr, "%s: cannot write to standard output: %s\n", PROG, strerror(errno));

@@ -118,7 +118,11 @@ COONS_EXPORT coons_status coons_mesh_self_intersections_float(const coons_mesh *
  * else and do not cross themselves are written as sampled.
  * @param[in] sopts  sampling options (NULL: defaults, model tolerance)
  * @param[in] copts  repair/union options (NULL: defaults); its `unite`
- *                   field is ignored: the model's operation decides
+ *                   field is ignored: the model's operation decides. Its
+ *                   `progress` also hears the stage "sample" before each
+ *                   body, with the share of bodies sampled (i / count, then
+ *                   1), before the stages of coons_mesh_solidify(), whose
+ *                   fraction starts again from 0
  * @param[out] report may be NULL; zeroed when no CGAL work was needed
  * @return as coons_model_mesh() and coons_mesh_solidify(); without CGAL,
  *         ::COONS_E_UNSUPPORTED when bodies overlap or touch under "union" or

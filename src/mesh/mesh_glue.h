@@ -34,9 +34,13 @@ coons_status coons__body_sample_into(const coons_body *b, const coons__sample_op
 /* The index-array checks of coons_mesh_check() (check.c): everything but
  * the OpenMesh fields, which are left 0. */
 /* Samples every body of a model into one mesh, a part per body, within one
- * triangle budget; *tolerance receives the tolerance used. */
+ * triangle budget; *tolerance receives the tolerance used. `progress`
+ * (may be NULL) hears the stage "sample" before each body with the share
+ * of bodies done (i / count), and 1 at the end. */
 coons_status coons__model_sample(const coons_model *model, const coons_sample_options *opts,
-                                 coons_mesh **out, double *tolerance, coons_error *err);
+                                 void (*progress)(void *, const char *, double),
+                                 void *userdata, coons_mesh **out, double *tolerance,
+                                 coons_error *err);
 /* 1 and the first pair (i < j) of parts whose sampled boxes, grown by 2 tol,
  * meet; 0 when all are apart. */
 int coons__parts_meet(const coons_mesh *m, double tol, size_t *i, size_t *j);

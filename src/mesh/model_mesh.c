@@ -8,7 +8,9 @@
 #include "mesh_impl.h"
 
 coons_status coons__model_sample(const coons_model *model, const coons_sample_options *opts,
-                                 coons_mesh **out, double *tolerance, coons_error *err)
+                                 void (*progress)(void *, const char *, double),
+                                 void *userdata, coons_mesh **out, double *tolerance,
+                                 coons_error *err)
 {
     *out = NULL;
     coons__sample_opts o;
@@ -20,6 +22,8 @@ coons_status coons__model_sample(const coons_model *model, const coons_sample_op
     if ((st = coons_mesh_new(&m, err))) return st;
     size_t nb = coons_model_body_count(model), budget = o.max_triangles;
     for (size_t i = 0; i < nb && !st; i++) {
+        /* By bodies: a body's share of the time is not known before. */
+        if (progress) progress(userdata, "sample", (double)i / (double)nb);
         coons__sample_opts oi = o;
         oi.max_triangles = budget;
         size_t used = 0;
@@ -31,6 +35,7 @@ coons_status coons__model_sample(const coons_model *model, const coons_sample_op
         coons_mesh_free(m);
         return st;
     }
+    if (progress) progress(userdata, "sample", 1.0);
     *out = m;
     return COONS_OK;
 }
@@ -72,7 +77,7 @@ coons_status coons_model_mesh(const coons_model *model, const coons_sample_optio
                               coons_mesh **out, coons_error *err)
 {
     double tol = 0;
-    coons_status st = coons__model_sample(model, opts, out, &tol, err);
+    coons_status st = coons__model_sample(model, opts, NULL, NULL, out, &tol, err);
     size_t i, j;
     if (!st && coons_model_operation(model) == COONS_OP_UNION && coons__parts_meet(*out, tol, &i, &j)) {
         st = coons__union_unavailable(*out, i, j, err);

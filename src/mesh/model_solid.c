@@ -17,7 +17,8 @@ coons_status coons_model_solid(const coons_model *model, const coons_sample_opti
     if (report) memset(report, 0, sizeof *report);
     coons_mesh *m = NULL;
     double tol = 0;
-    coons_status st = coons__model_sample(model, sopts, &m, &tol, err);
+    coons_status st = coons__model_sample(model, sopts, copts ? copts->progress : NULL,
+                                          copts ? copts->userdata : NULL, &m, &tol, err);
     if (st) return st;
     int unite = coons_model_operation(model) == COONS_OP_UNION;
     if (!coons_csg_available()) {
