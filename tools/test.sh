@@ -2,20 +2,81 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Installs what is missing, builds libcoons and runs every test.
 # This is the README's test command; .ci/run runs exactly this.
+#
+# Stages (each must pass; all run by default, about 20 minutes on 2 cores):
+#   release  the full library (C core + OpenMesh + CGAL), -Werror, all tests
+#   core     the C core alone, without any C++, all tests
+#   asan     everything (CGAL included) at -O0 with AddressSanitizer and
+#            UndefinedBehaviorSanitizer, all tests
+#   memcheck the core build's tests and the CLI paths that avoid CGAL under
+#            valgrind memcheck (tools/memcheck.sh)
+#   fuzz     the loader fuzz target for COONS_FUZZ_SECONDS (default 60) s
+#            (tools/fuzz.sh)
+# COONS_TEST_STAGES="release core" runs a subset; COONS_BUILD_DIR sets the
+# build directory prefix (default: build, build-core, build-asan, build-fuzz).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
 bash tools/setup.sh
 build=${COONS_BUILD_DIR:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
+stages=" ${COONS_TEST_STAGES:-release core asan memcheck fuzz} "
+t_all=$SECONDS
+times=()
+
+want() { case $stages in *" $1 "*) return 0 ;; *) return 1 ;; esac; }
+begin() {
+  t_stage=$SECONDS
+  echo "==== test.sh: $1" >&2
+}
+end() { times+=("$1 $((SECONDS - t_stage)) s"); }
 
 # 1. The full library (C core + OpenMesh + CGAL), warnings as errors.
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOONS_WERROR=ON
-cmake --build "$build" -j "$jobs"
-ctest --test-dir "$build" --output-on-failure -j "$jobs"
+if want release; then
+  begin "release build and tests"
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOONS_WERROR=ON
+  cmake --build "$build" -j "$jobs"
+  ctest --test-dir "$build" --output-on-failure -j "$jobs"
+  end release
+fi
 
 # 2. The C core alone, without any C++: it must build and pass on its own.
-cmake -S . -B "$build-core" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOONS_WERROR=ON \
-  -DCOONS_WITH_OPENMESH=OFF -DCOONS_WITH_CGAL=OFF
-cmake --build "$build-core" -j "$jobs"
-ctest --test-dir "$build-core" --output-on-failure -j "$jobs"
+if want core || want memcheck; then
+  begin "C-only build and tests"
+  cmake -S . -B "$build-core" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOONS_WERROR=ON \
+    -DCOONS_WITH_OPENMESH=OFF -DCOONS_WITH_CGAL=OFF
+  cmake --build "$build-core" -j "$jobs"
+  want core && ctest --test-dir "$build-core" --output-on-failure -j "$jobs"
+  end core
+fi
+
+# 3. AddressSanitizer + UndefinedBehaviorSanitizer, CGAL included. -O0:
+#    a sanitized CGAL translation unit costs 4 times the CPU at -O2. No
+#    -Werror: gcc's warnings differ between -O0 and -O3, and the release
+#    stage already enforces them. Any report aborts the test (leaks too).
+if want asan; then
+  begin "AddressSanitizer + UBSan build and tests"
+  cmake -S . -B "$build-asan" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DCOONS_SANITIZE=ON \
+    -DCMAKE_C_FLAGS_SANITIZE="-O0 -g1" -DCMAKE_CXX_FLAGS_SANITIZE="-O0 -g1"
+  cmake --build "$build-asan" -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir "$build-asan" --output-on-failure -j "$jobs" --timeout 900
+  end asan
+fi
+
+# 4. valgrind memcheck over the C-only build (valgrind cannot run CGAL).
+if want memcheck; then
+  begin "valgrind memcheck"
+  COONS_JOBS=$jobs bash tools/memcheck.sh "$build-core"
+  end memcheck
+fi
+
+# 5. A bounded fuzzing run; a finding fails and is kept in tests/fuzz/regressions.
+if want fuzz; then
+  begin "fuzzing for ${COONS_FUZZ_SECONDS:-60} s"
+  COONS_FUZZ_BUILD="$build-fuzz" COONS_JOBS=$jobs bash tools/fuzz.sh "${COONS_FUZZ_SECONDS:-60}"
+  end fuzz
+fi
+
+echo "==== test.sh: all passed in $((SECONDS - t_all)) s (${times[*]/%/;})" >&2
