@@ -52,9 +52,10 @@ run_step() {
 }
 
 # Left to the sanitizer build: tests that are long loops of arithmetic
-# (exhaustive float formatting, fine sampling of every example), which
+# (exhaustive float formatting, fine sampling of every example, every
+# allocation failing in turn over every example), which
 # valgrind slows down 50-fold without reaching code the others do not.
-skip=" ${MEMCHECK_SKIP-test_io_fmt test_sample_examples} "
+skip=" ${MEMCHECK_SKIP-test_io_fmt test_sample_examples test_alloc_failures} "
 steps=()
 for t in "$build"/tests/test_*; do
   [ -x "$t" ] && [ -f "$t" ] || continue
