@@ -128,7 +128,7 @@ def main():
 
             def limit():
                 resource.setrlimit(resource.RLIMIT_FSIZE, (64 * 1024, 64 * 1024))
-            p = subprocess.run([T.bin, "-f", fmt, "-t", "0.005", "-o", out, spool],
+            p = subprocess.run([T.bin, "-f", fmt, "--resolution", "16", "-o", out, spool],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                preexec_fn=limit, timeout=600)
             T.check(f"ulimit -f 64 KiB, {fmt}: exit 3, 'File too large'",
@@ -152,7 +152,7 @@ def main():
             try:
                 p = subprocess.run(
                     ["unshare", "-rm", "sh", "-c", script, "sh", mnt, old_text, T.bin, "-f", fmt,
-                     "-t", "0.002", "-o", os.path.join(mnt, "out.stl"), spool],
+                     "--resolution", "24", "-o", os.path.join(mnt, "out.stl"), spool],
                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=600)
             except (OSError, subprocess.TimeoutExpired) as e:
                 print(f"note: full disk: skipped ({e})")
@@ -172,7 +172,7 @@ def main():
         if os.path.exists("/dev/full"):
             for fmt in ("stl", "stl-ascii", "off", "scad"):
                 with open("/dev/full", "wb") as full:
-                    p = subprocess.run([T.bin, "-f", fmt, spool], stdout=full,
+                    p = subprocess.run([T.bin, "-f", fmt, "--resolution", "8", spool], stdout=full,
                                        stderr=subprocess.PIPE, text=True, timeout=600)
                 T.check(f"standard output on /dev/full, {fmt}: exit 3, says so",
                         p.returncode == 3 and "No space left on device" in p.stderr,
