@@ -311,6 +311,7 @@ static void test_injected_failure(void **state)
     assert_int_equal(coons_mesh_solidify(m, &o, &u, NULL, &err), COONS_E_CSG);
     assert_null(u);
     assert_non_null(strstr(err.message, "injected"));
+    assert_non_null(strstr(err.message, "'lonely'")); /* names the bodies */
     coons_mesh_free(m);
     coons_body_free(a);
 }

@@ -740,7 +740,13 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
         printf("}");
         return 0;
     }
-    if (!r.closed) message(1, "the solid's boundary is not closed");
+    if (r.boundary_edges)
+        message(1, "the solid's boundary is not closed (%zu border edges)", r.boundary_edges);
+    else if (r.nonmanifold_edges)
+        message(1,
+                "the solid's boundary is closed but not a 2-manifold: %zu edges bound more than "
+                "two triangles (solids touching along a curve)",
+                r.nonmanifold_edges);
     if (pairs)
         message(1, "the solid's boundary crosses itself (%zu pairs of triangles)%s", pairs,
                 repair ? "" : "; without --no-repair it would be repaired");
@@ -750,7 +756,7 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
                 "pairs of its triangles intersect; OFF and SCAD keep double precision",
                 pairs32);
     printf("{");
-    json_bool("repair", repair);
+    json_bool("repair", repair && csg);
     printf(", ");
     json_bool("united", only < 0 && coons_model_operation(m) == COONS_OP_UNION);
     printf(", \"parts\": %zu, \"vertices\": %zu, \"triangles\": %zu,\n   ", parts, r.vertices,

@@ -957,6 +957,8 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
         const double *xyz = coons_mesh_vertices(in);
         const uint32_t *tri = coons_mesh_triangles(in);
         collect_parts(in, parts);
+        // Until the groups are known, a failure concerns every part.
+        for (size_t i = 0; i < parts.size(); i++) current.push_back(i);
         rep.parts_in = parts.size();
         rep.triangles_in = coons_mesh_triangle_count(in);
         if (opts->inject_failure) throw CGAL::Failure_exception("libcoons", "injected", __FILE__, __LINE__, "injected failure (testing)");
