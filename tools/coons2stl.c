@@ -969,7 +969,13 @@ static int write_output(const coons_model *m, long body, const char *format, con
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }
-    if (rep.triangles_out > 0 && !rep.closed) message(1, "the mesh is not closed");
+    if (rep.triangles_out > 0 && !rep.closed)
+        message(1, "the mesh is not closed");
+    else if (rep.nonmanifold_edges)
+        message(1,
+                "the mesh is closed but not a 2-manifold: %zu edges bound more than two "
+                "triangles (solids touching along a curve)",
+                rep.nonmanifold_edges);
 
     char name[256];
     model_name(to_stdout ? input : output, name, sizeof name);

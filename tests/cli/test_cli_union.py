@@ -394,6 +394,11 @@ if not HAVE_CGAL:
     v, f = read_off(os.path.join(TMP, "n.off")) if rc == 0 else ([], [])
     T.check("no CGAL: operation none still writes both shells",
             rc == 0 and shells(f) == 2 and rel(volume(v, f), V_A + V_B) < 1e-12, err)
+    rc, _, err = T.run(["--progress", "-o", os.path.join(TMP, "n.off"), over_none], binary=True)
+    err = err.decode("utf-8", "replace")
+    T.check("no CGAL: --progress reports the sampling of each body, one line",
+            rc == 0 and "\rcoons2stl: sampling body 2 of 2 (b)" in err and err.endswith("\n")
+            and err.count("\n") == 1, repr(err))
     rc, jf, err = info([os.path.join(CSG, "fold.json")])
     T.check("no CGAL: a lone folded body is written as sampled, --info says: not repaired",
             jf is not None and jf["solid"]["repair"] is False and jf["solid"]["csg"] is None
@@ -434,6 +439,19 @@ for fmt in ("stl", "off"):
                 and s["csg"]["triangles_out"] == len(f) and s["csg"]["closed"], str(s))
         T.check("--info: each box's own shell does not cross itself",
                 [b["mesh"]["self_intersections"] for b in j["bodies"]] == [0, 0], str(j["bodies"]))
+
+out = os.path.join(TMP, "over-nr.off")
+rc, _, err = T.run(["--no-repair", "-o", out, over])
+if T.check("overlapping boxes, --no-repair: exit 0", rc == 0, err):
+    v, f = read_off(out)
+    T.check("overlapping boxes, --no-repair: still united (bodies that meet go through the union)",
+            closed_2manifold(f) and shells(f) == 1 and rel(volume(v, f), expect) < 1e-12,
+            f"{shells(f)} shells, volume {volume(v, f)}")
+rc, jb, err = info(["--body", "b", over])
+T.check("--info --body b: the solid is that body's shell alone (not united, its volume)",
+        jb is not None and not jb["solid"]["united"] and jb["solid"]["parts"] == 1
+        and rel(jb["solid"]["volume"], V_B) < 1e-12 and jb["solid"]["csg"]["parts_in"] == 1,
+        str(jb and jb["solid"]))
 
 # ---- boxes sharing a face -------------------------------------------------------
 for N in (1, 3, 4):
@@ -550,6 +568,8 @@ if T.check("fold: -o exit 0", rc == 0, err):
     v, f = read_off(out)
     vol, ar = volume(v, f), area(v, f)
     T.check("fold repaired: closed and oriented (each edge as often both ways)", balanced(f))
+    T.check("fold repaired: -o warns that the pinch is not a 2-manifold",
+            "not a 2-manifold" in err and err.count("\n") == 1, err)
     n = self_intersections(v, f)
     T.check("fold repaired: no two triangles intersect (exact test here)", n == 0, f"{n} pairs")
     T.check(f"fold repaired: volume = integral |t| = {int_abs:.6f} within area * tol",
@@ -647,7 +667,7 @@ rc, err = run_raw(["--progress", "--body", "b", "-o", out, over])
 T.check("--progress --body: that body's sampling", rc == 0 and "sampling body 2 of 2 (b)" in err, repr(err))
 rc, err = run_raw(["-q", "-o", out, over])
 T.check("-q: silent", rc == 0 and err == "", repr(err))
-rc, err = run_raw(["--progress", "--info", "-t", str(TOLF), fold])
+rc, err = run_raw(["--progress", "--info", "--no-repair", "-t", str(TOLF), fold])  # cheap: no repair
 lines = err.split("\n")
 T.check("--progress with warnings (--info on the fold): warnings on lines of their own",
         rc == 0 and all(("warning" not in ln) or ln.startswith("coons2stl: warning") for ln in lines)
