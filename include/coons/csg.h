@@ -8,17 +8,19 @@
  * shell of a folded body crosses itself; these functions return the
  * boundary of the solid it bounds, and of the union of several solids.
  *
- * Method (one exact pass): all shells are put into one triangle soup over
- * CGAL's exact-constructions kernel, exactly-degenerate triangles are
- * dropped, the soup is autorefined (every intersection becomes a mesh edge),
- * the refined surface is cut into patches along the intersection curves,
- * and each patch is classified by exact ray casting: it is kept when the
- * winding numbers on its two sides (per body) make exactly one side belong to
- * a solid, and it is oriented towards the other side. Coincident patches
- * (bodies sharing a face) are classified together, so shared faces vanish.
- * The result is rounded to doubles once, and the rounded mesh is checked
- * again for self-intersections with exact predicates; a rounding that
- * creates an intersection is an error, never a silent result.
+ * Method: a body that meets nothing and does not cross itself passes
+ * through. Bodies that do not cross themselves are united by chained
+ * corefinement (first with inexact constructions, kept only when the exact
+ * check of the result is clean; else on CGAL's exact-constructions kernel).
+ * A body that crosses itself is repaired first by an exact soup pass: the
+ * shell is autorefined (every intersection becomes a mesh edge), cut into
+ * patches along the intersection curves, and each patch is classified by
+ * exact ray casting: it is kept when the winding numbers on its two sides
+ * make exactly one side belong to a solid, oriented towards the other side.
+ * The same pass unites bodies that corefinement refuses. Coincident faces
+ * (bodies sharing a face) vanish. Exact results are rounded to doubles once
+ * and checked again for self-intersections with exact predicates; a
+ * rounding that leaves an intersection is an error, never a silent result.
  *
  * Available only when libcoons is built with CGAL (GPL-3.0-or-later);
  * otherwise every function returns ::COONS_E_UNSUPPORTED.

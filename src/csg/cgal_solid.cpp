@@ -6,26 +6,36 @@
 //
 // The solid of a shell is where its winding number is non-zero (model
 // format, "Solids and outputs"); the solid of a model is the union of its
-// bodies' solids. One exact pass computes its boundary:
-//  1. all shells of a group go into one Surface_mesh over the exact
-//     constructions kernel (Epeck), without reorienting anything; exactly
-//     degenerate triangles are dropped (they bound nothing);
-//  2. PMP::experimental::autorefine splits triangles along every mutual
-//     intersection, and marks the new edges as constrained;
-//  3. the faces are grouped into patches bounded by constrained edges; the
-//     winding numbers on both sides are constant over a patch;
-//  4. one ray per patch, from the centroid of a face into its front side,
-//     counts signed crossings per body with exact predicates (a ray that
-//     grazes an edge or vertex is retried in another direction); faces on
-//     the ray's origin are coincident (bodies sharing a face) and add their
-//     orientation to the jump across the patch;
-//  5. a patch is kept when exactly one of its sides lies in a solid, and is
-//     turned to face the other side; coincident kept patches are kept once;
-//  6. the result is rounded to doubles once and checked again for
-//     self-intersections with exact predicates on the rounded coordinates.
+// bodies' solids. Per group of parts whose boxes meet (solidify_group):
+//  0. a part that meets nothing and does not cross itself (exact check of
+//     the double mesh, count_self_intersections) passes through unchanged;
+//     the others are first snapped to a power-of-two grid near 1e-12 of the
+//     input's size, so that sampling noise cannot create features narrower
+//     than doubles;
+//  1. parts that do not cross themselves are united by chained
+//     corefinement on the inexact-constructions kernel (fast_union); the
+//     result is kept only if the exact check of it finds nothing;
+//  2. otherwise each part becomes an exact (Epeck) closed 2-manifold: as it
+//     is, or repaired by the soup pass (Solidifier) when it crosses itself,
+//     and the parts are united by chained exact corefinement;
+//  3. the soup pass, also the fallback when corefinement refuses a group or
+//     a repaired part is pinched: the shells go into one Epeck mesh without
+//     reorienting anything (exactly degenerate triangles dropped);
+//     PMP::experimental::autorefine splits triangles along every mutual
+//     intersection; the faces are grouped into patches bounded by the new
+//     edges, over which winding numbers are constant; one ray per patch,
+//     from a face centroid into its front side, counts signed crossings per
+//     body with exact predicates (retried when it grazes an edge), faces at
+//     the ray's origin being coincident ones; a patch is kept when exactly
+//     one of its sides lies in a solid, facing the other side;
+//  4. an exact result is rounded to doubles once (round_soup), vertices
+//     closer than 1e-11 of the size are merged and triangles the rounding
+//     flattened are removed by an edge split, and the rounded mesh is
+//     checked again with exact predicates: a crossing left is an error.
 // Trials with chained corefinement unions (inexact kernel) left
 // self-intersections, and exact results rounded later reintroduced some
-// (BUILD-NOTES): step 6 makes that an error instead of a silent result.
+// (BUILD-NOTES): the final checks make that an error instead of a silent
+// result, and the snap and merge of steps 0 and 4 made it rare.
 
 // CGAL checks its preconditions only without NDEBUG; with them, inputs it
 // cannot handle throw instead of crashing (autorefinement in 5.5 segfaults
