@@ -45,8 +45,10 @@ static size_t list_models(const char *dir, char names[][256], size_t max)
     struct dirent *e;
     while ((e = readdir(d)) && n < max) {
         size_t l = strlen(e->d_name);
-        if (l > 5 && l < 200 && strcmp(e->d_name + l - 5, ".json") == 0)
-            snprintf(names[n++], 256, "%s/%s", dir, e->d_name);
+        if (l > 5 && l < 200 && strcmp(e->d_name + l - 5, ".json") == 0) {
+            int w = snprintf(names[n], 256, "%s/%s", dir, e->d_name);
+            if (w > 0 && w < 256) n++;
+        }
     }
     closedir(d);
     qsort(names, n, sizeof names[0], (int (*)(const void *, const void *))strcmp);

@@ -139,11 +139,16 @@ coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons
         } else {
             coons_mesh_part_range(m, i, &tf, &tc, &vf, &vc);
         }
-        char title[COONS__SINK_MAXREC];
+        /* Written in pieces: a long part name must not cut the module name. */
+        char num[64];
         coons__clean_text(line, 256, whole ? "" : coons_mesh_part_name(m, i));
-        snprintf(title, sizeof title, "\n// part %zu: %s (%zu triangles)\nmodule %s() {\n", i, line,
-                 tc, names[i]);
-        coons__sink_puts(s, title);
+        snprintf(num, sizeof num, "\n// part %zu: ", i);
+        coons__sink_puts(s, num);
+        coons__sink_puts(s, line);
+        snprintf(num, sizeof num, " (%zu triangles)\nmodule ", tc);
+        coons__sink_puts(s, num);
+        coons__sink_puts(s, names[i]);
+        coons__sink_puts(s, "() {\n");
         if (tc && !put_part(s, m, tf, tc, vf, vc)) break;
         coons__sink_puts(s, "}\n");
     }
