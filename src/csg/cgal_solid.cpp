@@ -41,6 +41,8 @@
 // cannot handle throw instead of crashing (autorefinement in 5.5 segfaults
 // on some coplanar configurations otherwise). Measured cost: see README.
 #undef NDEBUG
+// CGAL's warnings would print to stderr; the library never prints.
+#define CGAL_NO_WARNINGS
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
