@@ -162,6 +162,31 @@ COONS_EXPORT coons_status coons_body_min_jacobian(const coons_body *b, unsigned 
                                                   double *min_det, double where[3],
                                                   coons_error *err);
 
+/**
+ * The model format's name of a body type ("body0", "bezier-volume", ...),
+ * or NULL for a value that is not a body type. Static storage.
+ */
+COONS_EXPORT const char *coons_body_type_name(coons_body_type type);
+
+/**
+ * The body type of a model-format name (exact, case-sensitive).
+ * @return ::COONS_OK, or ::COONS_E_INVALID for an unknown name (or NULL).
+ */
+COONS_EXPORT coons_status coons_body_type_from_name(const char *name, coons_body_type *out,
+                                                    coons_error *err);
+
+/**
+ * The model format's key of a body 1 edge ("u00" .. "w11", in the order of
+ * ::COONS_EDGE_U00 ..), or NULL for any other value.
+ */
+COONS_EXPORT const char *coons_body_edge_name(int edge);
+
+/**
+ * The model format's key of a face ("u0", "u1", "v0", "v1", "w0", "w1", in
+ * the order of ::COONS_FACE_U0 ..), or NULL for any other value.
+ */
+COONS_EXPORT const char *coons_body_face_name(int face);
+
 #ifdef __cplusplus
 }
 #endif

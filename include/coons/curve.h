@@ -159,6 +159,20 @@ COONS_EXPORT coons_status coons_curve_bezier_segments(const coons_curve *c, doub
 COONS_EXPORT coons_status coons_cubic_open_to_clamped(const double *open, size_t count,
                                                       double *clamped, coons_error *err);
 
+/**
+ * The model format's name of a curve type ("line", "coons-cubic", ...), or
+ * NULL for a value that is not a curve type (so a caller can list every type
+ * by counting up from 0 until NULL). Static storage, never freed.
+ */
+COONS_EXPORT const char *coons_curve_type_name(coons_curve_type type);
+
+/**
+ * The curve type of a model-format name (exact, case-sensitive).
+ * @return ::COONS_OK, or ::COONS_E_INVALID for an unknown name (or NULL).
+ */
+COONS_EXPORT coons_status coons_curve_type_from_name(const char *name, coons_curve_type *out,
+                                                     coons_error *err);
+
 #ifdef __cplusplus
 }
 #endif

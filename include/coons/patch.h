@@ -190,6 +190,25 @@ COONS_EXPORT coons_status coons_patch_eval_grid(const coons_patch *p, const doub
  */
 COONS_EXPORT void coons_patch_control_bbox(const coons_patch *p, double lo[3], double hi[3]);
 
+/**
+ * The model format's name of a patch type ("bilinear", "hermite-coons",
+ * ...), or NULL for a value that is not a patch type. Static storage.
+ */
+COONS_EXPORT const char *coons_patch_type_name(coons_patch_type type);
+
+/**
+ * The patch type of a model-format name (exact, case-sensitive).
+ * @return ::COONS_OK, or ::COONS_E_INVALID for an unknown name (or NULL).
+ */
+COONS_EXPORT coons_status coons_patch_type_from_name(const char *name, coons_patch_type *out,
+                                                     coons_error *err);
+
+/**
+ * The model format's key of a side of a Coons patch's boundary: "t0", "t1",
+ * "s0", "s1" for ::COONS_T0 .. ::COONS_S1; NULL for any other value.
+ */
+COONS_EXPORT const char *coons_patch_side_name(int side);
+
 #ifdef __cplusplus
 }
 #endif

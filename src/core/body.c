@@ -134,13 +134,12 @@ coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t n
 
 const char *coons__body_edge_name(int e)
 {
-    static const char *const names[12] = {"u00", "u01", "u10", "u11", "v00", "v01",
-                                          "v10", "v11", "w00", "w01", "w10", "w11"};
-    return (e >= 0 && e < 12) ? names[e] : "?";
+    const char *n = coons_body_edge_name(e);
+    return n ? n : "?";
 }
 
 const char *coons__body_face_name(int f)
 {
-    static const char *const names[6] = {"u0", "u1", "v0", "v1", "w0", "w1"};
-    return (f >= 0 && f < 6) ? names[f] : "?";
+    const char *n = coons_body_face_name(f);
+    return n ? n : "?";
 }
