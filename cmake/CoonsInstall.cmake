@@ -40,8 +40,15 @@ install(EXPORT coons-targets NAMESPACE coons::
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/coonsConfig.cmake.in
   ${PROJECT_BINARY_DIR}/cmake/coonsConfig.cmake
   INSTALL_DESTINATION ${COONS_CMAKE_DIR})
+# As the soname (src/CMakeLists.txt): the same major version, and before 1.0
+# the same minor version too.
+if(PROJECT_VERSION_MAJOR EQUAL 0)
+  set(_coons_compat SameMinorVersion)
+else()
+  set(_coons_compat SameMajorVersion)
+endif()
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/coonsConfigVersion.cmake
-  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+  VERSION ${PROJECT_VERSION} COMPATIBILITY ${_coons_compat})
 install(FILES ${PROJECT_BINARY_DIR}/cmake/coonsConfig.cmake
               ${PROJECT_BINARY_DIR}/cmake/coonsConfigVersion.cmake
   DESTINATION ${COONS_CMAKE_DIR})

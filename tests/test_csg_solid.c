@@ -86,7 +86,7 @@ static coons_body *box(double x0, double y0, double z0, double dx, double dy, do
             }
     coons_body *b = NULL;
     coons_error err;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     return b;
 }
 
@@ -103,7 +103,7 @@ static void assert_valid_solid(const coons_mesh *m, const coons_csg_report *rep)
 {
     coons_error err;
     size_t pairs = 99;
-    assert_coons_ok(coons_mesh_self_intersections(m, &pairs, &err), &err);
+    assert_coons_ok(coons_mesh_count_self_intersections(m, &pairs, &err), &err);
     assert_int_equal(pairs, 0);
     assert_true(rep->closed);
     assert_int_equal(rep->nonmanifold_edges, 0);
@@ -214,7 +214,7 @@ static void test_fold_is_repaired(void **state)
     size_t dims[3] = {3, 3, 2};
     coons_body *b = NULL;
     coons_error err;
-    assert_coons_ok(coons_body_bezier(&P[0][0][0][0], dims, &b, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(&P[0][0][0][0], dims, &b, &err), &err);
     double p[3];
     coons_body_eval(b, 0.3, 0.6, 1.0, p);
     assert_near(p[2], fold_t(0.3, 0.6), 1e-12); /* the test's t is the body's top */
@@ -223,7 +223,7 @@ static void test_fold_is_repaired(void **state)
     int n[3] = {40, 40, 2};
     add_body(m, b, n, "fold");
     size_t pairs = 0;
-    assert_coons_ok(coons_mesh_self_intersections(m, &pairs, &err), &err);
+    assert_coons_ok(coons_mesh_count_self_intersections(m, &pairs, &err), &err);
     assert_true(pairs > 0); /* the sampled boundary crosses itself */
     coons_csg_options o = COONS_CSG_OPTIONS_INIT;
     o.unite = 0;
@@ -241,7 +241,7 @@ static void test_fold_is_repaired(void **state)
            rep.nonmanifold_edges);
     assert_near(coons_mesh_volume(r), vol, 3e-3 * vol);
     size_t after = 99;
-    assert_coons_ok(coons_mesh_self_intersections(r, &after, &err), &err);
+    assert_coons_ok(coons_mesh_count_self_intersections(r, &after, &err), &err);
     assert_int_equal(after, 0);
     assert_true(rep.closed);
     coons_mesh_free(r);
@@ -269,7 +269,7 @@ static void test_fold_united_with_box(void **state)
     size_t dims[3] = {3, 2, 2};
     coons_body *f = NULL, *b = box(-0.5, -0.2, 0.3, 1.0, 0.4, 0.4);
     coons_error err;
-    assert_coons_ok(coons_body_bezier(&P[0][0][0][0], dims, &f, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(&P[0][0][0][0], dims, &f, &err), &err);
     coons_mesh *m = NULL, *u = NULL, *alone = NULL;
     assert_coons_ok(coons_mesh_new(&m, &err), &err);
     int nf[3] = {24, 6, 6}, nb[3] = {4, 4, 4};
@@ -284,7 +284,7 @@ static void test_fold_united_with_box(void **state)
     assert_coons_ok(coons_mesh_solidify(m, &o, &u, &rep, &err), &err);
     assert_int_equal(rep.fast_unions, 0);
     size_t pairs = 99;
-    assert_coons_ok(coons_mesh_self_intersections(u, &pairs, &err), &err);
+    assert_coons_ok(coons_mesh_count_self_intersections(u, &pairs, &err), &err);
     assert_int_equal(pairs, 0);
     assert_true(rep.closed);
     double vf = coons_mesh_volume(alone), vb = 0.4 * 0.4 * 1.0, vu = coons_mesh_volume(u);

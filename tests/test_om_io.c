@@ -32,7 +32,7 @@ static coons_mesh *sampled_mesh(void)
     const size_t n[3] = {3, 3, 2};
     coons_body *b;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_bezier(&P[0][0][0][0], n, &b, &e), &e);
+    assert_coons_ok(coons_body_new_bezier(&P[0][0][0][0], n, &b, &e), &e);
     coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
     o.resolution = 9;
     coons_mesh *m;

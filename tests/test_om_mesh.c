@@ -83,7 +83,7 @@ static void test_sampled_box(void **state)
     coons_body *b = NULL;
     coons_mesh *m = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_sample(b, NULL, NULL, &m, &err), &err);
     coons_mesh_report r = check(m);
     assert_true(r.closed && r.manifold && r.oriented);

@@ -102,18 +102,18 @@ COONS_EXPORT coons_status coons_mesh_solidify(const coons_mesh *in, const coons_
  * predicates on the double coordinates).
  * @return ::COONS_OK, ::COONS_E_UNSUPPORTED without CGAL, ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs,
-                                                        coons_error *err);
-
-/**
- * As coons_mesh_self_intersections(), after rounding every coordinate to
- * float32 as binary STL stores it.
- */
-COONS_EXPORT coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
+COONS_EXPORT coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs,
                                                               coons_error *err);
 
 /**
- * Samples every body of a model (see coons_model_mesh()) and makes the
+ * As coons_mesh_count_self_intersections(), after rounding every coordinate to
+ * float32 as binary STL stores it.
+ */
+COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                                    coons_error *err);
+
+/**
+ * Samples every body of a model (see coons_model_sample()) and makes the
  * model's solid: with operation "union" the boundary of the union of all
  * bodies' solids as one part named after `copts->name` (default "union"),
  * with "none" each body's solid as its own part. Bodies that meet nothing
@@ -126,18 +126,18 @@ COONS_EXPORT coons_status coons_mesh_self_intersections_float(const coons_mesh *
  *                   1), before the stages of coons_mesh_solidify(), whose
  *                   fraction starts again from 0
  * @param[out] report may be NULL; zeroed when no CGAL work was needed
- * @return as coons_model_mesh() and coons_mesh_solidify(); without CGAL,
+ * @return as coons_model_sample() and coons_mesh_solidify(); without CGAL,
  *         ::COONS_E_UNSUPPORTED when bodies overlap or touch under "union" or
  *         repair is asked for a body that crosses itself cannot be checked
  *         (without CGAL no check is made: shells are written as sampled).
  */
-COONS_EXPORT coons_status coons_model_solid(const coons_model *model,
-                                            const coons_sample_options *sopts,
-                                            const coons_csg_options *copts, coons_mesh **out,
-                                            coons_csg_report *report, coons_error *err);
+COONS_EXPORT coons_status coons_model_solidify(const coons_model *model,
+                                               const coons_sample_options *sopts,
+                                               const coons_csg_options *copts, coons_mesh **out,
+                                               coons_csg_report *report, coons_error *err);
 
 /** 1 when the library was built with CGAL (repair and union available). */
-COONS_EXPORT int coons_csg_available(void);
+COONS_EXPORT int coons_csg_is_available(void);
 
 #ifdef __cplusplus
 }

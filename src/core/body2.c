@@ -62,9 +62,12 @@ coons_status coons__body2_copy_faces(const coons_body *b, coons_body *d, coons_e
     return COONS_OK;
 }
 
-coons_status coons_body_body2(const coons_patch *const faces[6], coons_blend blend, double tol,
-                              coons_body **out, coons_error *err)
+coons_status coons_body_new_body2(coons_patch *const *faces_in, coons_blend blend, double tol,
+                                  coons_body **out, coons_error *err)
 {
+    /* The public idiom (coons/types.h, "Arrays") passes handles as X *const *;
+     * the code here only reads them. */
+    const coons_patch *const *faces = (const coons_patch *const *)faces_in;
     *out = NULL;
     if (!faces) return coons__error_set(err, COONS_E_INVALID, "body2: faces are NULL");
     if (blend != COONS_BLEND_LINEAR && blend != COONS_BLEND_CUBIC)

@@ -85,8 +85,8 @@ static void brk_patch(breaks *B, const coons_patch *p, int dir)
     case COONS_PATCH_COONS:
     case COONS_PATCH_HERMITE_COONS:
         /* T0, T1 and the cross curves x_t(s,0), x_t(s,1) run along s */
-        brk_curve(B, p->curve[dir == 0 ? COONS_T0 : COONS_S0]);
-        brk_curve(B, p->curve[dir == 0 ? COONS_T1 : COONS_S1]);
+        brk_curve(B, p->curve[dir == 0 ? COONS_SIDE_T0 : COONS_SIDE_S0]);
+        brk_curve(B, p->curve[dir == 0 ? COONS_SIDE_T1 : COONS_SIDE_S1]);
         brk_curve(B, p->cross[dir == 0 ? 0 : 2]);
         brk_curve(B, p->cross[dir == 0 ? 1 : 3]);
         break;

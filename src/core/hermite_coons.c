@@ -19,10 +19,13 @@
 
 static const char *const cross_name[4] = {"t0", "t1", "s0", "s1"};
 
-coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
-                                       const coons_hermite_options *opts, coons_patch **out,
-                                       coons_error *err)
+coons_status coons_patch_new_hermite_coons(coons_curve *const *boundary_in,
+                                           const coons_hermite_options *opts, coons_patch **out,
+                                           coons_error *err)
 {
+    /* The public idiom (coons/types.h, "Arrays") passes handles as X *const *;
+     * the code here only reads them. */
+    const coons_curve *const *boundary = (const coons_curve *const *)boundary_in;
     if (!out) return coons__error_set(err, COONS_E_INVALID, "hermite-coons patch: out is NULL");
     *out = NULL;
     const coons_hermite_options defaults = COONS_HERMITE_OPTIONS_INIT;
@@ -56,9 +59,9 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
     double xs[4][3], xt[4][3], r[2][3];
     for (int k = 0; k < 4; k++) {
         int a = k & 1, b = k >> 1;
-        coons_curve_eval_derivs(boundary[b ? COONS_T1 : COONS_T0], (double)a, 1, r);
+        coons_curve_eval_derivs(boundary[b ? COONS_SIDE_T1 : COONS_SIDE_T0], (double)a, 1, r);
         v3_copy(xs[k], r[1]);
-        coons_curve_eval_derivs(boundary[a ? COONS_S1 : COONS_S0], (double)b, 1, r);
+        coons_curve_eval_derivs(boundary[a ? COONS_SIDE_S1 : COONS_SIDE_S0], (double)b, 1, r);
         v3_copy(xt[k], r[1]);
     }
 
@@ -150,8 +153,8 @@ void coons__hermite_sline(const coons_patch *p, double s, int order, coons__plin
     /* Tv = t0(s), x_t(s,0), x_t(s,1), t1(s); W = Tv - H(s) M. Without cross
      * curves the middle two Tv are the ribbons H(s) M[.][1..2] of eq. 1.16
      * and W is zero there. */
-    line_curve(L, 0, p->curve[COONS_T0], s, order);
-    line_curve(L, 3, p->curve[COONS_T1], s, order);
+    line_curve(L, 0, p->curve[COONS_SIDE_T0], s, order);
+    line_curve(L, 3, p->curve[COONS_SIDE_T1], s, order);
     if (p->cross[0]) {
         line_curve(L, 1, p->cross[0], s, order);
         line_curve(L, 2, p->cross[1], s, order);
@@ -173,8 +176,8 @@ void coons__hermite_tline(const coons_patch *p, double t, int order, coons__plin
     double H[12];
     coons__hermite_basis(t, order, H);
     /* Sv = s0(t), x_s(0,t), x_s(1,t), s1(t); ribbons x_s(a,t) = M[1 or 2][.] H(t). */
-    line_curve(L, 0, p->curve[COONS_S0], t, order);
-    line_curve(L, 3, p->curve[COONS_S1], t, order);
+    line_curve(L, 0, p->curve[COONS_SIDE_S0], t, order);
+    line_curve(L, 3, p->curve[COONS_SIDE_S1], t, order);
     if (p->cross[2]) {
         line_curve(L, 1, p->cross[2], t, order);
         line_curve(L, 2, p->cross[3], t, order);

@@ -1104,15 +1104,15 @@ coons_status self_int(const coons_mesh *m, size_t *pairs, bool to_float, coons_e
 }
 } // namespace
 
-extern "C" coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
+extern "C" coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
 {
     return self_int(m, pairs, false, err);
 }
 
-extern "C" coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
-                                                            coons_error *err)
+extern "C" coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                                  coons_error *err)
 {
     return self_int(m, pairs, true, err);
 }
 
-extern "C" int coons_csg_available(void) { return 1; }
+extern "C" int coons_csg_is_available(void) { return 1; }

@@ -9,9 +9,9 @@
 #include "coons_internal.h"
 #include "mesh_glue.h"
 
-coons_status coons_model_solid(const coons_model *model, const coons_sample_options *sopts,
-                               const coons_csg_options *copts, coons_mesh **out,
-                               coons_csg_report *report, coons_error *err)
+coons_status coons_model_solidify(const coons_model *model, const coons_sample_options *sopts,
+                                  const coons_csg_options *copts, coons_mesh **out,
+                                  coons_csg_report *report, coons_error *err)
 {
     *out = NULL;
     if (report) memset(report, 0, sizeof *report);
@@ -21,7 +21,7 @@ coons_status coons_model_solid(const coons_model *model, const coons_sample_opti
                                           copts ? copts->userdata : NULL, &m, &tol, err);
     if (st) return st;
     int unite = coons_model_operation(model) == COONS_OP_UNION;
-    if (!coons_csg_available()) {
+    if (!coons_csg_is_available()) {
         size_t i, j;
         if (unite && coons__parts_meet(m, tol, &i, &j)) {
             st = coons__union_unavailable(m, i, j, err);

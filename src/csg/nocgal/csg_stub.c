@@ -20,19 +20,19 @@ coons_status coons_mesh_solidify(const coons_mesh *in, const coons_csg_options *
     return unavailable(err);
 }
 
-coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
+coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
 {
     (void)m;
     *pairs = 0;
     return unavailable(err);
 }
 
-coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
-                                                 coons_error *err)
+coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                       coons_error *err)
 {
     (void)m;
     *pairs = 0;
     return unavailable(err);
 }
 
-int coons_csg_available(void) { return 0; }
+int coons_csg_is_available(void) { return 0; }
