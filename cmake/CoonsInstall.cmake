@@ -7,19 +7,9 @@ include(CMakePackageConfigHelpers)
 set(COONS_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/coons)
 
 # An installed static library carries its private dependencies in its link
-# interface, as plain names that work without their CMake packages.
-set(_coons_static_deps)
-if(COONS_WITH_OPENMESH)
-  list(APPEND _coons_static_deps OpenMeshCore)
-endif()
-if(COONS_WITH_CGAL)
-  list(APPEND _coons_static_deps mpfr gmp)
-endif()
-list(APPEND _coons_static_deps m)
-if(COONS_WITH_OPENMESH OR COONS_WITH_CGAL)
-  list(APPEND _coons_static_deps stdc++)
-endif()
-target_link_libraries(coons_static INTERFACE "$<INSTALL_INTERFACE:${_coons_static_deps}>")
+# interface, as plain names that work without their CMake packages (the
+# list src/CMakeLists.txt keeps).
+target_link_libraries(coons_static INTERFACE "$<INSTALL_INTERFACE:${COONS_PRIVATE_NAMES}>")
 
 install(TARGETS coons coons_static EXPORT coons-targets
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}

@@ -58,7 +58,7 @@ int main(int argc, char **argv)
     for (int r = 0; r < repeat; r++) {
         double t0 = now();
         coons_model *m = NULL;
-        check(coons_model_load_file(model, &m, &err), "load", &err);
+        check(coons_model_load_file(model, NULL, &m, &err), "load", &err);
         double t1 = now();
         coons_mesh *all = NULL;
         check(coons_mesh_new(&all, &err), "mesh", &err);
