@@ -84,12 +84,24 @@ typedef struct coons_model_load_options {
 #define COONS_MODEL_LOAD_OPTIONS_VERSION 1
 #define COONS_MODEL_LOAD_OPTIONS_INIT {COONS_MODEL_LOAD_OPTIONS_VERSION, 0, 0, 0u, 0}
 
-/** coons_model_load() with limits; opts NULL means the defaults. */
+/**
+ * Sets `*o` to ::COONS_MODEL_LOAD_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_model_load_options_init(coons_model_load_options *o);
+
+/**
+ * coons_model_load() with limits; opts NULL means the defaults.
+ * ::COONS_E_INVALID when `opts->version` is not ::COONS_MODEL_LOAD_OPTIONS_VERSION.
+ */
 COONS_EXPORT coons_status coons_model_load_opts(const char *path,
                                                 const coons_model_load_options *opts,
                                                 coons_model **out, coons_error *err);
 
-/** coons_model_load_buffer() with limits; opts NULL means the defaults. */
+/**
+ * coons_model_load_buffer() with limits; opts NULL means the defaults.
+ * ::COONS_E_INVALID when `opts->version` is not ::COONS_MODEL_LOAD_OPTIONS_VERSION.
+ */
 COONS_EXPORT coons_status coons_model_load_buffer_opts(const char *data, size_t size,
                                                        const char *name,
                                                        const coons_model_load_options *opts,

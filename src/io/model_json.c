@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 
 #include "io/json.h"
+#include "io/load_options.h"
 #include "model_impl.h"
 
 /* Samples per shared body 2 edge for the agreement check (ends included). */
@@ -1468,6 +1469,8 @@ coons_status coons_model_load_buffer_opts(const char *data, size_t size, const c
     const char *file = name ? name : "<buffer>";
     if (!out || (!data && size))
         return file_error(err, COONS_E_INVALID, file, "no data or no place for the model");
+    coons_status vrc = coons__model_load_options_check(opts, err);
+    if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     if (size > o.max_bytes)
@@ -1523,6 +1526,8 @@ coons_status coons_model_load_opts(const char *path, const coons_model_load_opti
 {
     if (out) *out = NULL;
     if (!path || !out) return file_error(err, COONS_E_INVALID, "?", "no file name");
+    coons_status vrc = coons__model_load_options_check(opts, err);
+    if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     errno = 0;
