@@ -39,7 +39,7 @@ static void check_union(const char *rel, double tol)
     int calls = 0;
     co.progress = progress;
     co.userdata = &calls;
-    coons_csg_report rep;
+    coons_csg_report rep = COONS_CSG_REPORT_INIT;
     coons_mesh *solid = NULL;
     assert_coons_ok(coons_model_solidify(m, &so, &co, &solid, &rep, &err), &err);
     assert_true(calls > 0);

@@ -21,6 +21,8 @@
 
 #include <coons.h>
 
+#include "coons_test_hooks.h" /* coons__csg_inject_failure (coons_static) */
+
 enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_GEOMETRY = 3 };
 
 static const char *const PROG = "coons2stl";
@@ -628,8 +630,8 @@ static coons_status make_solid(const coons_model *m, long body, const coons_samp
     copts.repair = repair;
     copts.progress = ui.on ? on_progress : NULL;
     const char *inject = getenv("COONS2STL_INJECT_CSG_FAILURE");
-    copts.inject_failure = inject && *inject && strcmp(inject, "0") != 0;
-    memset(rep, 0, sizeof *rep);
+    coons__csg_inject_failure(inject && *inject && strcmp(inject, "0") != 0);
+    coons_csg_report_init(rep);
     *out = NULL;
     coons_sample_options sopts = *so;
     if (body < 0) return coons_model_solidify(m, &sopts, &copts, out, rep, err);

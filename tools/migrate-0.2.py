@@ -13,7 +13,8 @@ with their line so that you can adapt them by hand (libcoons(3), DEPRECATED):
   coons_body_bspline                       three knot pointers instead of an array
   coons_model_load, coons_model_load_buffer  take an options pointer (NULL: defaults)
 The 0.1 names still compile in 0.2 (deprecated wrappers), so a program can be
-moved over one call at a time.
+moved over one call at a time. Lines from one that says "migrate-0.2: off" to
+one that says "migrate-0.2: on" are left as they are.
 """
 import re
 import sys
@@ -84,7 +85,12 @@ def migrate(text):
     notes = []
     out = []
     shift = None  # (old indent, new indent) of continuation lines, while open
+    skip = False  # between lines saying "migrate-0.2: off" and "migrate-0.2: on"
     for n, line in enumerate(text.splitlines(keepends=True), 1):
+        if "migrate-0.2: off" in line or skip:
+            skip = "migrate-0.2: on" not in line
+            out.append(line)
+            continue
         if shift is not None:
             body = line.lstrip(" ")
             indent = len(line) - len(body)

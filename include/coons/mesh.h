@@ -121,6 +121,12 @@ typedef struct coons_sample_options {
 #define COONS_SAMPLE_OPTIONS_INIT {COONS_SAMPLE_OPTIONS_VERSION, 0.0, 0u, 0u, 0.0, 0u}
 
 /**
+ * Sets `*o` to ::COONS_SAMPLE_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_sample_options_init(coons_sample_options *o);
+
+/**
  * Samples the boundary of a body into a closed, outward-oriented triangle
  * mesh with one part named `name` (NULL: "body").
  *
@@ -235,6 +241,9 @@ typedef struct coons_mesh_report {
 #define COONS_MESH_REPORT_INIT {COONS_MESH_REPORT_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
                                 0, 0, 0, 0, 0, 0, 0, 0.0, 0.0}
 
+/** Sets `*r` to ::COONS_MESH_REPORT_INIT; NULL is a harmless no-op. */
+COONS_EXPORT void coons_mesh_report_init(coons_mesh_report *r);
+
 /**
  * Checks that a mesh is closed, 2-manifold and consistently oriented and
  * counts what is not. The verdicts and counts come from the index arrays
@@ -254,19 +263,6 @@ typedef struct coons_mesh_report {
  */
 COONS_EXPORT coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_report *report,
                                            coons_error *err);
-
-/**
- * Reads an STL (ASCII or binary) or OFF file through OpenMesh's readers, as
- * one part named after the file. Meant for tests and inspection: OpenMesh
- * reads coordinates in single precision, welds STL vertices by position,
- * and may duplicate vertices of faces it cannot add. Its OFF reader does
- * not detect truncated files (it then reads uninitialised indices): do not
- * use it on untrusted input.
- * @return ::COONS_OK, ::COONS_E_IO (missing file, unknown extension, read
- *         failure, no face read), ::COONS_E_UNSUPPORTED (built without OpenMesh),
- *         ::COONS_E_NOMEM, ::COONS_E_INTERNAL.
- */
-COONS_EXPORT coons_status coons_mesh_read(const char *path, coons_mesh **out, coons_error *err);
 
 #ifdef __cplusplus
 }

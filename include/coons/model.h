@@ -43,6 +43,12 @@ typedef struct coons_model_load_options {
 #define COONS_MODEL_LOAD_OPTIONS_INIT {COONS_MODEL_LOAD_OPTIONS_VERSION, 0, 0, 0u, 0}
 
 /**
+ * Sets `*o` to ::COONS_MODEL_LOAD_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_model_load_options_init(coons_model_load_options *o);
+
+/**
  * Loads a model file. On error, err carries the file, line, column and JSON
  * path of the offending value and what was expected.
  *
@@ -64,7 +70,8 @@ typedef struct coons_model_load_options {
  *
  * Numbers are read independently of the process locale.
  * @param[in] path a file name ("-" is not special here)
- * @param[in] opts the loader's limits; NULL means the defaults
+ * @param[in] opts the loader's limits; NULL means the defaults; a `version`
+ *                 other than ::COONS_MODEL_LOAD_OPTIONS_VERSION is ::COONS_E_INVALID
  * @param[out] out the model, owned by the caller (coons_model_free())
  * @return ::COONS_OK, ::COONS_E_IO (with strerror's text), ::COONS_E_PARSE
  *         (malformed JSON), ::COONS_E_INVALID (a value the format does not

@@ -106,6 +106,12 @@ typedef struct coons_hermite_options {
     {COONS_HERMITE_OPTIONS_VERSION, {0, 0, 0, 0}, COONS_TWIST_ZERO, {{0}}, COONS_TOL_DEFAULT}
 
 /**
+ * Sets `*o` to ::COONS_HERMITE_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_hermite_options_init(coons_hermite_options *o);
+
+/**
  * Bicubically blended (Hermite) Coons patch, seed 001 eq. 1.13-1.15:
  * x = h_c + h_d - h_cd with the cubic Hermite basis H0..H3.
  *

@@ -191,3 +191,9 @@ void coons__hermite_tline(const coons_patch *p, double t, int order, coons__plin
             }
     }
 }
+
+void coons_hermite_options_init(coons_hermite_options *o)
+{
+    const coons_hermite_options d = COONS_HERMITE_OPTIONS_INIT;
+    if (o) *o = d;
+}

@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 
 #include "io/json.h"
+#include "io/load_options.h"
 #include "model_impl.h"
 
 /* Samples per shared body 2 edge for the agreement check (ends included). */
@@ -1462,6 +1463,8 @@ coons_status coons_model_load_memory(const char *data, size_t size, const char *
     const char *file = name ? name : "<buffer>";
     if (!out || (!data && size))
         return file_error(err, COONS_E_INVALID, file, "no data or no place for the model");
+    coons_status vrc = coons__model_load_options_check(opts, err);
+    if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     if (size > o.max_bytes)
@@ -1511,6 +1514,8 @@ coons_status coons_model_load_file(const char *path, const coons_model_load_opti
 {
     if (out) *out = NULL;
     if (!path || !out) return file_error(err, COONS_E_INVALID, "?", "no file name");
+    coons_status vrc = coons__model_load_options_check(opts, err);
+    if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     errno = 0;

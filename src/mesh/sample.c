@@ -798,3 +798,9 @@ coons_status coons_body_sample(const coons_body *b, const coons_sample_options *
     *out = m;
     return COONS_OK;
 }
+
+void coons_sample_options_init(coons_sample_options *o)
+{
+    const coons_sample_options d = COONS_SAMPLE_OPTIONS_INIT;
+    if (o) *o = d;
+}

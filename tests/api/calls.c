@@ -216,7 +216,7 @@ static void models_and_meshes(void)
     coons_mesh_free(m);
     m = NULL;
     coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-    coons_csg_report rep;
+    coons_csg_report rep = COONS_CSG_REPORT_INIT;
     coons_status st = coons_model_solidify(model, &so, &co, &m, &rep, &err);
     check("model solidify", st == COONS_OK && coons_mesh_triangle_count(m) == 12);
     coons_mesh_free(m);

@@ -254,7 +254,7 @@ static void test_mesh(void)
     check("two-part mesh", st == COONS_OK && coons_mesh_part_count(both) == 2);
     if (st != COONS_OK)
         goto done;
-    coons_csg_report cr;
+    coons_csg_report cr = COONS_CSG_REPORT_INIT;
     st = coons_mesh_solidify(both, NULL, &u, &cr, &err);
     if (!coons_csg_is_available()) {
         check("without CGAL, solidify is COONS_E_UNSUPPORTED", st == COONS_E_UNSUPPORTED);

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
+# migrate-0.2: off (the 0.1 call in this test is its point)
 """The public API is callable from C with ordinary arrays and no cast.
 
 - tests/api/calls.c (every public function that takes an array, called with
@@ -43,6 +44,9 @@ int probe(coons_curve *b[4], coons_patch **p, coons_error *e)
 }
 """
 FINE_02 = NEEDS_CAST_01.replace("coons_patch_coons(", "coons_patch_new_coons(")
+
+
+# migrate-0.2: on
 
 
 def sanitized(build):
@@ -99,7 +103,7 @@ def main():
                         r.check(f"{tag}: calls runs, every check passes", p.returncode == 0,
                                 p.stdout)
             # The harness sees a signature that needs a cast.
-            for name, body, want_ok in (("0.1 coons_patch_coons(coons_curve *b[4])",
+            for name, body, want_ok in (("0.1 coons_patch_new_coons(coons_curve *b[4])",
                                          NEEDS_CAST_01, False),
                                         ("0.2 coons_patch_new_coons(coons_curve *b[4])",
                                          FINE_02, True)):

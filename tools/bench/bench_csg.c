@@ -82,7 +82,7 @@ int main(int argc, char **argv)
         }
         double t2 = now();
         coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-        coons_csg_report rep;
+        coons_csg_report rep = COONS_CSG_REPORT_INIT;
         coons_mesh *u = NULL;
         check(coons_mesh_solidify(all, &co, &u, &rep, &err), "union", &err);
         double t3 = now();

@@ -2,6 +2,7 @@
 /* Built when libcoons is configured without CGAL: repair and union are not
  * available, and say so. */
 #include "coons_internal.h"
+#include "csg/csg_records.h"
 
 static coons_status unavailable(coons_error *err)
 {
@@ -14,9 +15,9 @@ coons_status coons_mesh_solidify(const coons_mesh *in, const coons_csg_options *
                                  coons_mesh **out, coons_csg_report *report, coons_error *err)
 {
     (void)in;
-    (void)opts;
-    (void)report;
     *out = NULL;
+    coons_status st = coons__csg_records_check(opts, report, err);
+    if (st) return st;
     return unavailable(err);
 }
 
