@@ -620,10 +620,12 @@ static void test_format_table(void **state)
     /* The refusals name everything the table holds. */
     coons_format got;
     assert_int_equal(coons_format_from_name("ply", &got, &e), COONS_E_INVALID);
-    for (char *w = strtok(names, " "); w; w = strtok(NULL, " ")) assert_non_null(strstr(e.message, w));
+    for (char *w = strtok(names, " "); w; w = strtok(NULL, " "))
+        assert_non_null(strstr(e.message, w));
     assert_non_null(strstr(e.message, "stl, stl-binary"));
     assert_int_equal(coons_format_from_path("a.ply", &got, &e), COONS_E_INVALID);
-    for (char *w = strtok(exts, " "); w; w = strtok(NULL, " ")) assert_non_null(strstr(e.message, w));
+    for (char *w = strtok(exts, " "); w; w = strtok(NULL, " "))
+        assert_non_null(strstr(e.message, w));
     assert_non_null(strstr(e.message, "'a.ply' (use .stl, .off, "));
 }
 

@@ -26,12 +26,6 @@ static const coons__format_row ROWS[] = {
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 
-const coons__format_row *coons__format_rows(size_t *count)
-{
-    *count = NROWS;
-    return ROWS;
-}
-
 const coons__format_row *coons__format_row_of(coons_format format)
 {
     for (size_t i = 0; i < NROWS; i++)

@@ -96,8 +96,6 @@ typedef struct coons__format_row {
 
 /* The row of a format, or NULL (COONS_FORMAT_AUTO and unknown values). */
 const coons__format_row *coons__format_row_of(coons_format format);
-/* Every row, in enum order; *count receives their number. */
-const coons__format_row *coons__format_rows(size_t *count);
 
 /* ---- the writers the table names -------------------------------------- */
 

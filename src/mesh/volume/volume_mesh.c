@@ -92,7 +92,8 @@ coons_status coons_volume_mesh_add_nodes(coons_volume_mesh *vm, const double *xy
                                          size_t *first, coons_error *err)
 {
     if (!vm) return coons__error_set(err, COONS_E_INVALID, "no volume mesh given");
-    if (n > (size_t)UINT32_MAX - vm->nn)
+    /* The second bound matters where size_t has 32 bits. */
+    if (n > (size_t)UINT32_MAX - vm->nn || n > SIZE_MAX / (3 * sizeof(double)) - vm->nn)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "a volume mesh holds at most %lu nodes: %zu plus %zu is more",
                                 (unsigned long)UINT32_MAX, vm->nn, n);
@@ -145,7 +146,7 @@ coons_status coons_volume_mesh_add_cells(coons_volume_mesh *vm, const uint32_t *
                                          size_t part, size_t *first, coons_error *err)
 {
     if (!vm) return coons__error_set(err, COONS_E_INVALID, "no volume mesh given");
-    if (n > (size_t)UINT32_MAX - vm->nc)
+    if (n > (size_t)UINT32_MAX - vm->nc || n > SIZE_MAX / (vm->npc * sizeof(uint32_t)) - vm->nc)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "a volume mesh holds at most %lu cells: %zu plus %zu is more",
                                 (unsigned long)UINT32_MAX, vm->nc, n);
