@@ -627,6 +627,31 @@ static void test_format_table(void **state)
     for (char *w = strtok(exts, " "); w; w = strtok(NULL, " "))
         assert_non_null(strstr(e.message, w));
     assert_non_null(strstr(e.message, "'a.ply' (use .stl, .off, "));
+
+    /* libcoons(3) lists what the table holds: every extension under
+     * coons_format_from_path, every name under coons_format_from_name. */
+    char *man = io_read_file(COONS_SOURCE_DIR "/man/man3/libcoons.3", NULL);
+    assert_non_null(man);
+    char *by_path = strstr(man, ".It Fn coons_format_from_path");
+    char *by_name = by_path ? strstr(by_path, ".It Fn coons_format_from_name") : NULL;
+    char *end = by_name ? strstr(by_name, ".It Fn coons_format_name") : NULL;
+    assert_non_null(end);
+    *end = '\0';
+    for (int k = 1; k < f; k++) {
+        const char *ext = coons_format_extension((coons_format)k);
+        char want[80];
+        if (ext) {
+            *by_name = '\0';
+            assert_non_null(strstr(by_path, ext));
+            *by_name = '.';
+        }
+        snprintf(want, sizeof want, "\n.Qq %s", coons_format_name((coons_format)k));
+        int found = 0;
+        for (char *q = strstr(by_name, want); q && !found; q = strstr(q + 1, want))
+            found = q[strlen(want)] == ' ' || q[strlen(want)] == '\n';
+        if (!found) fail_msg("libcoons(3) does not list the format name '%s'", want + 5);
+    }
+    free(man);
 }
 
 /* Given a triangle mesh and a volume mesh and an existing file, when each
