@@ -117,10 +117,10 @@ typedef struct coons__write_job {
     coons__wopts o;
 } coons__write_job;
 
-/* Checks what both mesh kinds share and resolves the options into job->o:
- * `mesh_given`, the options version, the format and its kind (`kind`, the
- * kind of the mesh the caller passed; `entry` names the function that
- * takes the other kind, for the message). Sets job->row. */
+/* Checks what both mesh kinds share: a mesh was given, the options
+ * version, a known format whose kind is `kind` (that of the caller's mesh;
+ * the message of a mismatch names the entry point for the other kind).
+ * Sets job->row and resolves the options into job->o. */
 coons_status coons__write_prepare(coons__write_job *job, int mesh_given, coons_format format,
                                   coons_mesh_kind kind, const coons_write_options *opts,
                                   coons_error *err);
