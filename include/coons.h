@@ -26,6 +26,7 @@
 #include "coons/body.h"
 #include "coons/model.h"
 #include "coons/mesh.h"
+#include "coons/volume.h"
 #include "coons/csg.h"
 #include "coons/io.h"
 #ifndef COONS_NO_DEPRECATED

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The number formatter of the text writers (src/io/fmt.c, compiled into
+/* The number formatter of the text writers (src/io/write/fmt.c, compiled into
  * this test because it is internal): every double and float reads back to
  * the same bits, the text is the shortest that does (checked against the
  * C library, an independent implementation), and the notation is plain. */
-#include "io/fmt.c"
+#include "io/write/fmt.c"
 
 #include <float.h>
 

@@ -1,9 +1,14 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /**
  * @file coons/io.h
- * @brief Writing meshes: binary and ASCII STL, OFF, and OpenSCAD source.
+ * @brief Writing meshes: binary and ASCII STL, OFF and OpenSCAD source
+ *        (triangle meshes), legacy VTK (volume meshes).
  *
- * All writers see a ::coons_mesh only (see coons/mesh.h) and are
+ * Each format holds one kind of mesh (coons_format_kind()): the surface
+ * formats a ::coons_mesh (coons/mesh.h), written by coons_mesh_write(), the
+ * volume formats a ::coons_volume_mesh (coons/volume.h), written by
+ * coons_volume_mesh_write(). Both write through the same atomic file
+ * protocol described at coons_mesh_write(). All writers are
  * deterministic: the same mesh and options always give byte-identical
  * output, whatever the locale of the process (the library never calls
  * setlocale()).
@@ -27,6 +32,17 @@
  *   call of that module. `use <file.scad>` therefore imports the modules
  *   and `include <file.scad>` also renders the model. Vertices carry full
  *   double precision.
+ * - ::COONS_FORMAT_VTK (volume): legacy VTK, ASCII, `# vtk DataFile Version
+ *   3.0`, `DATASET UNSTRUCTURED_GRID` (VTK file formats, "Simple Legacy
+ *   Formats"): the header text (and units) as title, `POINTS` in double,
+ *   `CELLS` and `CELL_TYPES` 12 (VTK_HEXAHEDRON), 25
+ *   (VTK_QUADRATIC_HEXAHEDRON) or 29 (VTK_TRIQUADRATIC_HEXAHEDRON), with
+ *   each cell's nodes permuted from the mesh's Gmsh order to VTK's (corners
+ *   alike; VTK's edges are 0-1 1-2 3-2 0-3 4-5 5-6 7-6 4-7 0-4 1-5 2-6 3-7,
+ *   its face nodes r=0 r=1 s=0 s=1 t=0 t=1, then the centre), then
+ *   `POINT_DATA` and `CELL_DATA` with every field as `SCALARS NAME double`
+ *   or `int`, in the order they were added. Parts and sets are not written:
+ *   the legacy format has no place for them.
  *
  * Numbers in OFF and SCAD are the shortest decimal text that strtod() reads
  * back to the identical double (-0 stays "-0"); non-finite values are
@@ -47,6 +63,7 @@
 #include <stdio.h>
 
 #include "coons/types.h"
+#include "coons/volume.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -58,8 +75,16 @@ typedef enum coons_format {
     COONS_FORMAT_STL_BINARY = 1, /**< binary STL (what `.stl` means) */
     COONS_FORMAT_STL_ASCII = 2,  /**< ASCII STL */
     COONS_FORMAT_OFF = 3,        /**< Object File Format, text */
-    COONS_FORMAT_SCAD = 4        /**< OpenSCAD source */
+    COONS_FORMAT_SCAD = 4,       /**< OpenSCAD source */
+    COONS_FORMAT_VTK = 5         /**< legacy VTK unstructured grid, ASCII (volume) */
 } coons_format;
+
+/** The kind of mesh a format holds (coons_format_kind()). */
+typedef enum coons_mesh_kind {
+    COONS_MESH_KIND_NONE = 0,    /**< not a format */
+    COONS_MESH_KIND_SURFACE = 1, /**< a triangle mesh, ::coons_mesh */
+    COONS_MESH_KIND_VOLUME = 2   /**< a volume mesh, ::coons_volume_mesh */
+} coons_mesh_kind;
 
 /** Version of ::coons_write_options this header describes. */
 #define COONS_WRITE_OPTIONS_VERSION 1
@@ -114,7 +139,7 @@ COONS_EXPORT void coons_write_options_init(coons_write_options *o);
 /**
  * Format implied by a path's extension, compared without regard to case:
  * `.stl` gives ::COONS_FORMAT_STL_BINARY, `.off` ::COONS_FORMAT_OFF,
- * `.scad` ::COONS_FORMAT_SCAD.
+ * `.scad` ::COONS_FORMAT_SCAD, `.vtk` ::COONS_FORMAT_VTK.
  * @param[in]  path file name (only the part after the last '/' is used)
  * @param[out] out  the format
  * @param[in,out] err may be NULL
@@ -125,15 +150,33 @@ COONS_EXPORT coons_status coons_format_from_path(const char *path, coons_format 
 
 /**
  * Format named by a string, compared without regard to case: "stl" and
- * "stl-binary" (binary STL), "stl-ascii", "off", "scad".
- * @return ::COONS_OK, or ::COONS_E_INVALID for any other name.
+ * "stl-binary" (binary STL), "stl-ascii", "off", "scad", "vtk".
+ * @return ::COONS_OK, or ::COONS_E_INVALID for any other name (the message
+ *         lists the known ones).
  */
 COONS_EXPORT coons_status coons_format_from_name(const char *name, coons_format *out,
                                                  coons_error *err);
 
 /** Canonical name of a format ("stl-binary", "stl-ascii", "off", "scad",
- *  "auto"); a static string, never NULL ("unknown" for other values). */
+ *  "vtk", "auto"); a static string, never NULL ("unknown" for other values). */
 COONS_EXPORT const char *coons_format_name(coons_format format);
+
+/**
+ * The kind of mesh a format holds: ::COONS_MESH_KIND_SURFACE (STL, OFF,
+ * SCAD) or ::COONS_MESH_KIND_VOLUME (VTK); ::COONS_MESH_KIND_NONE for
+ * ::COONS_FORMAT_AUTO and values that are no format. The formats are
+ * numbered 1, 2, ... without gaps, so a program lists them all by counting
+ * up from 1 until this returns ::COONS_MESH_KIND_NONE.
+ */
+COONS_EXPORT coons_mesh_kind coons_format_kind(coons_format format);
+
+/**
+ * The extension that implies a format with coons_format_from_path(), such
+ * as ".stl"; a static string, or NULL for a format that no extension
+ * implies (::COONS_FORMAT_STL_ASCII: `.stl` means binary) and for values
+ * that are no format.
+ */
+COONS_EXPORT const char *coons_format_extension(coons_format format);
 
 /**
  * Writes a mesh to a file, atomically.
@@ -156,6 +199,7 @@ COONS_EXPORT const char *coons_format_name(coons_format format);
  * @param[in,out] err may be NULL
  * @return ::COONS_OK;
  *         ::COONS_E_INVALID: unknown extension with ::COONS_FORMAT_AUTO,
+ *         a volume format (use coons_volume_mesh_write()),
  *         bad options version, `path` names `opts->protect_path` or a
  *         directory or another non-regular file, a non-finite vertex or a
  *         triangle index out of range;
@@ -185,6 +229,45 @@ COONS_EXPORT coons_status coons_mesh_write_stream(const coons_mesh *m, FILE *fp,
                                                   coons_format format,
                                                   const coons_write_options *opts,
                                                   coons_error *err);
+
+/**
+ * Writes a volume mesh to a file, atomically, exactly as coons_mesh_write()
+ * writes a triangle mesh: temporary file, fsync(), rename(); on any error
+ * an existing file at `path` is left byte for byte and no temporary file
+ * remains; `opts` (protect_path, cancel, name, units, header) means the
+ * same.
+ *
+ * @param[in] vm      the volume mesh
+ * @param[in] path    output file name
+ * @param[in] format  a volume format (::COONS_FORMAT_VTK), or
+ *                    ::COONS_FORMAT_AUTO for the one implied by the
+ *                    extension of `path`
+ * @param[in] opts    options, or NULL for the defaults
+ * @param[in,out] err may be NULL
+ * @return ::COONS_OK;
+ *         ::COONS_E_INVALID: a surface format (use coons_mesh_write()), an
+ *         unknown extension with ::COONS_FORMAT_AUTO, bad options version,
+ *         `path` names `opts->protect_path` or a non-regular file;
+ *         ::COONS_E_UNSUPPORTED: the format cannot hold the mesh's element
+ *         kind; ::COONS_E_IO as coons_mesh_write(); ::COONS_E_NOMEM.
+ * Thread safety: safe for concurrent calls on the same mesh.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_write(const coons_volume_mesh *vm, const char *path,
+                                                  coons_format format,
+                                                  const coons_write_options *opts,
+                                                  coons_error *err);
+
+/**
+ * Writes a volume mesh to an open stdio stream and fflush()es it, as
+ * coons_mesh_write_stream() does for triangle meshes (not atomic).
+ * @param[in] format any volume format (not ::COONS_FORMAT_AUTO)
+ * @return as coons_volume_mesh_write(); ::COONS_E_IO when the stream
+ *         reports an error.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_write_stream(const coons_volume_mesh *vm, FILE *fp,
+                                                         coons_format format,
+                                                         const coons_write_options *opts,
+                                                         coons_error *err);
 
 #ifdef __cplusplus
 }

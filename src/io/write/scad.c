@@ -108,6 +108,22 @@ static int put_part(coons__sink *s, const coons_mesh *m, size_t tf, size_t tc, s
     return coons__sink_puts(s, "  ], convexity = 10);\n");
 }
 
+/* Points are written per part, so a triangle must stay within its part. */
+coons_status coons__check_scad(const coons_mesh *m, coons_error *err)
+{
+    const uint32_t *tri = coons_mesh_triangles(m);
+    for (size_t p = 0; p < coons_mesh_part_count(m); p++) {
+        size_t tf, tc, vf, vc;
+        coons_mesh_part_range(m, p, &tf, &tc, &vf, &vc);
+        for (size_t i = 3 * tf; i < 3 * (tf + tc); i++)
+            if (tri[i] < vf || tri[i] - vf >= vc)
+                return coons__error_set(err, COONS_E_INVALID,
+                                        "triangle %zu of part %zu uses a vertex of another part",
+                                        i / 3, p);
+    }
+    return COONS_OK;
+}
+
 coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons__sink *s)
 {
     size_t np = coons_mesh_part_count(m);

@@ -9,6 +9,7 @@
  * flavours of one mesh describe bit-identical geometry, and shared vertices
  * stay shared after rounding (rounding is per vertex). Normals are
  * computed in double from the double vertices and then rounded. */
+#include <float.h>
 #include <math.h>
 
 #include "coons/version.h"
@@ -43,6 +44,20 @@ static void facet_normal(double n[3], const double *a, const double *b, const do
         v3_scale(n, n, 1.0 / len);
     else
         v3_zero(n);
+}
+
+/* STL stores float32: a larger coordinate would become infinite. */
+coons_status coons__check_stl(const coons_mesh *m, coons_error *err)
+{
+    const double *xyz = coons_mesh_vertices(m);
+    for (size_t i = 0; i < 3 * coons_mesh_vertex_count(m); i++)
+        if (fabs(xyz[i]) > FLT_MAX)
+            return coons__error_set(err, COONS_E_LIMIT,
+                                    "vertex %zu has the coordinate %.17g, outside the range "
+                                    "of STL's 32-bit floats (+-%.9g): write OFF or SCAD, "
+                                    "which keep doubles",
+                                    i / 3, xyz[i], (double)FLT_MAX);
+    return COONS_OK;
 }
 
 static int starts_with_solid(const char *h)

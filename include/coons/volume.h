@@ -1,0 +1,263 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/**
+ * @file coons/volume.h
+ * @brief Volume meshes: hexahedral cells of 8, 20 or 27 nodes with per-node
+ *        and per-cell fields, named node, cell and face sets, and parts.
+ *
+ * A ::coons_volume_mesh is the interior counterpart of the triangle mesh
+ * ::coons_mesh (coons/mesh.h): it is what the volume-mesh formats are
+ * written from (coons_volume_mesh_write(), coons/io.h). It holds
+ *
+ * - nodes: double x, y, z, addressed by uint32_t index (0-based);
+ * - cells: hexahedra, all of one element kind (::coons_element), each a
+ *   row of coons_volume_mesh_nodes_per_cell() node indices, and each
+ *   belonging to one part (a body, say), addressed by uint32_t index;
+ * - fields: named scalar arrays of ::COONS_FIELD_FLOAT64 or
+ *   ::COONS_FIELD_INT32 values, one value per node or one per cell (for
+ *   example `u`, `v`, `w`, `det_j` per node and `body`, `scaled_jacobian`
+ *   per cell);
+ * - named node sets, cell sets and face sets; a face is a (cell, local
+ *   face) pair.
+ *
+ * **One element kind per mesh.** Every target format writes a homogeneous
+ * block of one element type at a time (Abaqus/CalculiX's `*ELEMENT,
+ * TYPE=`, a Gmsh element type, a VTK cell type), a lattice mesher produces
+ * one kind, and a fixed stride keeps the cell array flat (no offsets) and
+ * the writers simple. A collapsed cell (an apex) is a hexahedron whose
+ * corners repeat a node, not another element kind.
+ *
+ * **Node order within a cell** is Gmsh's (Gmsh reference manual, "Node
+ * ordering"), in the cell's own parameters (r, s, t) in [0,1]^3, which for
+ * a lattice mesh of a body are the directions of u, v and w:
+ *
+ *     corners  0 (0,0,0)  1 (1,0,0)  2 (1,1,0)  3 (0,1,0)
+ *              4 (0,0,1)  5 (1,0,1)  6 (1,1,1)  7 (0,1,1)
+ *     edges    8 (0-1)   9 (0-3)  10 (0-4)  11 (1-2)  12 (1-5)  13 (2-3)
+ *             14 (2-6)  15 (3-7)  16 (4-5)  17 (4-7)  18 (5-6)  19 (6-7)
+ *     faces   20 t=0 (0,1,2,3)  21 s=0 (0,1,5,4)  22 r=0 (0,3,7,4)
+ *             23 r=1 (1,2,6,5)  24 s=1 (2,3,7,6)  25 t=1 (4,5,6,7)
+ *     centre  26
+ *
+ * ::COONS_ELEMENT_HEX8 has nodes 0-7, ::COONS_ELEMENT_HEX20 (serendipity)
+ * 0-19, ::COONS_ELEMENT_HEX27 (triquadratic) 0-26. The corner order is the
+ * one shared by Gmsh, VTK and Abaqus/CalculiX; edge and face nodes differ
+ * between them, and each writer permutes to its format's own order. A
+ * valid (positively oriented) cell has corners 1, 3, 4 on the positive r, s
+ * and t sides of corner 0: det[x1-x0, x3-x0, x4-x0] > 0 for a parallelepiped.
+ *
+ * **Local faces** (in face sets), numbered as the body faces
+ * (coons_body_face_name(): u0 u1 v0 v1 w0 w1); corners listed
+ * counter-clockwise seen from outside the cell:
+ *
+ *     0 r=0 (0,4,7,3)   1 r=1 (1,2,6,5)   2 s=0 (0,1,5,4)
+ *     3 s=1 (3,7,6,2)   4 t=0 (0,3,2,1)   5 t=1 (4,5,6,7)
+ *
+ * Invariants, checked when data is added: node coordinates and Float64
+ * field values are finite, every index refers to an existing node, cell,
+ * part or local face, at most 2^32 - 1 nodes, cells and parts, names are
+ * unique within their kind. Fields must be added after the nodes (node
+ * fields) or cells (cell fields) they describe: once a node field exists,
+ * no node can be added, and likewise for cells.
+ *
+ * Ownership and threads as everywhere (libcoons(3)): the mesh belongs to
+ * the caller (coons_volume_mesh_free()); every input is copied; pointers
+ * returned by accessors are borrowed views, valid until the mesh is next
+ * modified or freed. Concurrent reads are safe; modifying calls need
+ * exclusive access.
+ */
+#ifndef COONS_VOLUME_H
+#define COONS_VOLUME_H
+
+#include "coons/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Opaque volume mesh handle. */
+typedef struct coons_volume_mesh coons_volume_mesh;
+
+/** Cell kinds; each value is the number of nodes of the cell. */
+typedef enum coons_element {
+    COONS_ELEMENT_HEX8 = 8,  /**< trilinear hexahedron (corners) */
+    COONS_ELEMENT_HEX20 = 20, /**< serendipity hexahedron (corners, edges) */
+    COONS_ELEMENT_HEX27 = 27  /**< triquadratic hexahedron (corners, edges, faces, centre) */
+} coons_element;
+
+/** Where a field lives. */
+typedef enum coons_field_location {
+    COONS_FIELD_NODE = 0, /**< one value per node */
+    COONS_FIELD_CELL = 1  /**< one value per cell */
+} coons_field_location;
+
+/** Value type of a field. */
+typedef enum coons_field_type {
+    COONS_FIELD_FLOAT64 = 0, /**< `double`, finite */
+    COONS_FIELD_INT32 = 1    /**< `int32_t` */
+} coons_field_type;
+
+/** Longest field, set or part name, in bytes, without the NUL. */
+#define COONS_VOLUME_NAME_MAX 255
+
+/**
+ * Creates an empty volume mesh whose cells will all be of kind `element`.
+ * @param[in]  element ::COONS_ELEMENT_HEX8, ::COONS_ELEMENT_HEX20 or
+ *                     ::COONS_ELEMENT_HEX27
+ * @param[out] out     the new mesh (NULL on error)
+ * @param[in,out] err  may be NULL
+ * @return ::COONS_OK, ::COONS_E_INVALID (another element value, `out` NULL),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_new(coons_element element, coons_volume_mesh **out,
+                                                coons_error *err);
+
+/** Releases a volume mesh; NULL is a harmless no-op. */
+COONS_EXPORT void coons_volume_mesh_free(coons_volume_mesh *vm);
+
+/**
+ * Appends `n` nodes (x, y, z packed: 3n doubles).
+ * @param[in,out] vm   the mesh
+ * @param[in]  xyz     3n finite coordinates (may be NULL when n is 0)
+ * @param[in]  n       number of nodes
+ * @param[out] first   if not NULL, the index of the first new node
+ * @param[in,out] err  may be NULL
+ * @return ::COONS_OK; ::COONS_E_INVALID: a coordinate is not finite (the
+ *         message names the node), `xyz` is NULL with n > 0, or a node
+ *         field already exists; ::COONS_E_LIMIT: the mesh would have more
+ *         than 2^32 - 1 nodes; ::COONS_E_NOMEM. On error nothing is added.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_add_nodes(coons_volume_mesh *vm, const double *xyz,
+                                                      size_t n, size_t *first, coons_error *err);
+
+/**
+ * Appends a part (a body, a material region): cells name it by index.
+ * @param[in] name     copied; NULL: "part<i>". Not empty, no control
+ *                     characters, at most ::COONS_VOLUME_NAME_MAX bytes,
+ *                     not the name of another part.
+ * @param[out] index   if not NULL, the part's index
+ * @return ::COONS_OK, ::COONS_E_INVALID (bad or repeated name),
+ *         ::COONS_E_LIMIT (2^32 - 1 parts), ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_add_part(coons_volume_mesh *vm, const char *name,
+                                                     size_t *index, coons_error *err);
+
+/**
+ * Appends `n` cells of the mesh's element kind, all in part `part`.
+ * @param[in] nodes    n * coons_volume_mesh_nodes_per_cell() node indices,
+ *                     row by row, each row in the node order described
+ *                     above; every index < coons_volume_mesh_node_count()
+ * @param[in] n        number of cells
+ * @param[in] part     index of an existing part
+ * @param[out] first   if not NULL, the index of the first new cell
+ * @return ::COONS_OK; ::COONS_E_INVALID: a node index out of range (the
+ *         message names the cell and the node), no such part, `nodes` NULL
+ *         with n > 0, or a cell field already exists; ::COONS_E_LIMIT: more
+ *         than 2^32 - 1 cells; ::COONS_E_NOMEM. On error nothing is added.
+ *         Repeated nodes within a cell (a collapsed cell) are allowed.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_add_cells(coons_volume_mesh *vm,
+                                                      const uint32_t *nodes, size_t n,
+                                                      size_t part, size_t *first,
+                                                      coons_error *err);
+
+/**
+ * Adds a named scalar field with one value per node (::COONS_FIELD_NODE,
+ * coons_volume_mesh_node_count() values) or per cell (::COONS_FIELD_CELL,
+ * coons_volume_mesh_cell_count() values), copied.
+ * @param[in] location ::COONS_FIELD_NODE or ::COONS_FIELD_CELL
+ * @param[in] name     an identifier: `[A-Za-z_][A-Za-z0-9_]*`, at most
+ *                     ::COONS_VOLUME_NAME_MAX bytes, not the name of
+ *                     another field at the same location
+ * @param[in] type     ::COONS_FIELD_FLOAT64 (`values` points to doubles,
+ *                     all finite) or ::COONS_FIELD_INT32 (to int32_t)
+ * @param[in] values   the values (may be NULL when there are none)
+ * @return ::COONS_OK; ::COONS_E_INVALID: bad location, type or name, a
+ *         repeated name, a non-finite value (the message names the field and
+ *         the index), `values` NULL; ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_add_field(coons_volume_mesh *vm,
+                                                      coons_field_location location,
+                                                      const char *name, coons_field_type type,
+                                                      const void *values, coons_error *err);
+
+/**
+ * Adds a named set of `n` node indices (kept in the given order; repeats
+ * are kept too). Set names follow the rules of part names and are unique
+ * among node sets.
+ * @return ::COONS_OK; ::COONS_E_INVALID: bad or repeated name, an index
+ *         out of range, `nodes` NULL with n > 0; ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_add_node_set(coons_volume_mesh *vm,
+                                                         const char *name,
+                                                         const uint32_t *nodes, size_t n,
+                                                         coons_error *err);
+
+/** Adds a named set of `n` cell indices; as coons_volume_mesh_add_node_set(). */
+COONS_EXPORT coons_status coons_volume_mesh_add_cell_set(coons_volume_mesh *vm,
+                                                         const char *name,
+                                                         const uint32_t *cells, size_t n,
+                                                         coons_error *err);
+
+/**
+ * Adds a named set of `n` cell faces: `pairs` holds 2n values, for each
+ * face the cell index and the local face 0..5 (numbered as above).
+ * @return ::COONS_OK; ::COONS_E_INVALID: bad or repeated name, a cell
+ *         index out of range, a local face above 5, `pairs` NULL with
+ *         n > 0; ::COONS_E_LIMIT: 2n overflows; ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_volume_mesh_add_face_set(coons_volume_mesh *vm,
+                                                         const char *name,
+                                                         const uint32_t *pairs, size_t n,
+                                                         coons_error *err);
+
+/** The element kind given to coons_volume_mesh_new(). */
+COONS_EXPORT coons_element coons_volume_mesh_element(const coons_volume_mesh *vm);
+/** Nodes per cell: 8, 20 or 27. */
+COONS_EXPORT size_t coons_volume_mesh_nodes_per_cell(const coons_volume_mesh *vm);
+COONS_EXPORT size_t coons_volume_mesh_node_count(const coons_volume_mesh *vm);
+COONS_EXPORT size_t coons_volume_mesh_cell_count(const coons_volume_mesh *vm);
+COONS_EXPORT size_t coons_volume_mesh_part_count(const coons_volume_mesh *vm);
+/** Number of fields at `location` (0 for an unknown location). */
+COONS_EXPORT size_t coons_volume_mesh_field_count(const coons_volume_mesh *vm,
+                                                  coons_field_location location);
+COONS_EXPORT size_t coons_volume_mesh_node_set_count(const coons_volume_mesh *vm);
+COONS_EXPORT size_t coons_volume_mesh_cell_set_count(const coons_volume_mesh *vm);
+COONS_EXPORT size_t coons_volume_mesh_face_set_count(const coons_volume_mesh *vm);
+
+/** Borrowed view: 3 doubles per node (NULL when there are no nodes). */
+COONS_EXPORT const double *coons_volume_mesh_nodes(const coons_volume_mesh *vm);
+/** Borrowed view: coons_volume_mesh_nodes_per_cell() node indices per cell. */
+COONS_EXPORT const uint32_t *coons_volume_mesh_cells(const coons_volume_mesh *vm);
+/** Borrowed view: the part index of each cell. */
+COONS_EXPORT const uint32_t *coons_volume_mesh_cell_parts(const coons_volume_mesh *vm);
+/** Name of part i (borrowed), or NULL when i is out of range. */
+COONS_EXPORT const char *coons_volume_mesh_part_name(const coons_volume_mesh *vm, size_t i);
+
+/**
+ * Field i at `location`: returns its name (borrowed) and sets `*type` and
+ * `*values` (a borrowed view of node or cell count values, `double` or
+ * `int32_t` by type); either out pointer may be NULL. Out of range: returns
+ * NULL and sets the outputs to ::COONS_FIELD_FLOAT64 and NULL.
+ */
+COONS_EXPORT const char *coons_volume_mesh_field(const coons_volume_mesh *vm,
+                                                 coons_field_location location, size_t i,
+                                                 coons_field_type *type, const void **values);
+
+/**
+ * Node set i: returns its name (borrowed) and sets `*items` (borrowed node
+ * indices) and `*count`; either out pointer may be NULL. Out of range:
+ * NULL, and NULL and 0.
+ */
+COONS_EXPORT const char *coons_volume_mesh_node_set(const coons_volume_mesh *vm, size_t i,
+                                                    const uint32_t **items, size_t *count);
+/** Cell set i, as coons_volume_mesh_node_set(). */
+COONS_EXPORT const char *coons_volume_mesh_cell_set(const coons_volume_mesh *vm, size_t i,
+                                                    const uint32_t **items, size_t *count);
+/** Face set i: `*pairs` holds 2 * `*count` values (cell, local face). */
+COONS_EXPORT const char *coons_volume_mesh_face_set(const coons_volume_mesh *vm, size_t i,
+                                                    const uint32_t **pairs, size_t *count);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,142 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Shared machinery of the mesh writers (src/io/write): the buffered byte
+ * sink with a sticky error (sink.c), the format table (formats.c), the
+ * atomic file and stream output that serve every format of either mesh
+ * kind (atomic.c), and the per-format writers the table names (stl.c,
+ * off.c, scad.c: surface; vtk.c: volume). A new format is one writer file,
+ * its declaration below, one row of the table and one value of
+ * coons_format (coons/io.h). */
+#ifndef COONS_IO_WRITER_H
+#define COONS_IO_WRITER_H
+
+#include <stdio.h>
+#include <string.h>
+
+#include "coons_internal.h"
+#include "coons/io.h"
+#include "fmt.h"
+
+/* Bytes buffered before each write(2)/fwrite: large enough that system
+ * calls cost nothing next to formatting, small enough to poll `cancel`
+ * often. */
+#define COONS__SINK_BUFSIZE ((size_t)1 << 20)
+/* Largest single reservation a writer makes (one text line or record). */
+#define COONS__SINK_MAXREC ((size_t)512)
+
+typedef struct coons__sink {
+    char *buf;
+    size_t len;
+    int fd;                      /* >= 0: write(2) to it */
+    FILE *fp;                    /* otherwise: fwrite to it */
+    const char *what;            /* file name for messages */
+    const coons_write_options *opts; /* for `cancel` */
+    coons__fmt_scope *fmt;       /* restored around `cancel` */
+    coons_status status;         /* sticky: first error wins */
+    coons_error *err;
+} coons__sink;
+
+/* Polls opts->cancel; on cancellation records COONS_E_IO. Returns 0 when
+ * the write must stop (cancelled or an earlier error). */
+int coons__sink_ok(coons__sink *s);
+/* Writes out the buffer; returns 0 on error (recorded in s). */
+int coons__sink_flush(coons__sink *s);
+/* Records COONS_E_IO "cannot DOING 'what': <system error of errno>" unless
+ * an error is already recorded. */
+void coons__sink_sys_error(coons__sink *s, const char *doing);
+/* Thread-safe text of an errno value, in buf. */
+const char *coons__errno_text(int e, char *buf, size_t cap);
+
+/* Room for n <= COONS__SINK_MAXREC bytes at the end of the buffer, or NULL
+ * after an error. Advance s->len by what was used. */
+static inline char *coons__sink_room(coons__sink *s, size_t n)
+{
+    if (s->len + n > COONS__SINK_BUFSIZE && !coons__sink_flush(s)) return NULL;
+    return s->status == COONS_OK ? s->buf + s->len : NULL;
+}
+
+/* Appends arbitrary bytes. Returns 0 after an error. */
+int coons__sink_put(coons__sink *s, const void *data, size_t n);
+static inline int coons__sink_puts(coons__sink *s, const char *str)
+{
+    return coons__sink_put(s, str, strlen(str));
+}
+
+/* Resolved options handed to the format writers: never NULL strings. */
+typedef struct coons__wopts {
+    const char *name;   /* model name ("coons_model" by default) */
+    const char *units;  /* "" when none */
+    const char *header; /* header / first comment text */
+} coons__wopts;
+
+/* ---- the format table (formats.c) ------------------------------------ */
+
+/* A writer emits the whole file into the sink and returns s->status. Its
+ * mesh has passed the generic checks of its kind (surface.c, volume.c) and
+ * the row's own `check`. */
+typedef coons_status (*coons__surface_writer)(const coons_mesh *m, const coons__wopts *o,
+                                              coons__sink *s);
+typedef coons_status (*coons__volume_writer)(const coons_volume_mesh *m, const coons__wopts *o,
+                                             coons__sink *s);
+/* Format-specific limits, checked before any output exists; NULL: none. */
+typedef coons_status (*coons__surface_check)(const coons_mesh *m, coons_error *err);
+typedef coons_status (*coons__volume_check)(const coons_volume_mesh *m, coons_error *err);
+
+typedef struct coons__format_row {
+    coons_format format;
+    const char *name;            /* canonical, as coons_format_name() and -f */
+    const char *title;           /* for messages: "binary STL" */
+    const char *aliases[2];      /* other names for -f; NULL-terminated */
+    const char *extensions[3];   /* ".stl", ...: what the format means; NULL-terminated */
+    coons_mesh_kind kind;
+    uint64_t max_triangles;      /* surface: a count field's limit; 0: none */
+    coons__surface_writer write_surface; /* kind SURFACE */
+    coons__surface_check check_surface;
+    coons__volume_writer write_volume;   /* kind VOLUME */
+    coons__volume_check check_volume;
+} coons__format_row;
+
+/* The row of a format, or NULL (COONS_FORMAT_AUTO and unknown values). */
+const coons__format_row *coons__format_row_of(coons_format format);
+
+/* ---- the writers the table names -------------------------------------- */
+
+coons_status coons__write_stl_binary(const coons_mesh *m, const coons__wopts *o, coons__sink *s);
+coons_status coons__write_stl_ascii(const coons_mesh *m, const coons__wopts *o, coons__sink *s);
+coons_status coons__check_stl(const coons_mesh *m, coons_error *err);
+coons_status coons__write_off(const coons_mesh *m, const coons__wopts *o, coons__sink *s);
+coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons__sink *s);
+coons_status coons__check_scad(const coons_mesh *m, coons_error *err);
+coons_status coons__write_vtk(const coons_volume_mesh *m, const coons__wopts *o, coons__sink *s);
+
+/* ---- output (atomic.c) ------------------------------------------------- */
+
+/* One write: the row, the mesh of the row's kind, and the resolved options. */
+typedef struct coons__write_job {
+    const coons__format_row *row;
+    const coons_mesh *surface;       /* row->kind == COONS_MESH_KIND_SURFACE */
+    const coons_volume_mesh *volume; /* row->kind == COONS_MESH_KIND_VOLUME */
+    coons__wopts o;
+} coons__write_job;
+
+/* Checks what both mesh kinds share: a mesh was given, the options
+ * version, a known format whose kind is `kind` (that of the caller's mesh;
+ * the message of a mismatch names the entry point for the other kind).
+ * Sets job->row and resolves the options into job->o. */
+coons_status coons__write_prepare(coons__write_job *job, int mesh_given, coons_format format,
+                                  coons_mesh_kind kind, const coons_write_options *opts,
+                                  coons_error *err);
+/* The format of `path` when `*format` is AUTO (else unchanged). */
+coons_status coons__write_resolve(const char *path, coons_format *format, coons_error *err);
+/* Writes the job atomically to `path` (temporary file, fsync, rename). */
+coons_status coons__write_path(const coons__write_job *job, const char *path,
+                               const coons_write_options *opts, coons_error *err);
+/* Writes the job to an open stream and flushes it. */
+coons_status coons__write_stream(const coons__write_job *job, FILE *fp,
+                                 const coons_write_options *opts, coons_error *err);
+
+/* Copies text into out[cap] (NUL-terminated) with every control character
+ * (bytes < 0x20 and 0x7f) replaced by a space: safe inside one comment
+ * line or header. Returns the length written. */
+size_t coons__clean_text(char *out, size_t cap, const char *text);
+
+#endif
