@@ -38,3 +38,47 @@ coons_status coons_model_solid(const coons_model *model, const coons_sample_opti
     coons_mesh_free(m);
     return st;
 }
+
+/* One body alone: sampled as coons__model_sample() would sample it (the
+ * model's tolerance by default, the whole triangle budget), then repaired
+ * on its own; a single body needs no union, so without CGAL its shell is
+ * returned as sampled. */
+coons_status coons_model_body_solid(const coons_model *model, size_t index,
+                                    const coons_sample_options *sopts,
+                                    const coons_csg_options *copts, coons_mesh **out,
+                                    coons_csg_report *report, coons_error *err)
+{
+    *out = NULL;
+    if (report) memset(report, 0, sizeof *report);
+    size_t n = coons_model_body_count(model);
+    if (index >= n)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "body index %zu is out of range: the model has %zu bod%s", index,
+                                n, n == 1 ? "y" : "ies");
+    coons__sample_opts o;
+    coons_status st = coons__sample_opts_resolve(sopts, &o, err);
+    if (st) return st;
+    if (!(o.tolerance > 0)) o.tolerance = coons_model_tolerance(model);
+    coons_progress_fn progress = copts ? copts->progress : NULL;
+    void *userdata = copts ? copts->userdata : NULL;
+    if (progress) progress(userdata, "sample", (double)index / (double)n);
+    coons_mesh *m = NULL;
+    if ((st = coons_mesh_new(&m, err))) return st;
+    st = coons__body_sample_into(coons_model_body(model, index), &o,
+                                 coons_model_body_name(model, index), m, NULL, err);
+    if (st) {
+        coons_mesh_free(m);
+        return st;
+    }
+    if (progress) progress(userdata, "sample", 1.0);
+    if (!coons_csg_available()) {
+        *out = m;
+        return COONS_OK;
+    }
+    coons_csg_options co = COONS_CSG_OPTIONS_INIT;
+    if (copts) co = *copts;
+    co.unite = 0;
+    st = coons_mesh_solidify(m, &co, out, report, err);
+    coons_mesh_free(m);
+    return st;
+}
