@@ -3,11 +3,23 @@
  * model_mesh.c), then repaired and united by the CGAL layer
  * (cgal_solid.cpp) as the model's "operation" says. Without CGAL, only
  * models that need no Boolean work (operation "none", or bodies that do not
- * meet) can be made. */
+ * meet) can be made. Also one body's solid alone (coons2stl --body). */
 #include <string.h>
 
 #include "coons_internal.h"
 #include "mesh_glue.h"
+
+/* Repairs (and with `unite` unites) the parts of m, then frees m. */
+static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int unite,
+                             coons_mesh **out, coons_csg_report *report, coons_error *err)
+{
+    coons_csg_options co = COONS_CSG_OPTIONS_INIT;
+    if (copts) co = *copts;
+    co.unite = unite;
+    coons_status st = coons_mesh_solidify(m, &co, out, report, err);
+    coons_mesh_free(m);
+    return st;
+}
 
 coons_status coons_model_solid(const coons_model *model, const coons_sample_options *sopts,
                                const coons_csg_options *copts, coons_mesh **out,
@@ -31,12 +43,7 @@ coons_status coons_model_solid(const coons_model *model, const coons_sample_opti
         *out = m;
         return COONS_OK;
     }
-    coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-    if (copts) co = *copts;
-    co.unite = unite;
-    st = coons_mesh_solidify(m, &co, out, report, err);
-    coons_mesh_free(m);
-    return st;
+    return solidify(m, copts, unite, out, report, err);
 }
 
 /* One body alone: sampled as coons__model_sample() would sample it (the
@@ -75,10 +82,5 @@ coons_status coons_model_body_solid(const coons_model *model, size_t index,
         *out = m;
         return COONS_OK;
     }
-    coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-    if (copts) co = *copts;
-    co.unite = 0;
-    st = coons_mesh_solidify(m, &co, out, report, err);
-    coons_mesh_free(m);
-    return st;
+    return solidify(m, copts, 0, out, report, err);
 }
