@@ -151,6 +151,8 @@ static void usage_row(FILE *f, const option_row *r)
         fprintf(f, "  -%c, %-*s", r->short_name, HELP_NAMES, names);
     else
         fprintf(f, "      %-*s", HELP_NAMES, names);
+    if (strlen(names) + 2 > HELP_NAMES) /* too long to share its line with the text */
+        fprintf(f, "\n%*s", HELP_INDENT, "");
     expand(help, sizeof help, r->help, r);
     for (const char *line = help; line;) {
         const char *nl = strchr(line, '\n');
