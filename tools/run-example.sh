@@ -30,7 +30,7 @@ cmake --build "$build" -j "$jobs"
 
 bin="$build/tools/coons2stl"
 if [ ! -x "$bin" ]; then
-  say "this checkout has no coons2stl yet (tools/coons2stl.c): the library is built, nothing to run"
+  say "this checkout has no coons2stl yet (tools/coons2stl/): the library is built, nothing to run"
   exit 1
 fi
 

@@ -161,6 +161,29 @@ COONS_EXPORT coons_status coons_model_solidify(const coons_model *model,
                                                const coons_csg_options *copts, coons_mesh **out,
                                                coons_csg_report *report, coons_error *err);
 
+/**
+ * The solid of one body of a model, alone: body `index` sampled as
+ * coons_model_solidify() samples it (the model's tolerance unless `sopts`
+ * sets one) and repaired on its own; the model's operation is not applied
+ * (one body needs no union). Without CGAL the shell is returned as sampled.
+ * This is what coons2stl --body writes.
+ * @param[in] index  0-based body index, below coons_model_body_count()
+ * @param[in] sopts  sampling options (NULL: defaults, model tolerance)
+ * @param[in] copts  repair options (NULL: defaults); `unite` is ignored.
+ *                   Its `progress` hears the stage "sample" once before the
+ *                   body, with the fraction index / count, then 1, before
+ *                   the stages of coons_mesh_solidify()
+ * @param[out] out    the new mesh, one part named after the body (caller frees)
+ * @param[out] report may be NULL; zeroed when no CGAL work was done
+ * @return ::COONS_OK; ::COONS_E_INVALID for an index out of range; else as
+ *         coons_body_sample() and coons_mesh_solidify().
+ */
+COONS_EXPORT coons_status coons_model_solidify_body(const coons_model *model, size_t index,
+                                                 const coons_sample_options *sopts,
+                                                 const coons_csg_options *copts,
+                                                 coons_mesh **out, coons_csg_report *report,
+                                                 coons_error *err);
+
 /** 1 when the library was built with CGAL (repair and union available). */
 COONS_EXPORT int coons_csg_is_available(void);
 

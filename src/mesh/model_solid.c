@@ -3,23 +3,44 @@
  * model_mesh.c), then repaired and united by the CGAL layer
  * (cgal_solid.cpp) as the model's "operation" says. Without CGAL, only
  * models that need no Boolean work (operation "none", or bodies that do not
- * meet) can be made. */
+ * meet) can be made. Also one body's solid alone (coons2stl --body). */
 #include "coons_internal.h"
 #include "csg/csg_records.h"
 #include "mesh_glue.h"
+
+/* Repairs (and with `unite` unites) the parts of m, then frees m. */
+static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int unite,
+                             coons_mesh **out, coons_csg_report *report, coons_error *err)
+{
+    coons_csg_options co = COONS_CSG_OPTIONS_INIT;
+    if (copts) co = *copts;
+    co.unite = unite;
+    coons_status st = coons_mesh_solidify(m, &co, out, report, err);
+    coons_mesh_free(m);
+    return st;
+}
+
+/* The checks every entry makes first: the records' versions, then a
+ * cleared report and no output. */
+static coons_status begin(const coons_csg_options *copts, coons_mesh **out,
+                          coons_csg_report *report, coons_error *err)
+{
+    *out = NULL;
+    coons_status st = coons__csg_records_check(copts, report, err);
+    if (!st) coons__csg_report_clear(report);
+    return st;
+}
 
 coons_status coons_model_solidify(const coons_model *model, const coons_sample_options *sopts,
                                   const coons_csg_options *copts, coons_mesh **out,
                                   coons_csg_report *report, coons_error *err)
 {
-    *out = NULL;
-    coons_status st = coons__csg_records_check(copts, report, err);
+    coons_status st = begin(copts, out, report, err);
     if (st) return st;
-    coons__csg_report_clear(report);
     coons_mesh *m = NULL;
     double tol = 0;
     st = coons__model_sample(model, sopts, copts ? copts->progress : NULL,
-                                          copts ? copts->userdata : NULL, &m, &tol, err);
+                             copts ? copts->userdata : NULL, &m, &tol, err);
     if (st) return st;
     int unite = coons_model_operation(model) == COONS_OP_UNION;
     if (!coons_csg_is_available()) {
@@ -32,10 +53,43 @@ coons_status coons_model_solidify(const coons_model *model, const coons_sample_o
         *out = m;
         return COONS_OK;
     }
-    coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-    if (copts) co = *copts;
-    co.unite = unite;
-    st = coons_mesh_solidify(m, &co, out, report, err);
-    coons_mesh_free(m);
-    return st;
+    return solidify(m, copts, unite, out, report, err);
+}
+
+/* One body alone: sampled as coons__model_sample() would sample it (the
+ * model's tolerance by default, the whole triangle budget), then repaired
+ * on its own; a single body needs no union, so without CGAL its shell is
+ * returned as sampled. */
+coons_status coons_model_solidify_body(const coons_model *model, size_t index,
+                                       const coons_sample_options *sopts,
+                                       const coons_csg_options *copts, coons_mesh **out,
+                                       coons_csg_report *report, coons_error *err)
+{
+    coons_status st = begin(copts, out, report, err);
+    if (st) return st;
+    size_t n = coons_model_body_count(model);
+    if (index >= n)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "body index %zu is out of range: the model has %zu bod%s", index,
+                                n, n == 1 ? "y" : "ies");
+    coons__sample_opts o;
+    if ((st = coons__sample_opts_resolve(sopts, &o, err))) return st;
+    if (!(o.tolerance > 0)) o.tolerance = coons_model_tolerance(model);
+    coons_progress_fn progress = copts ? copts->progress : NULL;
+    void *userdata = copts ? copts->userdata : NULL;
+    if (progress) progress(userdata, "sample", (double)index / (double)n);
+    coons_mesh *m = NULL;
+    if ((st = coons_mesh_new(&m, err))) return st;
+    st = coons__body_sample_into(coons_model_body(model, index), &o,
+                                 coons_model_body_name(model, index), m, NULL, err);
+    if (st) {
+        coons_mesh_free(m);
+        return st;
+    }
+    if (progress) progress(userdata, "sample", 1.0);
+    if (!coons_csg_is_available()) {
+        *out = m;
+        return COONS_OK;
+    }
+    return solidify(m, copts, 0, out, report, err);
 }

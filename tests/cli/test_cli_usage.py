@@ -62,6 +62,7 @@ USAGE = [
     (["--eval", "-"], "must come from a file"),
     (["-o", os.path.join(work, "mesh.txt"), BOX], "cannot tell the output format"),
     (["-o", os.path.join(work, "mesh"), BOX], "cannot tell the output format"),
+    (["-o", os.path.join(work, ".stl"), BOX], "cannot tell the output format"),
     (["--body", "1", "--info", BOX], "indices 0..0"),
     (["--body", "nosuch", "--eval", BOX], "no body of that name"),
     (["--body", "99999999999999999999999", "--info", BOX], "the model has 1 body"),
@@ -85,6 +86,16 @@ for args in (["--info", "--body=1", TWO], ["--info", "--body", "1", TWO], ["--in
     T.check(f"accepted: {args[:-1]}", rc == 0 and out.startswith("{"), f"{rc} {err!r}")
 rc, out, err = T.run(["--jacobian", BOX], stdin="0 0 0\n")
 T.check("--jacobian implies --eval (13 numbers)", rc == 0 and len(out.split()) == 13, f"{rc} {out!r} {err!r}")
+
+# Format names are the library's (coons_format_from_name): any case, and
+# "stl-binary" for "stl"; each gives the bytes of its canonical name.
+for canonical, others in (("stl", ("STL", "stl-binary", "Stl-Binary")), ("off", ("OFF",)),
+                          ("stl-ascii", ("STL-ASCII",))):
+    rc0, want, _ = T.run(["-f", canonical, BOX], binary=True)
+    for name in others:
+        rc, out, err = T.run(["-f", name, BOX], binary=True)
+        T.check(f"-f {name} is -f {canonical}", rc0 == 0 and rc == 0 and out == want and out,
+                f"{rc0} {rc} {err!r}")
 
 # Writing a mesh: if it fails, the existing file is unchanged and nothing else appears;
 # if it succeeds, the file is replaced. (-ofile, --output=file, and the format from

@@ -12,7 +12,10 @@
   (the spec, when it is present, else the names in coons-model.5's own
   tables) is described in coons-model.5 with a full example;
 - with --bin, every long option that `coons2stl --help` prints is in
-  coons2stl.1.
+  coons2stl.1; the options of --help (its table: short and long name,
+  value or none) are exactly those of coons2stl.1's option list; and every
+  option the page documents is accepted by the program as documented (with
+  a value: "needs a value" without one; without: "takes no value" with one).
 
 Usage: test_man.py --bin <coons2stl or ""> --src <source dir> --build <build dir>
 """
@@ -211,6 +214,67 @@ def main():
             and f"Fl -{o}" not in page1]
         check(f"coons2stl.1 documents every --help option ({len(opts)})",
               not undocumented, "undocumented: " + ", ".join(undocumented))
+        check_option_table(args.bin, out, page1)
+
+
+# --help rows: "  -o, --output FILE      text" or "      --eval             text".
+HELP_ROW = re.compile(r"^  (?:-([A-Za-z]), |    )--([a-z][a-z-]*)(?: (\S+))?(?:  |$)")
+# coons2stl.1 items: ".It Fl o Ar file , Fl -output Ar file", ".It Fl -eval".
+MAN_ITEM = re.compile(r"^\.It Fl (?:([A-Za-z])(?: Ar \S+)? , Fl )?-([a-z][a-z-]*)( Ar)?")
+
+
+def help_table(text):
+    """{long: (short or None, takes a value)} of the --help option rows."""
+    rows = {}
+    for line in text.splitlines():
+        m = HELP_ROW.match(line)
+        if m:
+            rows[m.group(2)] = (m.group(1), m.group(3) is not None)
+    return rows
+
+
+def man_table(page):
+    """The same for the option list of coons2stl.1 (its DESCRIPTION)."""
+    desc = re.search(r"^\.Sh DESCRIPTION\n(.*?)^\.Sh ", page, re.M | re.S)
+    rows = {}
+    for line in (desc.group(1) if desc else "").splitlines():
+        m = MAN_ITEM.match(line)
+        if m:
+            rows[m.group(2)] = (m.group(1), m.group(3) is not None)
+    return rows
+
+
+def check_option_table(binary, help_text, page):
+    helps, mans = help_table(help_text), man_table(page)
+    check(f"--help has an option table ({len(helps)} rows)", len(helps) >= 15, help_text)
+    check(f"coons2stl.1 has an option list ({len(mans)} items)", len(mans) >= 15)
+    check("--help and coons2stl.1 list the same options",
+          sorted(helps) == sorted(mans),
+          f"only in --help: {sorted(set(helps) - set(mans))}\n"
+          f"only in coons2stl.1: {sorted(set(mans) - set(helps))}")
+    for name in sorted(set(helps) & set(mans)):
+        check(f"--{name}: same short name and value in --help and coons2stl.1",
+              helps[name] == mans[name], f"--help {helps[name]}, page {mans[name]}")
+    # Accepted as documented: before the model file is missing, an option
+    # is unknown, lacks a value or has one it does not take.
+    for name, (short, value) in sorted(mans.items()):
+        spellings = [f"--{name}"] + ([f"-{short}"] if short else [])
+        for opt in spellings:
+            rc, out, err = run([binary, opt])
+            if name in ("help", "version"):
+                ok = rc == 0 and out and not err
+            elif value:
+                ok = rc == 2 and f"option '{opt}' needs a value" in err
+            else:
+                ok = rc == 2 and "no model file given" in err
+            check(f"coons2stl accepts {opt} as coons2stl.1 documents it", ok, f"{rc} {err!r}")
+        rc, out, err = run([binary, f"--{name}=1"])
+        if value:
+            ok = rc == 2 and "no model file given" in err
+        else:
+            ok = rc == 2 and f"option '--{name}=1' takes no value" in err
+        check(f"coons2stl --{name}=1: {'a value' if value else 'no value'}, as documented",
+              ok, f"{rc} {err!r}")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,367 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * --info: a JSON description of the model (coons2stl(1)): its units,
+ * tolerance, operation and control box; per body its type, sampled and
+ * control boxes, volume (the det J integral), smallest det J and its
+ * sampled boundary mesh with the mesh checks; then the "solid", the very
+ * mesh that -o writes, with what repair and union found and did.
+ */
+#include <math.h>
+#include <stdio.h>
+
+#include "cli.h"
+
+/* ---- JSON values ------------------------------------------------------ */
+
+static void json_string(const char *s)
+{
+    putchar('"');
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            printf("\\%c", c);
+        else if (c < 0x20)
+            printf("\\u%04x", c);
+        else
+            putchar(c);
+    }
+    putchar('"');
+}
+
+static void json_number(double x)
+{
+    if (isfinite(x))
+        printf("%.17g", x);
+    else
+        printf("null");
+}
+
+static void json_box(const double lo[3], const double hi[3])
+{
+    printf("{\"min\": [");
+    for (int k = 0; k < 3; k++) {
+        if (k) printf(", ");
+        json_number(lo[k]);
+    }
+    printf("], \"max\": [");
+    for (int k = 0; k < 3; k++) {
+        if (k) printf(", ");
+        json_number(hi[k]);
+    }
+    printf("]}");
+}
+
+static void json_bool(const char *key, int v) { printf("\"%s\": %s", key, v ? "true" : "false"); }
+
+static double box_diagonal(const double lo[3], const double hi[3])
+{
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/* ---- one body --------------------------------------------------------- */
+
+#define INFO_GRID 65
+#define INFO_JAC 16
+
+/* Box of the boundary sampled on the six faces, INFO_GRID^2 points each. */
+static int sampled_box(const coons_body *b, double lo[3], double hi[3], coons_error *err)
+{
+    static double out[INFO_GRID * INFO_GRID * 3];
+    double g[INFO_GRID], ends[2] = {0.0, 1.0};
+    for (int i = 0; i < INFO_GRID; i++) g[i] = (double)i / (INFO_GRID - 1);
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (int face = 0; face < 6; face++) {
+        const double *e = &ends[face % 2];
+        int dir = face / 2;
+        coons_status rc = coons_body_eval_grid(
+            b, dir == 0 ? e : g, dir == 0 ? 1 : INFO_GRID, dir == 1 ? e : g,
+            dir == 1 ? 1 : INFO_GRID, dir == 2 ? e : g, dir == 2 ? 1 : INFO_GRID, out, err);
+        if (rc) return rc;
+        for (size_t p = 0; p < (size_t)INFO_GRID * INFO_GRID; p++)
+            for (int k = 0; k < 3; k++) {
+                if (out[3 * p + k] < lo[k]) lo[k] = out[3 * p + k];
+                if (out[3 * p + k] > hi[k]) hi[k] = out[3 * p + k];
+            }
+    }
+    return 0;
+}
+
+static void mesh_warnings(const coons_model *m, size_t i, double tol, double dev, size_t pairs)
+{
+    if (dev > tol)
+        cli_message(1,
+                    "body %zu (%s): the fixed resolution leaves a deviation of %.6g, more than "
+                    "the tolerance %.6g",
+                    i, coons_model_body_name(m, i), dev, tol);
+    if (pairs)
+        cli_message(1,
+                    "body %zu (%s): its sampled boundary crosses itself (%zu pairs of triangles)",
+                    i, coons_model_body_name(m, i), pairs);
+}
+
+static void print_mesh(const coons_mesh_report *r, double tol, double dev, const size_t lat[3],
+                       int check_crossing, size_t pairs)
+{
+    printf(",\n     \"mesh\": {\"tolerance\": ");
+    json_number(tol);
+    printf(", \"deviation\": ");
+    json_number(dev);
+    printf(", \"lattice\": [%zu, %zu, %zu], \"vertices\": %zu, \"triangles\": %zu,\n", lat[0],
+           lat[1], lat[2], r->vertices, r->triangles);
+    printf("      \"closed\": %s, \"manifold\": %s, \"oriented\": %s, \"euler\": %ld, "
+           "\"expected_euler\": %ld, \"shells\": %zu,\n",
+           r->closed ? "true" : "false", r->manifold ? "true" : "false",
+           r->oriented ? "true" : "false", r->euler, r->expected_euler, r->shells);
+    printf("      \"boundary_edges\": %zu, \"nonmanifold_edges\": %zu, "
+           "\"nonmanifold_vertices\": %zu, \"misoriented_edges\": %zu, \"openmesh\": %s",
+           r->boundary_edges, r->nonmanifold_edges, r->nonmanifold_vertices,
+           r->misoriented_edges, r->openmesh ? "true" : "false");
+    if (r->openmesh) printf(", \"openmesh_rejected\": %zu", r->openmesh_rejected);
+    printf(",\n      \"volume\": ");
+    json_number(r->volume);
+    printf(", \"area\": ");
+    json_number(r->area);
+    if (check_crossing)
+        printf(", \"self_intersections\": %zu}", pairs);
+    else
+        printf(", \"self_intersections\": null}");
+}
+
+/* The body's sampled boundary mesh and its checks, as "mesh": {...};
+ * `check_crossing`: also count its self-intersecting triangle pairs. */
+static int info_mesh(const coons_model *m, size_t i, const coons_sample_options *so,
+                     int check_crossing)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh = NULL;
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    size_t pairs = 0;
+    cli_progress_sampling(i, coons_model_body_count(m), coons_model_body_name(m, i));
+    if (coons_body_sample(coons_model_body(m, i), so, coons_model_body_name(m, i), &mesh, &err) ||
+        coons_mesh_check(mesh, &r, &err) ||
+        (check_crossing && coons_mesh_count_self_intersections(mesh, &pairs, &err))) {
+        cli_message(0, "body %zu (%s): %s", i, coons_model_body_name(m, i), err.message);
+        coons_mesh_free(mesh);
+        return EXIT_GEOMETRY;
+    }
+    double tol, dev;
+    size_t lat[3];
+    coons_mesh_part_sampling(mesh, 0, &tol, &dev, lat);
+    mesh_warnings(m, i, tol, dev, pairs);
+    print_mesh(&r, tol, dev, lat, check_crossing, pairs);
+    coons_mesh_free(mesh);
+    return 0;
+}
+
+/*
+ * Sampling and evaluation noise leaves det J a few units of rounding below
+ * zero where it is exactly 0 (the collapsed axis of a spool, the tip of a
+ * nail, the seam of a NURBS cylinder: -7e-14 on bodies ~20 mm across).
+ * det J is a triple product of first derivatives, each of the order of the
+ * body's control box diagonal d, so its rounding noise is ~1e-16 d^3 times
+ * a few basis factors; a fold whose det J stays above -1e-9 d^3 is thinner
+ * than ~1e-9 d, a million times below the default tolerance (d / 1000).
+ * Only det J below that threshold is warned about; the raw minimum is
+ * reported either way.
+ */
+#define FOLD_REL 1e-9
+
+/* One entry of "bodies"; *vol receives its volume (relative accuracy
+ * `rel`). */
+static int info_body(const coons_model *m, size_t i, int first, double rel,
+                     const coons_sample_options *so, int checks, double *vol)
+{
+    const coons_body *b = coons_model_body(m, i);
+    const char *name = coons_model_body_name(m, i);
+    coons_error err = COONS_ERROR_INIT;
+    double lo[3], hi[3], blo[3], bhi[3], mindet = NAN, where[3] = {0, 0, 0};
+    *vol = NAN;
+    if (sampled_box(b, lo, hi, &err) || coons_body_volume(b, rel, vol, &err) ||
+        coons_body_min_jacobian(b, INFO_JAC, &mindet, where, &err)) {
+        cli_message(0, "body %zu (%s): %s", i, name, err.message);
+        return EXIT_GEOMETRY;
+    }
+    coons_body_control_bbox(b, blo, bhi);
+    double d3 = pow(box_diagonal(blo, bhi), 3);
+    if (mindet < -FOLD_REL * d3)
+        cli_message(1, "body %zu (%s): det J = %.6g < 0 at (u, v, w) = (%g, %g, %g): the body %s",
+                    i, name, mindet, where[0], where[1], where[2],
+                    *vol < 0 ? "is left-handed or folds over itself" : "folds over itself there");
+    const char *type = coons_body_type_name(coons_body_get_type(b));
+    printf("%s\n    {\"index\": %zu, \"name\": ", first ? "" : ",", i);
+    json_string(name);
+    printf(", \"type\": \"%s\",\n     \"bbox\": ", type ? type : "unknown");
+    json_box(lo, hi);
+    printf(",\n     \"control_bbox\": ");
+    json_box(blo, bhi);
+    printf(",\n     \"volume\": ");
+    json_number(*vol);
+    printf(", \"min_det_jacobian\": ");
+    json_number(mindet);
+    printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
+    int rc = info_mesh(m, i, so, checks);
+    if (rc) return rc;
+    printf("}");
+    return 0;
+}
+
+/* ---- the solid -------------------------------------------------------- */
+
+static void solid_warnings(const coons_mesh_report *r, size_t pairs, size_t pairs32, int repair)
+{
+    if (r->boundary_edges)
+        cli_message(1, "the solid's boundary is not closed (%zu border edges)",
+                    r->boundary_edges);
+    else if (r->nonmanifold_edges)
+        cli_message(1,
+                    "the solid's boundary is closed but not a 2-manifold: %zu edges bound more "
+                    "than two triangles (solids touching along a curve)",
+                    r->nonmanifold_edges);
+    if (pairs)
+        cli_message(1, "the solid's boundary crosses itself (%zu pairs of triangles)%s", pairs,
+                    repair ? "" : "; without --no-repair it would be repaired");
+    else if (pairs32)
+        cli_message(1,
+                    "rounding the solid's coordinates to float32, as STL stores them, makes %zu "
+                    "pairs of its triangles intersect; OFF and SCAD keep double precision",
+                    pairs32);
+}
+
+static void print_csg_report(const coons_csg_report *rep)
+{
+    printf("   \"csg\": {\"triangles_in\": %zu, \"degenerate_dropped\": %zu, "
+           "\"intersecting_pairs\": %zu, \"parts_in\": %zu, \"groups\": %zu,\n"
+           "    \"passed_through\": %zu, \"patches\": %zu, \"patches_kept\": %zu, "
+           "\"fast_unions\": %zu, \"fallbacks\": %zu, \"triangles_out\": %zu,\n"
+           "    \"rounding_merged\": %zu, \"close_merged\": %zu, \"slivers_fixed\": %zu, ",
+           rep->triangles_in, rep->degenerate_dropped, rep->intersecting_pairs, rep->parts_in,
+           rep->groups, rep->passed_through, rep->patches, rep->patches_kept, rep->fast_unions,
+           rep->fallbacks, rep->triangles_out, rep->rounding_merged, rep->close_merged,
+           rep->slivers_fixed);
+    json_bool("closed", rep->closed);
+    printf(", \"nonmanifold_edges\": %zu}}", rep->nonmanifold_edges);
+}
+
+/* The object after "solid": (the mesh checks, then the CSG report). */
+static void print_solid(const coons_mesh_report *r, const coons_csg_report *rep, size_t parts,
+                        int repair, int united, int csg, size_t pairs, size_t pairs32)
+{
+    printf("{");
+    json_bool("repair", repair && csg);
+    printf(", ");
+    json_bool("united", united);
+    printf(", \"parts\": %zu, \"vertices\": %zu, \"triangles\": %zu,\n   ", parts, r->vertices,
+           r->triangles);
+    json_bool("closed", r->closed);
+    printf(", ");
+    json_bool("manifold", r->manifold);
+    printf(", ");
+    json_bool("oriented", r->oriented);
+    printf(", \"euler\": %ld, \"shells\": %zu, \"boundary_edges\": %zu, \"nonmanifold_edges\": %zu,"
+           " \"nonmanifold_vertices\": %zu,\n   \"volume\": ",
+           r->euler, r->shells, r->boundary_edges, r->nonmanifold_edges, r->nonmanifold_vertices);
+    json_number(r->volume);
+    printf(", \"area\": ");
+    json_number(r->area);
+    if (!csg) {
+        printf(", \"self_intersections\": null, \"self_intersections_float32\": null, "
+               "\"csg\": null}");
+        return;
+    }
+    printf(", \"self_intersections\": %zu, \"self_intersections_float32\": %zu,\n", pairs,
+           pairs32);
+    print_csg_report(rep);
+}
+
+/* "solid": what -o would write (cli_make_solid()) and what repair and union
+ * found and did. A failure is reported in the JSON ("error") and warned
+ * about, not turned into an exit status: --info describes the model. */
+static int info_solid(const coons_model *m, long only, const coons_sample_options *so, int repair)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *solid = NULL;
+    coons_csg_report rep = COONS_CSG_REPORT_INIT;
+    int csg = coons_csg_is_available();
+    coons_status rc = cli_make_solid(m, only, so, repair, &solid, &rep, &err);
+    coons_mesh_report r = COONS_MESH_REPORT_INIT;
+    size_t pairs = 0, pairs32 = 0;
+    if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
+    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections(solid, &pairs, &err);
+    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections_float(solid, &pairs32, &err);
+    cli_progress_end();
+    size_t parts = rc == COONS_OK ? coons_mesh_part_count(solid) : 0;
+    coons_mesh_free(solid);
+    if (rc == COONS_E_NOMEM) {
+        cli_message(0, "%s", err.message);
+        return EXIT_GEOMETRY;
+    }
+    printf(",\n  \"solid\": ");
+    if (rc != COONS_OK) {
+        cli_message(1, "no mesh can be made of %s: %s", only < 0 ? "this model" : "this body",
+                    err.message);
+        printf("{\"error\": ");
+        json_string(err.message);
+        printf("}");
+        return 0;
+    }
+    solid_warnings(&r, pairs, pairs32, repair);
+    print_solid(&r, &rep, parts, repair, only < 0 && coons_model_operation(m) == COONS_OP_UNION,
+                csg, pairs, pairs32);
+    return 0;
+}
+
+/* ---- the model -------------------------------------------------------- */
+
+static void print_model(const coons_model *m, double tol, const double clo[3],
+                        const double chi[3])
+{
+    printf("{\n  \"units\": ");
+    json_string(coons_model_units(m));
+    printf(",\n  \"tolerance\": ");
+    json_number(tol);
+    printf(",\n  \"operation\": \"%s\",\n  \"control_bbox\": ",
+           coons_model_operation(m) == COONS_OP_NONE ? "none" : "union");
+    json_box(clo, chi);
+}
+
+int cli_info(const coons_model *m, long only, const coons_sample_options *so, const options *o)
+{
+    size_t n = coons_model_body_count(m);
+    double clo[3], chi[3];
+    coons_model_control_bbox(m, clo, chi);
+    double diag = box_diagonal(clo, chi);
+    double tol = coons_model_tolerance(m);
+    /* Volumes to a relative accuracy tied to the model tolerance: a boundary
+     * off by tol changes the volume by about tol * area ~ tol / size. */
+    double rel = diag > 0 ? tol / diag : 1e-6;
+    if (rel > 1e-6) rel = 1e-6;
+    if (rel < 1e-12) rel = 1e-12;
+    int checks = !o->no_solid && coons_csg_is_available();
+    double total = 0.0;
+    size_t listed = 0;
+    print_model(m, tol, clo, chi);
+    printf(",\n  \"bodies\": [");
+    for (size_t i = 0; i < n; i++) {
+        if (only >= 0 && (size_t)only != i) continue;
+        double vol;
+        int rc = info_body(m, i, listed == 0, rel, so, checks, &vol);
+        if (rc) return rc;
+        total += vol;
+        listed++;
+    }
+    cli_progress_end();
+    printf("\n  ],\n  \"body_count\": %zu,\n  \"total_volume\": ", listed);
+    json_number(total);
+    if (o->no_solid) {
+        printf(",\n  \"solid\": null");
+    } else {
+        int rc = info_solid(m, only, so, !o->no_repair);
+        if (rc) return rc;
+    }
+    printf("\n}\n");
+    return 0;
+}

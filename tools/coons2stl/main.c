@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * coons2stl: reads a libcoons model (coons-model(5)) and writes the boundary
+ * mesh of its bodies (output.c), evaluates a body at given parameters
+ * (--eval, eval.c), or describes the model (--info, info.c). A thin client
+ * of <coons.h>; see coons2stl(1). This file dispatches the modes.
+ */
+#define _POSIX_C_SOURCE 200809L /* isatty, SIGXFSZ */
+
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+/* The sampling options every mode shares: -t or the model's tolerance,
+ * --resolution, --max-triangles. */
+static coons_sample_options sample_options(const options *o, const coons_model *m)
+{
+    coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+    so.tolerance = o->tolerance > 0 ? o->tolerance : coons_model_tolerance(m);
+    so.resolution = o->resolution;
+    so.max_triangles = o->max_triangles;
+    /* A mesh on a fixed lattice needs no measured deviation (--info reports
+     * it); measuring would be most of the sampling time. */
+    if (o->resolution && !o->info) so.flags |= COONS_SAMPLE_UNMEASURED;
+    return so;
+}
+
+static int run_mode(const options *o, const coons_model *m, long body)
+{
+    coons_sample_options so = sample_options(o, m);
+    if (o->eval) return cli_eval(coons_model_body(m, body < 0 ? 0 : (size_t)body), o->jacobian);
+    if (o->info) return cli_info(m, body, &so, o);
+    return cli_write_output(m, body, o->format, o->output, &so, !o->no_repair, o->input);
+}
+
+int main(int argc, char **argv)
+{
+    /* A file size limit (ulimit -f) must end in a write error (EFBIG),
+     * after which the writer removes its temporary file, not in SIGXFSZ
+     * killing the process with the temporary file left behind. */
+    signal(SIGXFSZ, SIG_IGN);
+    options o;
+    memset(&o, 0, sizeof o);
+    o.load.version = COONS_MODEL_LOAD_OPTIONS_VERSION;
+    int rc = cli_parse_args(argc, argv, &o);
+    if (rc >= 0) return rc;
+    coons_model *m = NULL;
+    if ((rc = cli_load_model(&o, &m)) >= 0) return rc;
+    long body = -1;
+    if (o.body && (body = cli_select_body(m, o.body)) < 0) {
+        coons_model_free(m);
+        return EXIT_USAGE;
+    }
+    cli_progress_start(o.force_progress || (!o.quiet && isatty(STDERR_FILENO)), o.quiet, m);
+    rc = run_mode(&o, m, body);
+    coons_model_free(m);
+    if ((o.eval || o.info) && (fflush(stdout) != 0 || ferror(stdout))) {
+        fprintf(stderr, "%s: cannot write to standard output: %s\n", PROG, strerror(errno));
+        if (!rc) rc = EXIT_GEOMETRY;
+    }
+    return rc;
+}

@@ -1,0 +1,108 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * coons2stl's standard error: the progress report and the messages.
+ *
+ * The progress report is one line on standard error, rewritten in place
+ * with '\r' and finished with a newline before anything else is printed,
+ * so that warnings and errors never share its line. By default it is shown
+ * only when standard error is a terminal (a log file would fill up with
+ * rewrites); --progress forces it, -q turns it off. The library never
+ * prints: it reports through coons_csg_options.progress (stage names and
+ * the fraction done), and the CLI prints.
+ */
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+static struct {
+    int on;                   /* report progress */
+    int quiet;                /* -q: no warnings */
+    int open;                 /* a progress line is on the screen */
+    size_t width;             /* its length, to blank out what a shorter one leaves */
+    char last[160];           /* its text, to print only changes */
+    const coons_model *model; /* names the bodies of the stage "sample" */
+} ui;
+
+void cli_progress_start(int on, int quiet, const coons_model *m)
+{
+    ui.on = on;
+    ui.quiet = quiet;
+    ui.model = m;
+}
+
+int cli_progress_on(void) { return ui.on; }
+
+void cli_progress_end(void)
+{
+    if (!ui.open) return;
+    fputc('\n', stderr);
+    fflush(stderr);
+    ui.open = 0;
+    ui.width = 0;
+    ui.last[0] = '\0';
+}
+
+static void progress_line(const char *text)
+{
+    if (!ui.on || strcmp(text, ui.last) == 0) return;
+    size_t n = strlen(text);
+    fprintf(stderr, "\r%s: %s", PROG, text);
+    for (size_t k = n; k < ui.width; k++) fputc(' ', stderr);
+    fflush(stderr);
+    ui.open = 1;
+    ui.width = n;
+    snprintf(ui.last, sizeof ui.last, "%s", text);
+}
+
+/* A body name fit for the progress line: control characters shown as '?',
+ * at most cap - 1 bytes, cut at a UTF-8 character boundary. */
+static void printable(char *out, size_t cap, const char *s)
+{
+    size_t n = 0;
+    for (; s[n] && n + 1 < cap; n++) out[n] = (unsigned char)s[n] < 0x20 ? '?' : s[n];
+    if (s[n])
+        while (n > 0 && ((unsigned char)out[n] & 0xC0) == 0x80) n--;
+    out[n] = '\0';
+}
+
+void cli_progress_sampling(size_t i, size_t n, const char *name)
+{
+    if (!ui.on) return;
+    char nm[48], text[128];
+    printable(nm, sizeof nm, name);
+    snprintf(text, sizeof text, "sampling body %zu of %zu (%s)", i + 1, n, nm);
+    progress_line(text);
+}
+
+/* coons_csg_options.progress. coons_model_solidify() and
+ * coons_model_solidify_body() report the stage "sample" before each body with
+ * the share of bodies done (i / count), then the stages of repair and
+ * union with their own fraction. */
+void cli_on_progress(void *userdata, const char *stage, double fraction)
+{
+    (void)userdata;
+    if (strcmp(stage, "sample") == 0) {
+        size_t n = ui.model ? coons_model_body_count(ui.model) : 0;
+        size_t i = (size_t)(fraction * (double)n + 0.5);
+        if (i < n) cli_progress_sampling(i, n, coons_model_body_name(ui.model, i));
+        return;
+    }
+    char text[128];
+    snprintf(text, sizeof text, "repair and union: %s %3d%%", stage, (int)(100 * fraction));
+    progress_line(text);
+}
+
+void cli_message(int warning, const char *fmt, ...)
+{
+    if (warning && ui.quiet) return;
+    cli_progress_end();
+    fflush(stdout);
+    fprintf(stderr, "%s: %s", PROG, warning ? "warning: " : "");
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}

@@ -1,0 +1,30 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * The mesh that -o writes (--info reports on the very same one): with
+ * `body` < 0, every body made into the model's solid by coons_model_solidify()
+ * (repaired and united as the model's "operation" says); else that body's
+ * shell alone, repaired if it crosses itself (coons_model_solidify_body()).
+ * Without CGAL the shells are as sampled (coons_model_solidify() refuses a
+ * union that needs it). The environment variable
+ * COONS2STL_INJECT_CSG_FAILURE (testing aid, read here and nowhere in the
+ * library) makes the CGAL step fail.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "coons_test_hooks.h" /* coons__csg_inject_failure (coons_static) */
+
+coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_options *so,
+                            int repair, coons_mesh **out, coons_csg_report *rep,
+                            coons_error *err)
+{
+    coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
+    copts.repair = repair;
+    copts.progress = cli_progress_on() ? cli_on_progress : NULL;
+    const char *inject = getenv("COONS2STL_INJECT_CSG_FAILURE");
+    coons__csg_inject_failure(inject && *inject && strcmp(inject, "0") != 0);
+    coons_csg_report_init(rep);
+    if (body < 0) return coons_model_solidify(m, so, &copts, out, rep, err);
+    return coons_model_solidify_body(m, (size_t)body, so, &copts, out, rep, err);
+}
