@@ -47,21 +47,6 @@ static void source_at(const coons_patch *p, int run, int fixed, double x, double
     if (dx) v3_copy(dx, r[1 + run]);
 }
 
-void coons__body2_free_faces(coons_body *b)
-{
-    for (int f = 0; f < 6; f++) coons_patch_free(b->face[f]);
-}
-
-coons_status coons__body2_copy_faces(const coons_body *b, coons_body *d, coons_error *err)
-{
-    for (int f = 0; f < 6; f++) {
-        if (!b->face[f]) continue;
-        coons_status rc = coons_patch_copy(b->face[f], &d->face[f], err);
-        if (rc) return rc;
-    }
-    return COONS_OK;
-}
-
 coons_status coons_body_body2(const coons_patch *const faces[6], coons_blend blend, double tol,
                               coons_body **out, coons_error *err)
 {
@@ -115,7 +100,7 @@ coons_status coons_body_body2(const coons_patch *const faces[6], coons_blend ble
         }
     }
     coons_body *b;
-    coons_status rc = coons__body_alloc(COONS_BODY_BODY2, blend, &b, err);
+    coons_status rc = coons__body_alloc(&coons__body2_kind, blend, &b, err);
     if (rc) return rc;
     for (int f = 0; f < 6; f++) {
         if ((rc = coons_patch_copy(faces[f], &b->face[f], err))) {
@@ -153,16 +138,11 @@ static void edge_at(const coons_body *b, int e, double x, double p[3], double *d
         for (int r = 0; r < 3; r++) dp[r] = 0.5 * (da[r] + db[r]);
 }
 
-void coons__body2_eval(const coons_body *b, double u, double v, double w, double out[3],
-                       double d[3][3])
+static void eval(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3])
 {
     double bu[5], bv[5], bw[5];
-    coons__blend(b->blend, u, 1, bu);
-    coons__blend(b->blend, v, 1, bv);
-    coons__blend(b->blend, w, 1, bw);
-    bu[4] = u;
-    bv[4] = v;
-    bw[4] = w;
+    coons__blends_at(b->blend, u, v, w, bu, bv, bw);
     coons__trilinear(b->corner, bu, bv, bw, out, d);
     int nd = d ? 1 : 0;
     for (int x = 0; x < 2; x++) {
@@ -219,9 +199,8 @@ static void w_line(size_t n3, double a1, double b1, const double *restrict x0,
  * P_k = Z_k - sum_i a_i(u) C(i,v,k) - sum_j a_j(v) C(u,j,k) + sum_ij a_i(u) a_j(v) C_ijk,
  * so the inner loop along w reads two rows of X, two of G and six constants.
  */
-coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
-                               const double *v, size_t nv, const double *w, size_t nw,
-                               double *out, coons_error *err)
+static coons_status grid(const coons_body *b, const double *u, size_t nu, const double *v,
+                         size_t nv, const double *w, size_t nw, double *out, coons_error *err)
 {
     size_t total = 0;
     size_t nmax = nu > nv ? (nu > nw ? nu : nw) : (nv > nw ? nv : nw);
@@ -350,9 +329,9 @@ coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
  *   F_w = sum a_i X_i,w + sum b_j G_j,w + sum c_k' P_k,
  * each of X, G, P with its two partials tabulated once per grid.
  */
-coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t nu,
-                                   const double *v, size_t nv, const double *w, size_t nw,
-                                   double *det, coons_error *err)
+static coons_status det_grid(const coons_body *b, const double *u, size_t nu,
+                             const double *v, size_t nv, const double *w, size_t nw,
+                             double *det, coons_error *err)
 {
     size_t total = 0;
     /* blends 4 per sample, edges 24 per sample, X 18 nv nw, G 18 nu nw, P 18 nu nv */
@@ -470,3 +449,30 @@ coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t 
     coons__free(s);
     return COONS_OK;
 }
+
+/* The faces whose s or t runs along direction d (body.h). */
+static void breaks(const coons_body *b, int d, coons__breaks *B)
+{
+    static const int face[3][4] = {{2, 3, 4, 5}, {0, 1, 4, 5}, {0, 1, 2, 3}};
+    static const int sdir[3][4] = {{0, 0, 0, 0}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+    for (int m = 0; m < 4; m++) coons__patch_breaks(b->face[face[d][m]], sdir[d][m], B);
+}
+
+static coons_status copy_data(const coons_body *b, coons_body *d, coons_error *err)
+{
+    for (int f = 0; f < 6; f++) d->face[f] = NULL;
+    for (int f = 0; f < 6; f++) {
+        if (!b->face[f]) continue;
+        coons_status rc = coons_patch_copy(b->face[f], &d->face[f], err);
+        if (rc) return rc;
+    }
+    return COONS_OK;
+}
+
+static void free_data(coons_body *b)
+{
+    for (int f = 0; f < 6; f++) coons_patch_free(b->face[f]);
+}
+
+const coons__body_kind coons__body2_kind = {COONS_BODY_BODY2, eval,      grid,     det_grid,
+                                            breaks,           copy_data, free_data};

@@ -107,7 +107,7 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
     }
 
     coons_patch *p = NULL;
-    if ((rc = coons__patch_alloc(COONS_PATCH_HERMITE_COONS, &p, err))) return rc;
+    if ((rc = coons__patch_alloc(&coons__hermite_coons_kind, &p, err))) return rc;
     p->n = 4;
     p->twist = opts->twist;
     for (int k = 0; k < 4 && !rc; k++) {
@@ -133,28 +133,19 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
     return COONS_OK;
 }
 
-static void line_curve(coons__pline *L, int m, const coons_curve *c, double x, int order)
+static void sline(const coons_patch *p, double s, int order, coons__pline *L)
 {
-    double r[3][3];
-    coons_curve_eval_derivs(c, x, order, r);
-    for (int d = 0; d <= order; d++) v3_copy(coons__lv(L, d, m), r[d]);
-}
-
-void coons__hermite_sline(const coons_patch *p, double s, int order, coons__pline *L)
-{
-    memset(L, 0, sizeof *L);
-    L->n = 4;
-    L->order = order;
+    coons__pline_clear(L, 4, order);
     double H[12];
     coons__hermite_basis(s, order, H);
     /* Tv = t0(s), x_t(s,0), x_t(s,1), t1(s); W = Tv - H(s) M. Without cross
      * curves the middle two Tv are the ribbons H(s) M[.][1..2] of eq. 1.16
      * and W is zero there. */
-    line_curve(L, 0, p->curve[COONS_T0], s, order);
-    line_curve(L, 3, p->curve[COONS_T1], s, order);
+    coons__pline_curve(L, 0, p->curve[COONS_T0], s, order);
+    coons__pline_curve(L, 3, p->curve[COONS_T1], s, order);
     if (p->cross[0]) {
-        line_curve(L, 1, p->cross[0], s, order);
-        line_curve(L, 2, p->cross[1], s, order);
+        coons__pline_curve(L, 1, p->cross[0], s, order);
+        coons__pline_curve(L, 2, p->cross[1], s, order);
     }
     for (int d = 0; d <= order; d++) {
         for (int i = 0; i < 4; i++) L->b[d][i] = H[4 * d + i];
@@ -165,19 +156,17 @@ void coons__hermite_sline(const coons_patch *p, double s, int order, coons__plin
     }
 }
 
-void coons__hermite_tline(const coons_patch *p, double t, int order, coons__pline *L)
+static void tline(const coons_patch *p, double t, int order, coons__pline *L)
 {
-    memset(L, 0, sizeof *L);
-    L->n = 4;
-    L->order = order;
+    coons__pline_clear(L, 4, order);
     double H[12];
     coons__hermite_basis(t, order, H);
     /* Sv = s0(t), x_s(0,t), x_s(1,t), s1(t); ribbons x_s(a,t) = M[1 or 2][.] H(t). */
-    line_curve(L, 0, p->curve[COONS_S0], t, order);
-    line_curve(L, 3, p->curve[COONS_S1], t, order);
+    coons__pline_curve(L, 0, p->curve[COONS_S0], t, order);
+    coons__pline_curve(L, 3, p->curve[COONS_S1], t, order);
     if (p->cross[2]) {
-        line_curve(L, 1, p->cross[2], t, order);
-        line_curve(L, 2, p->cross[3], t, order);
+        coons__pline_curve(L, 1, p->cross[2], t, order);
+        coons__pline_curve(L, 2, p->cross[3], t, order);
     }
     for (int d = 0; d <= order; d++) {
         for (int j = 0; j < 4; j++) L->b[d][j] = H[4 * d + j];
@@ -188,3 +177,8 @@ void coons__hermite_tline(const coons_patch *p, double t, int order, coons__plin
             }
     }
 }
+
+const coons__patch_kind coons__hermite_coons_kind = {
+    COONS_PATCH_HERMITE_COONS, coons__boolsum_eval,         coons__boolsum_grid,
+    sline,                     tline,                       coons__boolsum_control_bbox,
+    coons__boolsum_breaks,     coons__boolsum_copy,         coons__boolsum_free};
