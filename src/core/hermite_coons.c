@@ -19,14 +19,11 @@
 
 static const char *const cross_name[4] = {"t0", "t1", "s0", "s1"};
 
-coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
-                                       const coons_hermite_options *opts, coons_patch **out,
-                                       coons_error *err)
+/* The options are usable: version, twist, explicit twists finite, all four
+ * cross curves or none (*ncross gets how many). */
+static coons_status check_options(const coons_hermite_options *opts, int *ncross,
+                                  coons_error *err)
 {
-    if (!out) return coons__error_set(err, COONS_E_INVALID, "hermite-coons patch: out is NULL");
-    *out = NULL;
-    const coons_hermite_options defaults = COONS_HERMITE_OPTIONS_INIT;
-    if (!opts) opts = &defaults;
     if (opts->version != COONS_HERMITE_OPTIONS_VERSION)
         return coons__error_set(err, COONS_E_INVALID,
                                 "hermite-coons patch: options version %u, expected %d",
@@ -40,20 +37,22 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
                 return coons__error_set(err, COONS_E_INVALID,
                                         "hermite-coons patch: twist x_st(%d,%d) is not finite",
                                         k & 1, k >> 1);
-    int ncross = 0;
-    for (int k = 0; k < 4; k++) ncross += opts->cross[k] != NULL;
-    if (ncross != 0 && ncross != 4)
+    *ncross = 0;
+    for (int k = 0; k < 4; k++) *ncross += opts->cross[k] != NULL;
+    if (*ncross != 0 && *ncross != 4)
         return coons__error_set(err, COONS_E_INVALID,
                                 "hermite-coons patch: give all four cross curves or none "
                                 "(%d given)",
-                                ncross);
+                                *ncross);
+    return COONS_OK;
+}
 
-    double X[4][3], tol;
-    coons_status rc = coons__patch_corners(boundary, opts->tol, X, &tol, err);
-    if (rc) return rc;
-
-    /* Corner tangents, index a + 2b like the corners. */
-    double xs[4][3], xt[4][3], r[2][3];
+/* Corner tangents x_s, x_t from the boundary curves, index a + 2b like
+ * the corners. */
+static void corner_tangents(const coons_curve *const boundary[4], double xs[4][3],
+                            double xt[4][3])
+{
+    double r[2][3];
     for (int k = 0; k < 4; k++) {
         int a = k & 1, b = k >> 1;
         coons_curve_eval_derivs(boundary[b ? COONS_T1 : COONS_T0], (double)a, 1, r);
@@ -61,6 +60,72 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
         coons_curve_eval_derivs(boundary[a ? COONS_S1 : COONS_S0], (double)b, 1, r);
         v3_copy(xt[k], r[1]);
     }
+}
+
+/* The twists x_st at the corners (section 1.2.2): zero (Ferguson), Adini,
+ * Bessel or explicit. */
+static void corner_twists(const coons_hermite_options *opts, double X[4][3], double xs[4][3],
+                          double xt[4][3], double tw[4][3])
+{
+    memset(tw, 0, 4 * sizeof tw[0]);
+    double cell[3];
+    v3_sub(cell, X[0], X[1]);
+    v3_sub(cell, cell, X[2]);
+    v3_add(cell, cell, X[3]);
+    for (int k = 0; k < 4; k++) {
+        int a = k & 1, b = k >> 1;
+        switch (opts->twist) {
+        case COONS_TWIST_ADINI: {
+            /* [s1'(b) - s0'(b)] + [t1'(a) - t0'(a)] - cell: the x_st of eq. 1.11 */
+            double ds[3], dt[3];
+            v3_sub(ds, xt[1 + 2 * b], xt[2 * b]);
+            v3_sub(dt, xs[2 + a], xs[a]);
+            v3_add(tw[k], ds, dt);
+            v3_sub(tw[k], tw[k], cell);
+            break;
+        }
+        case COONS_TWIST_BESSEL: v3_copy(tw[k], cell); break;
+        case COONS_TWIST_EXPLICIT: v3_copy(tw[k], opts->twists[k]); break;
+        default: break;
+        }
+    }
+}
+
+/* The averaged corners and the matrix M of eq. 1.15. */
+static void fill_record(coons_patch *p, double X[4][3], double xs[4][3], double xt[4][3],
+                        double tw[4][3])
+{
+    memcpy(p->corner, X, sizeof p->corner);
+    /* eq. 1.15: rows x(0,.), x_s(0,.), x_s(1,.), x(1,.); columns
+     * .(.,0), ._t(.,0), ._t(.,1), .(.,1). */
+    const double *rows[4][4] = {
+        {X[0], xt[0], xt[2], X[2]},
+        {xs[0], tw[0], tw[2], xs[2]},
+        {xs[1], tw[1], tw[3], xs[3]},
+        {X[1], xt[1], xt[3], X[3]},
+    };
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) v3_copy(p->M[i][j], rows[i][j]);
+}
+
+coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
+                                       const coons_hermite_options *opts, coons_patch **out,
+                                       coons_error *err)
+{
+    if (!out) return coons__error_set(err, COONS_E_INVALID, "hermite-coons patch: out is NULL");
+    *out = NULL;
+    const coons_hermite_options defaults = COONS_HERMITE_OPTIONS_INIT;
+    if (!opts) opts = &defaults;
+    int ncross = 0;
+    coons_status rc = check_options(opts, &ncross, err);
+    if (rc) return rc;
+
+    double X[4][3], tol;
+    rc = coons__patch_corners(boundary, opts->tol, X, &tol, err);
+    if (rc) return rc;
+
+    double xs[4][3], xt[4][3];
+    corner_tangents(boundary, xs, xt);
 
     if (ncross) {
         /* cross t0/t1 = x_t(s,b) at s = 0,1; cross s0/s1 = x_s(a,t) at t = 0,1. */
@@ -83,28 +148,8 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
         }
     }
 
-    double tw[4][3] = {{0}};
-    double cell[3];
-    v3_sub(cell, X[0], X[1]);
-    v3_sub(cell, cell, X[2]);
-    v3_add(cell, cell, X[3]);
-    for (int k = 0; k < 4; k++) {
-        int a = k & 1, b = k >> 1;
-        switch (opts->twist) {
-        case COONS_TWIST_ADINI: {
-            /* [s1'(b) - s0'(b)] + [t1'(a) - t0'(a)] - cell: the x_st of eq. 1.11 */
-            double ds[3], dt[3];
-            v3_sub(ds, xt[1 + 2 * b], xt[2 * b]);
-            v3_sub(dt, xs[2 + a], xs[a]);
-            v3_add(tw[k], ds, dt);
-            v3_sub(tw[k], tw[k], cell);
-            break;
-        }
-        case COONS_TWIST_BESSEL: v3_copy(tw[k], cell); break;
-        case COONS_TWIST_EXPLICIT: v3_copy(tw[k], opts->twists[k]); break;
-        default: break;
-        }
-    }
+    double tw[4][3];
+    corner_twists(opts, X, xs, xt, tw);
 
     coons_patch *p = NULL;
     if ((rc = coons__patch_alloc(&coons__hermite_coons_kind, &p, err))) return rc;
@@ -118,17 +163,7 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
         coons_patch_free(p);
         return rc;
     }
-    memcpy(p->corner, X, sizeof X);
-    /* eq. 1.15: rows x(0,.), x_s(0,.), x_s(1,.), x(1,.); columns
-     * .(.,0), ._t(.,0), ._t(.,1), .(.,1). */
-    const double *rows[4][4] = {
-        {X[0], xt[0], xt[2], X[2]},
-        {xs[0], tw[0], tw[2], xs[2]},
-        {xs[1], tw[1], tw[3], xs[3]},
-        {X[1], xt[1], xt[3], X[3]},
-    };
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) v3_copy(p->M[i][j], rows[i][j]);
+    fill_record(p, X, xs, xt, tw);
     *out = p;
     return COONS_OK;
 }

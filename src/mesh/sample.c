@@ -151,83 +151,98 @@ static coons_status alloc_lattices(sampler *s)
     return COONS_OK;
 }
 
+/* Starting interval counts from the body's extent along each direction,
+ * raised so that cells are at most max_aspect times longer than wide. */
+static coons_status start_counts(sampler *s)
+{
+    /* Extent along each direction: the longest lattice line of a 9 x 9
+     * sampling of the faces that run along it. */
+    enum { K = 9 };
+    double g[K], len[3] = {0, 0, 0};
+    for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
+    coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+    if (st) return st;
+    for (int f = 0; f < 6; f++) {
+        if ((st = eval_face(s, f, g, K, g, K, s->buf))) return st;
+        for (int j = 0; j < K; j++) {
+            double la = 0, lb = 0;
+            for (int i = 0; i + 1 < K; i++) {
+                la += v3_dist(s->buf + 3 * (i * K + j), s->buf + 3 * ((i + 1) * K + j));
+                lb += v3_dist(s->buf + 3 * (j * K + i), s->buf + 3 * (j * K + i + 1));
+            }
+            if (la > len[FACES[f].a]) len[FACES[f].a] = la;
+            if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
+        }
+    }
+    double lmax = fmax(len[0], fmax(len[1], len[2]));
+    for (int d = 0; d < 3; d++) {
+        double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
+        s->n[d] = k < 1 ? 1 : (k > START_INTERVALS ? START_INTERVALS : (size_t)k);
+    }
+    /* Cell length along d is about len[d] / n[d]; the shortest of them
+     * (ignoring collapsed directions) bounds the others. */
+    double cmin = INFINITY;
+    for (int d = 0; d < 3; d++)
+        if (len[d] > 1e-9 * lmax) cmin = fmin(cmin, len[d] / (double)s->n[d]);
+    if (isfinite(s->o->max_aspect) && isfinite(cmin))
+        for (int d = 0; d < 3; d++) {
+            double k = ceil(len[d] / (s->o->max_aspect * cmin) - 1e-9);
+            /* capped so that a needle cannot exhaust the budget here */
+            if (k > 4096) k = 4096;
+            if (k > (double)s->n[d]) s->n[d] = (size_t)k;
+        }
+    return COONS_OK;
+}
+
+/* The starting lattice values of direction d: n[d] uniform intervals
+ * merged with the breakpoints of the body's data. */
+static coons_status start_values(sampler *s, int d)
+{
+    /* Adaptive lattices start at the breakpoints of the body's data
+     * (knots, segment ends): a kink inside a cell converges only
+     * linearly, and its peak error falls between the measured samples.
+     * Uniform values closer than a quarter step to a breakpoint yield. */
+    double *br = NULL;
+    size_t nbr = 0, n = s->n[d], k = 0;
+    if (!s->o->resolution) {
+        coons_status st = coons__body_breaks(s->body, d, &br, &nbr, s->err);
+        if (st) return st;
+    }
+    s->t[d] = coons__malloc_array(n + nbr + 1, sizeof(double));
+    if (!s->t[d]) {
+        coons__free(br);
+        return coons__error_nomem(s->err);
+    }
+    for (size_t i = 0, j = 0; i <= n || j < nbr;) {
+        double x = i <= n ? (double)i / (double)n : 2.0, y = j < nbr ? br[j] : 2.0;
+        if (y <= x) {
+            if (!k || y > s->t[d][k - 1]) s->t[d][k++] = y;
+            j++;
+            if (fabs(x - y) < 0.25 / (double)n) i++;
+        } else {
+            int near = (j < nbr && br[j] - x < 0.25 / (double)n) ||
+                       (j > 0 && x - br[j - 1] < 0.25 / (double)n);
+            if (!near && (!k || x > s->t[d][k - 1])) s->t[d][k++] = x;
+            i++;
+        }
+    }
+    coons__free(br);
+    s->t[d][0] = 0.0;
+    s->t[d][k - 1] = 1.0;
+    s->n[d] = k - 1;
+    return COONS_OK;
+}
+
 static coons_status init_lattices(sampler *s)
 {
+    coons_status st = COONS_OK;
     if (s->o->resolution) {
         for (int d = 0; d < 3; d++) s->n[d] = s->o->resolution;
-    } else {
-        /* Extent along each direction: the longest lattice line of a 9 x 9
-         * sampling of the faces that run along it. */
-        enum { K = 9 };
-        double g[K], len[3] = {0, 0, 0};
-        for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
-        coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
-        if (st) return st;
-        for (int f = 0; f < 6; f++) {
-            if ((st = eval_face(s, f, g, K, g, K, s->buf))) return st;
-            for (int j = 0; j < K; j++) {
-                double la = 0, lb = 0;
-                for (int i = 0; i + 1 < K; i++) {
-                    la += v3_dist(s->buf + 3 * (i * K + j), s->buf + 3 * ((i + 1) * K + j));
-                    lb += v3_dist(s->buf + 3 * (j * K + i), s->buf + 3 * (j * K + i + 1));
-                }
-                if (la > len[FACES[f].a]) len[FACES[f].a] = la;
-                if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
-            }
-        }
-        double lmax = fmax(len[0], fmax(len[1], len[2]));
-        for (int d = 0; d < 3; d++) {
-            double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
-            s->n[d] = k < 1 ? 1 : (k > START_INTERVALS ? START_INTERVALS : (size_t)k);
-        }
-        /* Cell length along d is about len[d] / n[d]; the shortest of them
-         * (ignoring collapsed directions) bounds the others. */
-        double cmin = INFINITY;
-        for (int d = 0; d < 3; d++)
-            if (len[d] > 1e-9 * lmax) cmin = fmin(cmin, len[d] / (double)s->n[d]);
-        if (isfinite(s->o->max_aspect) && isfinite(cmin))
-            for (int d = 0; d < 3; d++) {
-                double k = ceil(len[d] / (s->o->max_aspect * cmin) - 1e-9);
-                /* capped so that a needle cannot exhaust the budget here */
-                if (k > 4096) k = 4096;
-                if (k > (double)s->n[d]) s->n[d] = (size_t)k;
-            }
+    } else if ((st = start_counts(s))) {
+        return st;
     }
-    for (int d = 0; d < 3; d++) {
-        /* Adaptive lattices start at the breakpoints of the body's data
-         * (knots, segment ends): a kink inside a cell converges only
-         * linearly, and its peak error falls between the measured samples.
-         * Uniform values closer than a quarter step to a breakpoint yield. */
-        double *br = NULL;
-        size_t nbr = 0, n = s->n[d], k = 0;
-        if (!s->o->resolution) {
-            coons_status st = coons__body_breaks(s->body, d, &br, &nbr, s->err);
-            if (st) return st;
-        }
-        s->t[d] = coons__malloc_array(n + nbr + 1, sizeof(double));
-        if (!s->t[d]) {
-            coons__free(br);
-            return coons__error_nomem(s->err);
-        }
-        for (size_t i = 0, j = 0; i <= n || j < nbr;) {
-            double x = i <= n ? (double)i / (double)n : 2.0, y = j < nbr ? br[j] : 2.0;
-            if (y <= x) {
-                if (!k || y > s->t[d][k - 1]) s->t[d][k++] = y;
-                j++;
-                if (fabs(x - y) < 0.25 / (double)n) i++;
-            } else {
-                int near = (j < nbr && br[j] - x < 0.25 / (double)n) ||
-                           (j > 0 && x - br[j - 1] < 0.25 / (double)n);
-                if (!near && (!k || x > s->t[d][k - 1])) s->t[d][k++] = x;
-                i++;
-            }
-        }
-        coons__free(br);
-        s->t[d][0] = 0.0;
-        s->t[d][k - 1] = 1.0;
-        s->n[d] = k - 1;
-    }
-    return alloc_lattices(s);
+    for (int d = 0; d < 3 && !st; d++) st = start_values(s, d);
+    return st ? st : alloc_lattices(s);
 }
 
 static coons_status limit_error(sampler *s, size_t need)
