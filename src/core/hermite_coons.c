@@ -168,49 +168,52 @@ coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
     return COONS_OK;
 }
 
-static void sline(const coons_patch *p, double s, int order, coons__pline *L)
+/* A line of four Hermite terms at x: basis H into L->b and H, the
+ * boundary curves c0, c3 into vectors 0 and 3, and the cross curves c1, c2
+ * (if given) into 1 and 2. */
+static void hermite_line(double x, int order, const coons_curve *c0, const coons_curve *c1,
+                         const coons_curve *c2, const coons_curve *c3, double H[12],
+                         coons__pline *L)
 {
     coons__pline_clear(L, 4, order);
-    double H[12];
-    coons__hermite_basis(s, order, H);
-    /* Tv = t0(s), x_t(s,0), x_t(s,1), t1(s); W = Tv - H(s) M. Without cross
-     * curves the middle two Tv are the ribbons H(s) M[.][1..2] of eq. 1.16
-     * and W is zero there. */
-    coons__pline_curve(L, 0, p->curve[COONS_T0], s, order);
-    coons__pline_curve(L, 3, p->curve[COONS_T1], s, order);
-    if (p->cross[0]) {
-        coons__pline_curve(L, 1, p->cross[0], s, order);
-        coons__pline_curve(L, 2, p->cross[1], s, order);
+    coons__hermite_basis(x, order, H);
+    coons__pline_curve(L, 0, c0, x, order);
+    coons__pline_curve(L, 3, c3, x, order);
+    if (c1) {
+        coons__pline_curve(L, 1, c1, x, order);
+        coons__pline_curve(L, 2, c2, x, order);
     }
-    for (int d = 0; d <= order; d++) {
+    for (int d = 0; d <= order; d++)
         for (int i = 0; i < 4; i++) L->b[d][i] = H[4 * d + i];
+}
+
+/* Tv = t0(s), x_t(s,0), x_t(s,1), t1(s); W = Tv - H(s) M. Without cross
+ * curves the middle two Tv are the ribbons H(s) M[.][1..2] of eq. 1.16 and
+ * W is zero there. */
+static void sline(const coons_patch *p, double s, int order, coons__pline *L)
+{
+    double H[12];
+    hermite_line(s, order, p->curve[COONS_T0], p->cross[0], p->cross[1], p->curve[COONS_T1], H,
+                 L);
+    for (int d = 0; d <= order; d++)
         for (int m = 0; m < 4; m++) {
             if (!p->cross[0] && (m == 1 || m == 2)) continue;
             for (int i = 0; i < 4; i++) v3_axpy(coons__lv(L, d, m), -H[4 * d + i], p->M[i][m]);
         }
-    }
 }
 
+/* Sv = s0(t), x_s(0,t), x_s(1,t), s1(t); ribbons x_s(a,t) = M[1 or 2][.] H(t). */
 static void tline(const coons_patch *p, double t, int order, coons__pline *L)
 {
-    coons__pline_clear(L, 4, order);
     double H[12];
-    coons__hermite_basis(t, order, H);
-    /* Sv = s0(t), x_s(0,t), x_s(1,t), s1(t); ribbons x_s(a,t) = M[1 or 2][.] H(t). */
-    coons__pline_curve(L, 0, p->curve[COONS_S0], t, order);
-    coons__pline_curve(L, 3, p->curve[COONS_S1], t, order);
-    if (p->cross[2]) {
-        coons__pline_curve(L, 1, p->cross[2], t, order);
-        coons__pline_curve(L, 2, p->cross[3], t, order);
-    }
-    for (int d = 0; d <= order; d++) {
-        for (int j = 0; j < 4; j++) L->b[d][j] = H[4 * d + j];
-        if (!p->cross[2])
-            for (int j = 0; j < 4; j++) {
-                v3_axpy(coons__lv(L, d, 1), H[4 * d + j], p->M[1][j]);
-                v3_axpy(coons__lv(L, d, 2), H[4 * d + j], p->M[2][j]);
-            }
-    }
+    hermite_line(t, order, p->curve[COONS_S0], p->cross[2], p->cross[3], p->curve[COONS_S1], H,
+                 L);
+    if (p->cross[2]) return;
+    for (int d = 0; d <= order; d++)
+        for (int j = 0; j < 4; j++) {
+            v3_axpy(coons__lv(L, d, 1), H[4 * d + j], p->M[1][j]);
+            v3_axpy(coons__lv(L, d, 2), H[4 * d + j], p->M[2][j]);
+        }
 }
 
 const coons__patch_kind coons__hermite_coons_kind = {

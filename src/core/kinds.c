@@ -10,10 +10,14 @@
 
 #include "kinds.h"
 
-static const struct {
+/* A row of a table: the type's name and its operations (a
+ * coons__curve_kind, coons__patch_kind or coons__body_kind by table). */
+typedef struct row {
     const char *name;
-    const coons__curve_kind *kind;
-} CURVES[] = {
+    const void *kind;
+} row;
+
+static const row CURVES[] = {
     [COONS_CURVE_LINE] = {"line", &coons__line_kind},
     [COONS_CURVE_POLYLINE] = {"polyline", &coons__polyline_kind},
     [COONS_CURVE_BEZIER] = {"bezier", &coons__bezier_kind},
@@ -23,10 +27,7 @@ static const struct {
     [COONS_CURVE_BSPLINE] = {"bspline", &coons__bspline_kind},
 };
 
-static const struct {
-    const char *name;
-    const coons__patch_kind *kind;
-} PATCHES[] = {
+static const row PATCHES[] = {
     [COONS_PATCH_BILINEAR] = {"bilinear", &coons__bilinear_kind},
     [COONS_PATCH_RULED] = {"ruled", &coons__ruled_kind},
     [COONS_PATCH_COONS] = {"coons", &coons__coons_patch_kind},
@@ -35,10 +36,7 @@ static const struct {
     [COONS_PATCH_BSPLINE] = {"bspline-surface", &coons__bspline_surface_kind},
 };
 
-static const struct {
-    const char *name;
-    const coons__body_kind *kind;
-} BODIES[] = {
+static const row BODIES[] = {
     [COONS_BODY_BODY0] = {"body0", &coons__body0_kind},
     [COONS_BODY_BODY1] = {"body1", &coons__body1_kind},
     [COONS_BODY_BODY2] = {"body2", &coons__body2_kind},
@@ -47,67 +45,72 @@ static const struct {
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
-/* i if it indexes a table of n rows, else -1 (a value outside the enum). */
-static long at(long i, size_t n) { return i >= 0 && (size_t)i < n ? i : -1; }
-#define AT(table, i) at((long)(i), COUNT(table))
 
-const coons__curve_kind *coons__curve_kind_of(coons_curve_type type)
+/* Row i of a table of n rows, or NULL (a value outside the enum). */
+static const row *row_at(const row *table, size_t n, long i)
 {
-    long i = AT(CURVES, type);
-    return i < 0 ? NULL : CURVES[i].kind;
+    return i >= 0 && (size_t)i < n ? &table[i] : NULL;
 }
 
-const coons__patch_kind *coons__patch_kind_of(coons_patch_type type)
+static const void *kind_at(const row *table, size_t n, long i)
 {
-    long i = AT(PATCHES, type);
-    return i < 0 ? NULL : PATCHES[i].kind;
+    const row *r = row_at(table, n, i);
+    return r ? r->kind : NULL;
 }
 
-const coons__body_kind *coons__body_kind_of(coons_body_type type)
+static const char *name_at(const row *table, size_t n, long i)
 {
-    long i = AT(BODIES, type);
-    return i < 0 ? NULL : BODIES[i].kind;
+    const row *r = row_at(table, n, i);
+    return r ? r->name : NULL;
 }
 
-const char *coons_curve_type_name(coons_curve_type type)
-{
-    long i = AT(CURVES, type);
-    return i < 0 ? NULL : CURVES[i].name;
-}
-
-const char *coons_patch_type_name(coons_patch_type type)
-{
-    long i = AT(PATCHES, type);
-    return i < 0 ? NULL : PATCHES[i].name;
-}
-
-const char *coons_body_type_name(coons_body_type type)
-{
-    long i = AT(BODIES, type);
-    return i < 0 ? NULL : BODIES[i].name;
-}
-
-/* The index whose name(i) is `name`, as coons_*_type_from_name reports it. */
-static coons_status index_of(const char *(*name_of)(long i), size_t n, const char *name,
-                             const char *what, int *out, coons_error *err)
+/* The index of the row named `name`. */
+static coons_status index_of(const row *table, size_t n, const char *name, const char *what,
+                             int *out, coons_error *err)
 {
     for (size_t i = 0; name && i < n; i++)
-        if (strcmp(name_of((long)i), name) == 0) {
+        if (strcmp(table[i].name, name) == 0) {
             *out = (int)i;
             return COONS_OK;
         }
     return coons__error_set(err, COONS_E_INVALID, "unknown %s \"%s\"", what, name ? name : "");
 }
 
-static const char *curve_name(long i) { return CURVES[i].name; }
-static const char *patch_name(long i) { return PATCHES[i].name; }
-static const char *body_name(long i) { return BODIES[i].name; }
+const coons__curve_kind *coons__curve_kind_of(coons_curve_type type)
+{
+    return kind_at(CURVES, COUNT(CURVES), (long)type);
+}
+
+const coons__patch_kind *coons__patch_kind_of(coons_patch_type type)
+{
+    return kind_at(PATCHES, COUNT(PATCHES), (long)type);
+}
+
+const coons__body_kind *coons__body_kind_of(coons_body_type type)
+{
+    return kind_at(BODIES, COUNT(BODIES), (long)type);
+}
+
+const char *coons_curve_type_name(coons_curve_type type)
+{
+    return name_at(CURVES, COUNT(CURVES), (long)type);
+}
+
+const char *coons_patch_type_name(coons_patch_type type)
+{
+    return name_at(PATCHES, COUNT(PATCHES), (long)type);
+}
+
+const char *coons_body_type_name(coons_body_type type)
+{
+    return name_at(BODIES, COUNT(BODIES), (long)type);
+}
 
 coons_status coons_curve_type_from_name(const char *name, coons_curve_type *out,
                                         coons_error *err)
 {
     int i = 0;
-    coons_status st = index_of(curve_name, COUNT(CURVES), name, "curve type", &i, err);
+    coons_status st = index_of(CURVES, COUNT(CURVES), name, "curve type", &i, err);
     if (!st) *out = (coons_curve_type)i;
     return st;
 }
@@ -116,7 +119,7 @@ coons_status coons_patch_type_from_name(const char *name, coons_patch_type *out,
                                         coons_error *err)
 {
     int i = 0;
-    coons_status st = index_of(patch_name, COUNT(PATCHES), name, "patch type", &i, err);
+    coons_status st = index_of(PATCHES, COUNT(PATCHES), name, "patch type", &i, err);
     if (!st) *out = (coons_patch_type)i;
     return st;
 }
@@ -125,7 +128,7 @@ coons_status coons_body_type_from_name(const char *name, coons_body_type *out,
                                        coons_error *err)
 {
     int i = 0;
-    coons_status st = index_of(body_name, COUNT(BODIES), name, "body type", &i, err);
+    coons_status st = index_of(BODIES, COUNT(BODIES), name, "body type", &i, err);
     if (!st) *out = (coons_body_type)i;
     return st;
 }

@@ -515,16 +515,24 @@ static coons_status build(sampler *s)
 static inline double dmin(double a, double b) { return a < b ? a : b; }
 static inline double dmax(double a, double b) { return a > b ? a : b; }
 
+/* |o - t dir|^2: the squared distance of a point, o from a base point,
+ * to the point at t along dir. */
+static double off_dist2(const double o[3], double t, const double dir[3])
+{
+    double q[3];
+    v3_copy(q, o);
+    v3_axpy(q, -t, dir);
+    return v3_dot(q, q);
+}
+
 /* Squared distance from p to segment ab. */
 static double seg_dist2(const double p[3], const double a[3], const double b[3])
 {
-    double ab[3], q[3];
+    double ab[3], ap[3];
     v3_sub(ab, b, a);
-    v3_sub(q, p, a);
-    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(q, ab) / l2 : 0;
-    t = clamp01(t);
-    v3_axpy(q, -t, ab);
-    return v3_dot(q, q);
+    v3_sub(ap, p, a);
+    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(ap, ab) / l2 : 0;
+    return off_dist2(ap, clamp01(t), ab);
 }
 
 /* Squared distance from p to triangle abc (closest point by Voronoi
@@ -546,9 +554,7 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
     double vc = d1 * d4 - d3 * d2;
     if (vc <= 0 && d1 >= 0 && d3 <= 0) {
         double v = d1 / (d1 - d3);
-        v3_copy(q, ap);
-        v3_axpy(q, -v, ab);
-        return v3_dot(q, q);
+        return off_dist2(ap, v, ab);
     }
     double cp[3];
     v3_sub(cp, p, c);
@@ -557,18 +563,14 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
     double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) {
         double w = d2 / (d2 - d6);
-        v3_copy(q, ap);
-        v3_axpy(q, -w, ac);
-        return v3_dot(q, q);
+        return off_dist2(ap, w, ac);
     }
     double va = d3 * d6 - d5 * d4;
     if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
         double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
         double bc[3];
         v3_sub(bc, c, b);
-        v3_copy(q, bp);
-        v3_axpy(q, -w, bc);
-        return v3_dot(q, q);
+        return off_dist2(bp, w, bc);
     }
     double den = va + vb + vc;
     if (!(den > 0)) /* degenerate (collinear): the nearest side */
