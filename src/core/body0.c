@@ -102,4 +102,5 @@ static coons_status grid(const coons_body *b, const double *u, size_t nu, const 
 }
 
 /* The eight corners are all its data: no breakpoints, nothing owned. */
-const coons__body_kind coons__body0_kind = {COONS_BODY_BODY0, eval, grid, NULL, NULL, NULL, NULL};
+const coons__body_kind coons__body0_kind = {
+    .type = COONS_BODY_BODY0, .eval = eval, .grid = grid};

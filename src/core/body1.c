@@ -222,5 +222,6 @@ static void free_data(coons_body *b)
     for (int e = 0; e < 12; e++) coons_curve_free(b->edge[e]);
 }
 
-const coons__body_kind coons__body1_kind = {COONS_BODY_BODY1, eval,      grid,     NULL,
-                                            breaks,           copy_data, free_data};
+const coons__body_kind coons__body1_kind = {
+    .type = COONS_BODY_BODY1, .eval = eval, .grid = grid, .breaks = breaks,
+    .copy = copy_data, .free = free_data};

@@ -595,5 +595,6 @@ static void free_data(coons_body *b)
     for (int f = 0; f < 6; f++) coons_patch_free(b->face[f]);
 }
 
-const coons__body_kind coons__body2_kind = {COONS_BODY_BODY2, eval,      grid,     det_grid,
-                                            breaks,           copy_data, free_data};
+const coons__body_kind coons__body2_kind = {
+    .type = COONS_BODY_BODY2, .eval = eval, .grid = grid, .det_grid = det_grid,
+    .breaks = breaks, .copy = copy_data, .free = free_data};

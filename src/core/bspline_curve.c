@@ -246,7 +246,9 @@ static void breaks(const coons_curve *c, coons__breaks *B)
     coons__breaks_knots(B, c->knots, c->n, c->degree);
 }
 
-#define BSPLINE_ROW(t) {t, eval, bezier_segments, breaks, copy_data, free_data}
+#define BSPLINE_ROW(t)                                                                 \
+    {.type = t, .eval = eval, .bezier = bezier_segments, .breaks = breaks,              \
+     .copy = copy_data, .free = free_data}
 const coons__curve_kind coons__line_kind = BSPLINE_ROW(COONS_CURVE_LINE);
 const coons__curve_kind coons__polyline_kind = BSPLINE_ROW(COONS_CURVE_POLYLINE);
 const coons__curve_kind coons__bezier_kind = BSPLINE_ROW(COONS_CURVE_BEZIER);

@@ -115,9 +115,9 @@ static coons_status copy_data(const coons_curve *c, coons_curve *d, coons_error 
 
 static void free_data(coons_curve *c) { coons__free(c->pts); }
 
-const coons__curve_kind coons__coons_cubic_kind = {COONS_CURVE_COONS_CUBIC, eval,
-                                                   bezier_segments, breaks, copy_data,
-                                                   free_data};
+const coons__curve_kind coons__coons_cubic_kind = {
+    .type = COONS_CURVE_COONS_CUBIC, .eval = eval, .bezier = bezier_segments, .breaks = breaks,
+    .copy = copy_data, .free = free_data};
 
 coons_status coons_cubic_open_to_clamped(const double *open, size_t count, double *clamped,
                                          coons_error *err)

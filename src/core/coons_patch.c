@@ -211,15 +211,17 @@ static void bilinear_bbox(const coons_patch *p, double lo[3], double hi[3])
     for (int k = 0; k < 4; k++) bbox_add(lo, hi, p->corner[k]);
 }
 
-const coons__patch_kind coons__bilinear_kind = {
-    COONS_PATCH_BILINEAR, coons__boolsum_eval, coons__boolsum_grid, bilinear_sline,
-    linear_tline,         bilinear_bbox,       NULL,                coons__boolsum_copy,
-    coons__boolsum_free};
-const coons__patch_kind coons__ruled_kind = {
-    COONS_PATCH_RULED, coons__boolsum_eval,         coons__boolsum_grid,    ruled_sline,
-    linear_tline,      coons__boolsum_control_bbox, coons__boolsum_breaks, coons__boolsum_copy,
-    coons__boolsum_free};
-const coons__patch_kind coons__coons_patch_kind = {
-    COONS_PATCH_COONS, coons__boolsum_eval,         coons__boolsum_grid,    coons_sline,
-    coons_tline,       coons__boolsum_control_bbox, coons__boolsum_breaks, coons__boolsum_copy,
-    coons__boolsum_free};
+/* The Boolean-sum rows: eval, grid and the record parts of boolean_sum.c
+ * with this file's lines. */
+#define BOOLSUM_ROW(type_, sline_, tline_, bbox_, breaks_)                               \
+    {.type = type_, .eval = coons__boolsum_eval, .grid = coons__boolsum_grid,             \
+     .sline = sline_, .tline = tline_, .control_bbox = bbox_, .breaks = breaks_,          \
+     .copy = coons__boolsum_copy, .free = coons__boolsum_free}
+const coons__patch_kind coons__bilinear_kind =
+    BOOLSUM_ROW(COONS_PATCH_BILINEAR, bilinear_sline, linear_tline, bilinear_bbox, NULL);
+const coons__patch_kind coons__ruled_kind =
+    BOOLSUM_ROW(COONS_PATCH_RULED, ruled_sline, linear_tline, coons__boolsum_control_bbox,
+                coons__boolsum_breaks);
+const coons__patch_kind coons__coons_patch_kind =
+    BOOLSUM_ROW(COONS_PATCH_COONS, coons_sline, coons_tline, coons__boolsum_control_bbox,
+                coons__boolsum_breaks);

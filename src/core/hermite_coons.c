@@ -217,6 +217,7 @@ static void tline(const coons_patch *p, double t, int order, coons__pline *L)
 }
 
 const coons__patch_kind coons__hermite_coons_kind = {
-    COONS_PATCH_HERMITE_COONS, coons__boolsum_eval,         coons__boolsum_grid,
-    sline,                     tline,                       coons__boolsum_control_bbox,
-    coons__boolsum_breaks,     coons__boolsum_copy,         coons__boolsum_free};
+    .type = COONS_PATCH_HERMITE_COONS, .eval = coons__boolsum_eval,
+    .grid = coons__boolsum_grid, .sline = sline, .tline = tline,
+    .control_bbox = coons__boolsum_control_bbox, .breaks = coons__boolsum_breaks,
+    .copy = coons__boolsum_copy, .free = coons__boolsum_free};

@@ -195,10 +195,11 @@ static void bspline_breaks(const coons_patch *p, int dir, coons__breaks *B)
 }
 
 const coons__patch_kind coons__bezier_surface_kind = {
-    COONS_PATCH_BEZIER, eval, grid, NULL, NULL, control_bbox, NULL, copy_data, free_data};
+    .type = COONS_PATCH_BEZIER, .eval = eval, .grid = grid, .control_bbox = control_bbox,
+    .copy = copy_data, .free = free_data};
 const coons__patch_kind coons__bspline_surface_kind = {
-    COONS_PATCH_BSPLINE, eval, grid, NULL, NULL, control_bbox, bspline_breaks, copy_data,
-    free_data};
+    .type = COONS_PATCH_BSPLINE, .eval = eval, .grid = grid, .control_bbox = control_bbox,
+    .breaks = bspline_breaks, .copy = copy_data, .free = free_data};
 
 static coons_status check_net(const double *points, size_t ns, size_t nt, const char *what,
                               coons_error *err)

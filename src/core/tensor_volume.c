@@ -261,6 +261,8 @@ static void free_data(coons_body *b)
     coons__free(b->w);
 }
 
-#define TENSOR_ROW(t) {t, eval, grid, NULL, breaks, copy_data, free_data}
+#define TENSOR_ROW(t)                                                                  \
+    {.type = t, .eval = eval, .grid = grid, .breaks = breaks, .copy = copy_data,          \
+     .free = free_data}
 const coons__body_kind coons__bezier_volume_kind = TENSOR_ROW(COONS_BODY_BEZIER);
 const coons__body_kind coons__bspline_volume_kind = TENSOR_ROW(COONS_BODY_BSPLINE);
