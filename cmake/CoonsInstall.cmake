@@ -7,19 +7,9 @@ include(CMakePackageConfigHelpers)
 set(COONS_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/coons)
 
 # An installed static library carries its private dependencies in its link
-# interface, as plain names that work without their CMake packages.
-set(_coons_static_deps)
-if(COONS_WITH_OPENMESH)
-  list(APPEND _coons_static_deps OpenMeshCore)
-endif()
-if(COONS_WITH_CGAL)
-  list(APPEND _coons_static_deps mpfr gmp)
-endif()
-list(APPEND _coons_static_deps m)
-if(COONS_WITH_OPENMESH OR COONS_WITH_CGAL)
-  list(APPEND _coons_static_deps stdc++)
-endif()
-target_link_libraries(coons_static INTERFACE "$<INSTALL_INTERFACE:${_coons_static_deps}>")
+# interface, as plain names that work without their CMake packages (the
+# list src/CMakeLists.txt keeps).
+target_link_libraries(coons_static INTERFACE "$<INSTALL_INTERFACE:${COONS_PRIVATE_NAMES}>")
 
 install(TARGETS coons coons_static EXPORT coons-targets
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
@@ -40,8 +30,15 @@ install(EXPORT coons-targets NAMESPACE coons::
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/coonsConfig.cmake.in
   ${PROJECT_BINARY_DIR}/cmake/coonsConfig.cmake
   INSTALL_DESTINATION ${COONS_CMAKE_DIR})
+# As the soname (src/CMakeLists.txt): the same major version, and before 1.0
+# the same minor version too.
+if(PROJECT_VERSION_MAJOR EQUAL 0)
+  set(_coons_compat SameMinorVersion)
+else()
+  set(_coons_compat SameMajorVersion)
+endif()
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/coonsConfigVersion.cmake
-  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+  VERSION ${PROJECT_VERSION} COMPATIBILITY ${_coons_compat})
 install(FILES ${PROJECT_BINARY_DIR}/cmake/coonsConfig.cmake
               ${PROJECT_BINARY_DIR}/cmake/coonsConfigVersion.cmake
   DESTINATION ${COONS_CMAKE_DIR})

@@ -67,7 +67,7 @@ static inline int tb_curved_edges(coons_curve *e[12], coons_error *err)
             p[3 + r] = (2 * hex[a][r] + hex[b][r]) / 3 + 0.15 * sin(1.0 + n + 2 * r);
             p[6 + r] = (hex[a][r] + 2 * hex[b][r]) / 3 + 0.2 * cos(2.0 + 3 * n + r);
         }
-        int rc = coons_curve_bezier(p, 4, &e[n], err);
+        int rc = coons_curve_new_bezier(p, 4, &e[n], err);
         if (rc) {
             for (int m = 0; m < n; m++) coons_curve_free(e[m]);
             return rc;
@@ -97,7 +97,7 @@ static inline int tb_nurbs_cylinder_rc(double r, double h, coons_body **out, coo
     const double *kn[3] = {ku, NULL, NULL};
     int deg[3] = {2, 1, 1};
     size_t n[3] = {9, 2, 2};
-    return coons_body_bspline(deg, P, n, kn, W, out, err);
+    return coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], W, out, err);
 }
 
 static inline void tb_nurbs_cylinder(double r, double h, coons_body **out)
@@ -137,7 +137,7 @@ static inline int tb_bspline_faces(int m, coons_patch *f[6], coons_error *err)
                 else
                     tb_cube_net(m, a, b, fixed, p); /* Z_K(u,v) */
             }
-        rc = coons_patch_bspline(3, 3, pts, (size_t)m, (size_t)m, NULL, NULL, NULL, &f[n], err);
+        rc = coons_patch_new_bspline(3, 3, pts, (size_t)m, (size_t)m, NULL, NULL, NULL, &f[n], err);
     }
     free(pts);
     if (rc)
@@ -165,16 +165,16 @@ static inline int tb_make_body(int m, coons_body **b, coons_error *err)
     switch (m) {
     case 0:
     case 1:
-        return coons_body_body0(tb_hex(), m == 0 ? COONS_BLEND_LINEAR : COONS_BLEND_CUBIC, b,
-                                err);
+        return coons_body_new_body0(tb_hex()[0], m == 0 ? COONS_BLEND_LINEAR : COONS_BLEND_CUBIC, b,
+                                    err);
     case 2:
     case 3: {
         coons_curve *e[12];
         int rc = tb_curved_edges(e, err);
         if (rc) return rc;
-        rc = coons_body_body1((const coons_curve *const *)e,
-                              m == 2 ? COONS_BLEND_LINEAR : COONS_BLEND_CUBIC, COONS_TOL_DEFAULT,
-                              b, err);
+        rc = coons_body_new_body1(e,
+                                  m == 2 ? COONS_BLEND_LINEAR : COONS_BLEND_CUBIC, COONS_TOL_DEFAULT,
+                                  b, err);
         for (int n = 0; n < 12; n++) coons_curve_free(e[n]);
         return rc;
     }
@@ -189,7 +189,7 @@ static inline int tb_make_body(int m, coons_body **b, coons_error *err)
                     p[1] = j + 0.3 * cos(i * k + 1.0);
                     p[2] = k + 0.1 * i * j;
                 }
-        return coons_body_bezier(P, n, b, err);
+        return coons_body_new_bezier(P, n, b, err);
     }
     case 5:
     case 7: {
@@ -208,7 +208,7 @@ static inline int tb_make_body(int m, coons_body **b, coons_error *err)
                     P[3 * idx + 2] = 1.2 * k + 0.1 * i * j;
                     W[idx] = 0.6 + 0.5 * fabs(sin(1.0 + idx));
                 }
-        return coons_body_bspline(deg, P, n, kn, m == 7 ? W : NULL, b, err);
+        return coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], m == 7 ? W : NULL, b, err);
     }
     case 6: return tb_nurbs_cylinder_rc(1.5, 2.0, b, err);
     case 8:
@@ -216,9 +216,9 @@ static inline int tb_make_body(int m, coons_body **b, coons_error *err)
         coons_patch *f[6];
         int rc = tb_bspline_faces(6, f, err);
         if (rc) return rc;
-        rc = coons_body_body2((const coons_patch *const *)f,
-                              m == 8 ? COONS_BLEND_LINEAR : COONS_BLEND_CUBIC, COONS_TOL_DEFAULT,
-                              b, err);
+        rc = coons_body_new_body2(f,
+                                  m == 8 ? COONS_BLEND_LINEAR : COONS_BLEND_CUBIC, COONS_TOL_DEFAULT,
+                                  b, err);
         for (int n = 0; n < 6; n++) coons_patch_free(f[n]);
         return rc;
     }

@@ -35,12 +35,12 @@ static inline void fx_boundary_make_off(fx_boundary *b, const double *off)
     /* t0 = x(s,0): cubic Bezier X00 -> X10 */
     double t0[12] = {X00[0], X00[1], X00[2], 0.7 + o[0], -0.3 + o[1], 0.4 + o[2],
                      1.4 + o[0], 0.2 + o[1], -0.3 + o[2], X10[0], X10[1], X10[2]};
-    assert_coons_ok(coons_curve_bezier(t0, 4, &b->c[COONS_T0], &err), &err);
+    assert_coons_ok(coons_curve_new_bezier(t0, 4, &b->c[COONS_SIDE_T0], &err), &err);
     /* t1 = x(s,1): quadratic NURBS X01 -> X11, interior knot at 1/2 */
     double t1[12] = {X01[0], X01[1], X01[2], 0.6 + o[0], 2.6 + o[1], 0.0 + o[2],
                      1.4 + o[0], 2.5 + o[1], 0.4 + o[2], X11[0], X11[1], X11[2]};
     double w1[4] = {1.0, 0.8, 1.3, 1.0};
-    assert_coons_ok(coons_curve_bspline(2, t1, 4, NULL, w1, &b->c[COONS_T1], &err), &err);
+    assert_coons_ok(coons_curve_new_bspline(2, t1, 4, NULL, w1, &b->c[COONS_SIDE_T1], &err), &err);
     /* s0 = x(0,t): open Coons cubic through X00 and X01: P1 = X00 with
      * P0 = 2 X00 - P2 gives (P0 + 4 P1 + P2)/6 = X00 (seed 002). */
     double a[3] = {-0.3 + o[0], 0.5 + o[1], 0.2 + o[2]}, c[3] = {0.4 + o[0], 1.3 + o[1], -0.4 + o[2]};
@@ -53,12 +53,12 @@ static inline void fx_boundary_make_off(fx_boundary *b, const double *off)
         s0[12 + k] = X01[k];
         s0[15 + k] = 2.0 * X01[k] - c[k];
     }
-    assert_coons_ok(coons_curve_coons_cubic(s0, 6, 0, &b->c[COONS_S0], &err), &err);
+    assert_coons_ok(coons_curve_new_coons_cubic(s0, 6, 0, &b->c[COONS_SIDE_S0], &err), &err);
     /* s1 = x(1,t): clamped cubic X10 -> X11 (interior knot at 1/2) */
     double s1[15] = {X10[0], X10[1], X10[2], 2.3 + o[0], 0.6 + o[1], 0.1 + o[2],
                      1.8 + o[0], 1.2 + o[1], 0.6 + o[2], 2.2 + o[0], 1.6 + o[1], 0.2 + o[2],
                      X11[0], X11[1], X11[2]};
-    assert_coons_ok(coons_curve_clamped_cubic(s1, 5, &b->c[COONS_S1], &err), &err);
+    assert_coons_ok(coons_curve_new_clamped_cubic(s1, 5, &b->c[COONS_SIDE_S1], &err), &err);
 }
 
 static inline void fx_boundary_make(fx_boundary *b) { fx_boundary_make_off(b, NULL); }
@@ -68,9 +68,9 @@ static inline void fx_boundary_free(fx_boundary *b)
     for (int k = 0; k < 4; k++) coons_curve_free(b->c[k]);
 }
 
-static inline const coons_curve *const *fx_curves(const fx_boundary *b)
+static inline coons_curve *const *fx_curves(const fx_boundary *b)
 {
-    return (const coons_curve *const *)b->c;
+    return b->c;
 }
 
 static inline double fx_scale(const double *v) { return 1.0 + fabs(v[0]) + fabs(v[1]) + fabs(v[2]); }

@@ -63,7 +63,7 @@ static coons_status op_load(const char *text, size_t len, const coons_model *m, 
 {
     (void)m;
     coons_model *out = (coons_model *)1;
-    coons_status rc = coons_model_load_buffer(text, len, "model", &out, err);
+    coons_status rc = coons_model_load_memory(text, len, "model", NULL, &out, err);
     if (rc == COONS_OK) coons_model_free(out);
     else if (out != NULL) fail_msg("load failed with %d but returned a model", rc);
     return rc;
@@ -96,7 +96,7 @@ static coons_status op_mesh_write(const char *text, size_t len, const coons_mode
     coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
     so.resolution = 2;
     coons_mesh *mesh = NULL;
-    coons_status rc = coons_model_mesh(m, &so, &mesh, err);
+    coons_status rc = coons_model_sample(m, &so, &mesh, err);
     if (rc == COONS_E_UNSUPPORTED) return COONS_OK; /* overlapping bodies need CGAL */
     if (rc != COONS_OK) return rc;
     static const coons_format F[] = {COONS_FORMAT_STL_BINARY, COONS_FORMAT_STL_ASCII,
@@ -162,7 +162,7 @@ static void run_dir(const char *dir, size_t min_count)
         every_failure(names[i], "loading", op_load, text, len, NULL);
         coons_model *m = NULL;
         coons_error err = COONS_ERROR_INIT;
-        assert_coons_ok(coons_model_load_buffer(text, len, names[i], &m, &err), &err);
+        assert_coons_ok(coons_model_load_memory(text, len, names[i], NULL, &m, &err), &err);
         every_failure(names[i], "sampling every body", op_sample, text, len, m);
         every_failure(names[i], "meshing and writing", op_mesh_write, text, len, m);
         coons_model_free(m);

@@ -46,7 +46,7 @@ static void test_body0_affine(void **state)
     double c[8][3];
     affine_corners(AFF_O, AFF_A, c);
     coons_body *b = NULL;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_int_equal(coons_body_get_type(b), COONS_BODY_BODY0);
     tb_rng rng = {12345};
     for (int n = 0; n < 200; n++) {
@@ -88,7 +88,7 @@ static void test_body0_box_volume(void **state)
     double c[8][3];
     affine_corners(o, A, c);
     coons_body *b;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     double vol;
     assert_coons_ok(coons_body_volume(b, 1e-10, &vol, &err), &err);
     assert_near(vol, 30.0, 1e-12);
@@ -96,13 +96,13 @@ static void test_body0_box_volume(void **state)
     /* A sheared parallelepiped: volume |det A| = 2*3*5 (shear keeps it). */
     const double S[3][3] = {{2, 1.5, -0.7}, {0, 3, 2.2}, {0, 0, 5}};
     affine_corners(o, S, c);
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_volume(b, 1e-10, &vol, &err), &err);
     assert_near(vol, 30.0, 1e-11);
     /* The cubic blend reparametrises each direction by 1-f(x) = 3x^2-2x^3,
      * a monotone map of [0,1] onto itself: same solid, same volume. */
     coons_body_free(b);
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_CUBIC, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_CUBIC, &b, &err), &err);
     assert_coons_ok(coons_body_volume(b, 1e-10, &vol, &err), &err);
     assert_near(vol, 30.0, 1e-9);
     coons_body_free(b);
@@ -137,7 +137,7 @@ static void test_body0_cubic(void **state)
     (void)state;
     coons_error err = COONS_ERROR_INIT;
     coons_body *b;
-    assert_coons_ok(coons_body_body0(tb_hex(), COONS_BLEND_CUBIC, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_CUBIC, &b, &err), &err);
     tb_rng rng = {7};
     for (int n = 0; n < 100; n++) {
         double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng), x[3], y[3];
@@ -162,13 +162,13 @@ static void test_body0_folded(void **state)
     affine_corners(o, I, c);
     coons_body *b;
     double m, where[3];
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_min_jacobian(b, 4, &m, where, &err), &err);
     assert_near(m, 1.0, 1e-14);
     coons_body_free(b);
     /* Push P111 through the face w = 0: at (1,1,1), d/dw = P111 - P110 points down. */
     c[7][2] = -0.5;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_min_jacobian(b, 4, &m, where, &err), &err);
     assert_true(m < 0.0);
     /* det J at (1,1,1): d_u = (1,0,0), d_v = (0,1,0), d_w = (0,0,-0.5). */
@@ -189,11 +189,11 @@ static void test_body0_invalid(void **state)
     memcpy(c, tb_hex(), sizeof c);
     c[5][1] = NAN;
     coons_body *b = (coons_body *)&err;
-    assert_int_equal(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err),
+    assert_int_equal(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err),
                      COONS_E_INVALID);
     assert_null(b);
     assert_non_null(strstr(err.message, "P101"));
-    assert_int_equal(coons_body_body0(tb_hex(), (coons_blend)7, &b, &err), COONS_E_INVALID);
+    assert_int_equal(coons_body_new_body0(tb_hex()[0], (coons_blend)7, &b, &err), COONS_E_INVALID);
     coons_body_free(NULL);
 }
 
@@ -205,17 +205,17 @@ static void hex_edges(const double c[8][3], coons_curve *e[12])
     coons_error err = COONS_ERROR_INIT;
     for (int j = 0; j < 2; j++)
         for (int k = 0; k < 2; k++) {
-            assert_coons_ok(coons_curve_line(c[2 * j + k], c[4 + 2 * j + k], &e[2 * j + k], &err),
+            assert_coons_ok(coons_curve_new_line(c[2 * j + k], c[4 + 2 * j + k], &e[2 * j + k], &err),
                             &err);
         }
     for (int i = 0; i < 2; i++)
         for (int k = 0; k < 2; k++)
             assert_coons_ok(
-                coons_curve_line(c[4 * i + k], c[4 * i + 2 + k], &e[4 + 2 * i + k], &err), &err);
+                coons_curve_new_line(c[4 * i + k], c[4 * i + 2 + k], &e[4 + 2 * i + k], &err), &err);
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++)
-            assert_coons_ok(coons_curve_line(c[4 * i + 2 * j], c[4 * i + 2 * j + 1],
-                                             &e[8 + 2 * i + j], &err),
+            assert_coons_ok(coons_curve_new_line(c[4 * i + 2 * j], c[4 * i + 2 * j + 1],
+                                                 &e[8 + 2 * i + j], &err),
                             &err);
 }
 
@@ -231,14 +231,14 @@ static void test_body1_straight_is_body0(void **state)
     coons_curve *e[12];
     hex_edges(tb_hex(), e);
     coons_body *b1, *b0, *b1c, *b0c;
-    assert_coons_ok(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_LINEAR,
-                                     COONS_TOL_DEFAULT, &b1, &err),
+    assert_coons_ok(coons_body_new_body1(e, COONS_BLEND_LINEAR,
+                                         COONS_TOL_DEFAULT, &b1, &err),
                     &err);
-    assert_coons_ok(coons_body_body0(tb_hex(), COONS_BLEND_LINEAR, &b0, &err), &err);
-    assert_coons_ok(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_CUBIC,
-                                     COONS_TOL_DEFAULT, &b1c, &err),
+    assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_LINEAR, &b0, &err), &err);
+    assert_coons_ok(coons_body_new_body1(e, COONS_BLEND_CUBIC,
+                                         COONS_TOL_DEFAULT, &b1c, &err),
                     &err);
-    assert_coons_ok(coons_body_body0(tb_hex(), COONS_BLEND_CUBIC, &b0c, &err), &err);
+    assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_CUBIC, &b0c, &err), &err);
     tb_rng rng = {99};
     double maxdiff = 0.0;
     for (int n = 0; n < 200; n++) {
@@ -305,8 +305,8 @@ static void test_body1_boundary(void **state)
     assert_coons_ok(tb_curved_edges(e, &err), &err);
     for (int kind = 0; kind < 2; kind++) {
         coons_body *b;
-        assert_coons_ok(coons_body_body1((const coons_curve *const *)e, (coons_blend)kind,
-                                         COONS_TOL_DEFAULT, &b, &err),
+        assert_coons_ok(coons_body_new_body1(e, (coons_blend)kind,
+                                             COONS_TOL_DEFAULT, &b, &err),
                         &err);
         assert_int_equal(coons_body_get_type(b), COONS_BODY_BODY1);
         tb_rng rng = {5};
@@ -360,10 +360,10 @@ static void test_body1_incompatible(void **state)
     coons_curve_eval(e[6], 1, p1);
     p1[2] += 0.3;
     coons_curve_free(e[6]);
-    assert_coons_ok(coons_curve_line(p0, p1, &e[6], &err), &err);
+    assert_coons_ok(coons_curve_new_line(p0, p1, &e[6], &err), &err);
     coons_body *b = (coons_body *)&err;
-    assert_int_equal(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_LINEAR,
-                                      COONS_TOL_DEFAULT, &b, &err),
+    assert_int_equal(coons_body_new_body1(e, COONS_BLEND_LINEAR,
+                                          COONS_TOL_DEFAULT, &b, &err),
                      COONS_E_INCOMPATIBLE);
     assert_null(b);
     assert_int_equal(err.code, COONS_E_INCOMPATIBLE);
@@ -371,8 +371,8 @@ static void test_body1_incompatible(void **state)
     assert_non_null(strstr(err.message, "v10"));
     assert_non_null(strstr(err.message, "0.3"));
     /* A tolerance above the gap accepts it; the corner is the average. */
-    assert_coons_ok(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_LINEAR, 0.5, &b,
-                                     &err),
+    assert_coons_ok(coons_body_new_body1(e, COONS_BLEND_LINEAR, 0.5, &b,
+                                         &err),
                     &err);
     double y[3];
     coons_body_eval(b, 1, 1, 0, y);
@@ -380,8 +380,8 @@ static void test_body1_incompatible(void **state)
     coons_body_free(b);
     coons_curve_free(e[3]);
     e[3] = NULL;
-    assert_int_equal(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_LINEAR,
-                                      COONS_TOL_DEFAULT, &b, &err),
+    assert_int_equal(coons_body_new_body1(e, COONS_BLEND_LINEAR,
+                                          COONS_TOL_DEFAULT, &b, &err),
                      COONS_E_INVALID);
     assert_non_null(strstr(err.message, "u11"));
     free_edges(e);
@@ -407,7 +407,7 @@ static void test_bezier_volume(void **state)
     tb_rng rng = {31};
     for (size_t m = 0; m < sizeof P / sizeof P[0]; m++) P[m] = tb_rand(&rng) * 4.0 - 2.0;
     coons_body *b;
-    assert_coons_ok(coons_body_bezier(P, n, &b, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(P, n, &b, &err), &err);
     assert_int_equal(coons_body_get_type(b), COONS_BODY_BEZIER);
     for (int t = 0; t < 50; t++) {
         double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng), x[3] = {0, 0, 0}, y[3];
@@ -424,8 +424,8 @@ static void test_bezier_volume(void **state)
     /* Degree (1,1,1) is body 0 on the same corners. */
     size_t n2[3] = {2, 2, 2};
     coons_body *b0;
-    assert_coons_ok(coons_body_bezier(&tb_hex()[0][0], n2, &b, &err), &err);
-    assert_coons_ok(coons_body_body0(tb_hex(), COONS_BLEND_LINEAR, &b0, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(&tb_hex()[0][0], n2, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_LINEAR, &b0, &err), &err);
     for (int t = 0; t < 20; t++) {
         double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng), x[3], y[3];
         coons_body_eval(b0, u, v, w, x);
@@ -435,7 +435,7 @@ static void test_bezier_volume(void **state)
     coons_body_free(b);
     coons_body_free(b0);
     size_t bad[3] = {1, 2, 2};
-    assert_int_equal(coons_body_bezier(P, bad, &b, &err), COONS_E_INVALID);
+    assert_int_equal(coons_body_new_bezier(P, bad, &b, &err), COONS_E_INVALID);
 }
 
 /* Cox-de Boor recursion, straight from the definition (0/0 = 0). */
@@ -465,7 +465,7 @@ static void test_bspline_volume(void **state)
     for (size_t m = 0; m < np; m++) W[m] = 0.5 + tb_rand(&rng);
     for (int rational = 0; rational < 2; rational++) {
         coons_body *b;
-        assert_coons_ok(coons_body_bspline(deg, P, n, kn, rational ? W : NULL, &b, &err), &err);
+        assert_coons_ok(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], rational ? W : NULL, &b, &err), &err);
         assert_int_equal(coons_body_get_type(b), COONS_BODY_BSPLINE);
         for (int t = 0; t < 60; t++) {
             double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng);
@@ -489,8 +489,8 @@ static void test_bspline_volume(void **state)
     int dz[3] = {2, 3, 1};
     size_t nz[3] = {3, 4, 2};
     coons_body *bs, *bz;
-    assert_coons_ok(coons_body_bspline(dz, P, nz, NULL, NULL, &bs, &err), &err);
-    assert_coons_ok(coons_body_bezier(P, nz, &bz, &err), &err);
+    assert_coons_ok(coons_body_new_bspline(dz, P, nz, NULL, NULL, NULL, NULL, &bs, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(P, nz, &bz, &err), &err);
     for (int t = 0; t < 20; t++) {
         double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng), x[3], y[3];
         coons_body_eval(bs, u, v, w, x);
@@ -502,17 +502,17 @@ static void test_bspline_volume(void **state)
     /* Invalid input. */
     coons_body *b;
     W[7] = 0.0;
-    assert_int_equal(coons_body_bspline(deg, P, n, kn, W, &b, &err), COONS_E_INVALID);
+    assert_int_equal(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], W, &b, &err), COONS_E_INVALID);
     assert_null(b);
     assert_non_null(strstr(err.message, "weight"));
     ku[4] = 0.1; /* decreasing */
-    assert_int_equal(coons_body_bspline(deg, P, n, kn, NULL, &b, &err), COONS_E_INVALID);
+    assert_int_equal(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], NULL, &b, &err), COONS_E_INVALID);
     int d0[3] = {0, 1, 1};
-    assert_int_equal(coons_body_bspline(d0, P, n, NULL, NULL, &b, &err), COONS_E_INVALID);
+    assert_int_equal(coons_body_new_bspline(d0, P, n, NULL, NULL, NULL, NULL, &b, &err), COONS_E_INVALID);
     size_t huge[3] = {1u << 12, 1u << 12, 1u << 12};
-    assert_int_equal(coons_body_bspline(deg, P, huge, NULL, NULL, &b, &err), COONS_E_LIMIT);
+    assert_int_equal(coons_body_new_bspline(deg, P, huge, NULL, NULL, NULL, NULL, &b, &err), COONS_E_LIMIT);
     P[4] = INFINITY;
-    assert_int_equal(coons_body_bspline(deg, P, n, NULL, NULL, &b, &err), COONS_E_INVALID);
+    assert_int_equal(coons_body_new_bspline(deg, P, n, NULL, NULL, NULL, NULL, &b, &err), COONS_E_INVALID);
     free(P);
     free(W);
 }
@@ -566,7 +566,7 @@ static void test_bspline_volume_exact(void **state)
                 p[2] = zeta[k] + 0.3 * sin(1.0 + i * j);
             }
     coons_body *b;
-    assert_coons_ok(coons_body_bspline(deg, P, n, kn, NULL, &b, &err), &err);
+    assert_coons_ok(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], NULL, &b, &err), &err);
     /* X, Y linear: x = 2u, y = 3v. */
     double y[3];
     coons_body_eval(b, 0.4, 0.7, 0.5, y);

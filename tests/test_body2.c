@@ -85,8 +85,8 @@ static void test_body2_formula_and_boundary(void **state)
     assert_coons_ok(tb_bspline_faces(6, f, &err), &err);
     for (int kind = 0; kind < 2; kind++) {
         coons_body *b;
-        assert_coons_ok(coons_body_body2((const coons_patch *const *)f, (coons_blend)kind,
-                                         COONS_TOL_DEFAULT, &b, &err),
+        assert_coons_ok(coons_body_new_body2(f, (coons_blend)kind,
+                                             COONS_TOL_DEFAULT, &b, &err),
                         &err);
         assert_int_equal(coons_body_get_type(b), COONS_BODY_BODY2);
         tb_rng rng = {11u + (unsigned)kind};
@@ -144,12 +144,12 @@ static int coons_faces(coons_curve *const e[12], coons_blend kind, coons_patch *
 {
     memset(f, 0, 6 * sizeof f[0]);
     for (int x = 0; x < 2; x++) {
-        const coons_curve *bu[4] = {e[4 + 2 * x], e[4 + 2 * x + 1], e[8 + 2 * x], e[8 + 2 * x + 1]};
-        const coons_curve *bv[4] = {e[2 * x], e[2 * x + 1], e[8 + x], e[10 + x]};
-        const coons_curve *bw[4] = {e[x], e[2 + x], e[4 + x], e[6 + x]};
-        int rc = coons_patch_coons(bu, kind, COONS_TOL_DEFAULT, &f[x], err);
-        if (!rc) rc = coons_patch_coons(bv, kind, COONS_TOL_DEFAULT, &f[2 + x], err);
-        if (!rc) rc = coons_patch_coons(bw, kind, COONS_TOL_DEFAULT, &f[4 + x], err);
+        coons_curve *bu[4] = {e[4 + 2 * x], e[4 + 2 * x + 1], e[8 + 2 * x], e[8 + 2 * x + 1]};
+        coons_curve *bv[4] = {e[2 * x], e[2 * x + 1], e[8 + x], e[10 + x]};
+        coons_curve *bw[4] = {e[x], e[2 + x], e[4 + x], e[6 + x]};
+        int rc = coons_patch_new_coons(bu, kind, COONS_TOL_DEFAULT, &f[x], err);
+        if (!rc) rc = coons_patch_new_coons(bv, kind, COONS_TOL_DEFAULT, &f[2 + x], err);
+        if (!rc) rc = coons_patch_new_coons(bw, kind, COONS_TOL_DEFAULT, &f[4 + x], err);
         if (rc) return rc;
     }
     return COONS_OK;
@@ -169,11 +169,11 @@ static void test_body2_coons_faces_is_body1(void **state)
         coons_patch *f[6];
         assert_coons_ok(coons_faces(e, (coons_blend)kind, f, &err), &err);
         coons_body *b1, *b2;
-        assert_coons_ok(coons_body_body1((const coons_curve *const *)e, (coons_blend)kind,
-                                         COONS_TOL_DEFAULT, &b1, &err),
+        assert_coons_ok(coons_body_new_body1(e, (coons_blend)kind,
+                                             COONS_TOL_DEFAULT, &b1, &err),
                         &err);
-        assert_coons_ok(coons_body_body2((const coons_patch *const *)f, (coons_blend)kind,
-                                         COONS_TOL_DEFAULT, &b2, &err),
+        assert_coons_ok(coons_body_new_body2(f, (coons_blend)kind,
+                                             COONS_TOL_DEFAULT, &b2, &err),
                         &err);
         tb_rng rng = {21};
         for (int t = 0; t < 100; t++) {
@@ -191,11 +191,11 @@ static void test_body2_coons_faces_is_body1(void **state)
     coons_patch *f[6];
     assert_coons_ok(coons_faces(e, COONS_BLEND_LINEAR, f, &err), &err);
     coons_body *b1, *b2;
-    assert_coons_ok(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_CUBIC,
-                                     COONS_TOL_DEFAULT, &b1, &err),
+    assert_coons_ok(coons_body_new_body1(e, COONS_BLEND_CUBIC,
+                                         COONS_TOL_DEFAULT, &b1, &err),
                     &err);
-    assert_coons_ok(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_CUBIC,
-                                     COONS_TOL_DEFAULT, &b2, &err),
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_CUBIC,
+                                         COONS_TOL_DEFAULT, &b2, &err),
                     &err);
     double x[3], y[3];
     coons_body_eval(b1, 0.3, 0.6, 0.45, x);
@@ -208,7 +208,7 @@ static void test_body2_coons_faces_is_body1(void **state)
 }
 
 /* Bilinear faces of a hexahedron with corners c (P_ijk at 4i+2j+k). */
-static void flat_faces(const double c[8][3], coons_patch *f[6])
+static void flat_faces(const double *c, coons_patch *f[6])
 {
     coons_error err = COONS_ERROR_INIT;
     for (int x = 0; x < 2; x++) {
@@ -216,13 +216,13 @@ static void flat_faces(const double c[8][3], coons_patch *f[6])
         double qu[4][3], qv[4][3], qw[4][3];
         for (int a = 0; a < 2; a++)
             for (int bb = 0; bb < 2; bb++) {
-                memcpy(qu[a + 2 * bb], c[4 * x + 2 * a + bb], sizeof qu[0]); /* (v,w) */
-                memcpy(qv[a + 2 * bb], c[4 * a + 2 * x + bb], sizeof qv[0]); /* (u,w) */
-                memcpy(qw[a + 2 * bb], c[4 * a + 2 * bb + x], sizeof qw[0]); /* (u,v) */
+                memcpy(qu[a + 2 * bb], c + 3 * (4 * x + 2 * a + bb), sizeof qu[0]); /* (v,w) */
+                memcpy(qv[a + 2 * bb], c + 3 * (4 * a + 2 * x + bb), sizeof qv[0]); /* (u,w) */
+                memcpy(qw[a + 2 * bb], c + 3 * (4 * a + 2 * bb + x), sizeof qw[0]); /* (u,v) */
             }
-        assert_coons_ok(coons_patch_bilinear((const double(*)[3])qu, &f[x], &err), &err);
-        assert_coons_ok(coons_patch_bilinear((const double(*)[3])qv, &f[2 + x], &err), &err);
-        assert_coons_ok(coons_patch_bilinear((const double(*)[3])qw, &f[4 + x], &err), &err);
+        assert_coons_ok(coons_patch_new_bilinear(qu[0], &f[x], &err), &err);
+        assert_coons_ok(coons_patch_new_bilinear(qv[0], &f[2 + x], &err), &err);
+        assert_coons_ok(coons_patch_new_bilinear(qw[0], &f[4 + x], &err), &err);
     }
 }
 
@@ -231,11 +231,11 @@ static void test_body2_flat_is_body0(void **state)
     (void)state;
     coons_error err = COONS_ERROR_INIT;
     coons_patch *f[6];
-    flat_faces(tb_hex(), f);
+    flat_faces(tb_hex()[0], f);
     coons_body *b0, *b2;
-    assert_coons_ok(coons_body_body0(tb_hex(), COONS_BLEND_LINEAR, &b0, &err), &err);
-    assert_coons_ok(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR,
-                                     COONS_TOL_DEFAULT, &b2, &err),
+    assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_LINEAR, &b0, &err), &err);
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_LINEAR,
+                                         COONS_TOL_DEFAULT, &b2, &err),
                     &err);
     tb_rng rng = {8};
     for (int t = 0; t < 100; t++) {
@@ -272,10 +272,10 @@ static void test_body2_pyramid(void **state)
         c[n][2] = k ? h : 0.0;
     }
     coons_patch *f[6];
-    flat_faces((const double(*)[3])c, f);
+    flat_faces(c[0], f);
     coons_body *b;
-    assert_coons_ok(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR,
-                                     COONS_TOL_DEFAULT, &b, &err),
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_LINEAR,
+                                         COONS_TOL_DEFAULT, &b, &err),
                     &err);
     double vol, m, where[3];
     assert_coons_ok(coons_body_volume(b, 1e-12, &vol, &err), &err);
@@ -304,10 +304,10 @@ static void test_body2_incompatible(void **state)
         for (int b = 0; b < m; b++) tb_cube_net(m, a, b, 0, pts + (a * m + b) * 3);
     pts[(2 * m + 0) * 3 + 2] += 0.3; /* point [2][0]: on the v = 0 boundary, inside */
     coons_patch_free(f[4]);
-    assert_coons_ok(coons_patch_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[4], &err), &err);
+    assert_coons_ok(coons_patch_new_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[4], &err), &err);
     coons_body *b = (coons_body *)&err;
-    assert_int_equal(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR,
-                                      COONS_TOL_DEFAULT, &b, &err),
+    assert_int_equal(coons_body_new_body2(f, COONS_BLEND_LINEAR,
+                                          COONS_TOL_DEFAULT, &b, &err),
                      COONS_E_INCOMPATIBLE);
     assert_null(b);
     assert_int_equal(err.code, COONS_E_INCOMPATIBLE);
@@ -317,8 +317,8 @@ static void test_body2_incompatible(void **state)
     /* A tolerance above the gap accepts the faces; the edge is then the
      * average of the two faces (model format, "Consistency"), pointwise
      * and in grids. */
-    assert_coons_ok(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR, 0.5, &b,
-                                     &err),
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_LINEAR, 0.5, &b,
+                                         &err),
                     &err);
     double us[4] = {0.1, 0.35, 0.5, 0.8}, zero = 0.0, g[4 * 3];
     assert_coons_ok(coons_body_eval_grid(b, us, 4, &zero, 1, &zero, 1, g, &err), &err);
@@ -339,12 +339,12 @@ static void test_body2_incompatible(void **state)
     pts[(2 * m + 0) * 3 + 2] -= 0.3;
     pts[2] += 0.3; /* point [0][0] of w0 */
     coons_patch_free(f[4]);
-    assert_coons_ok(coons_patch_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[4], &err), &err);
-    assert_int_equal(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR,
-                                      COONS_TOL_DEFAULT, &b, &err),
+    assert_coons_ok(coons_patch_new_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[4], &err), &err);
+    assert_int_equal(coons_body_new_body2(f, COONS_BLEND_LINEAR,
+                                          COONS_TOL_DEFAULT, &b, &err),
                      COONS_E_INCOMPATIBLE);
-    assert_coons_ok(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR, 0.5, &b,
-                                     &err),
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_LINEAR, 0.5, &b,
+                                         &err),
                     &err);
     double y[3], one[1] = {0.0};
     c0[2] += 0.1;
@@ -360,16 +360,16 @@ static void test_body2_incompatible(void **state)
     coons_patch_free(f[4]);
     coons_patch_free(f[1]);
     f[4] = NULL;
-    assert_coons_ok(coons_patch_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[1], &err), &err);
-    assert_int_equal(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR,
-                                      COONS_TOL_DEFAULT, &b, &err),
+    assert_coons_ok(coons_patch_new_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[1], &err), &err);
+    assert_int_equal(coons_body_new_body2(f, COONS_BLEND_LINEAR,
+                                          COONS_TOL_DEFAULT, &b, &err),
                      COONS_E_INVALID); /* f[4] is NULL */
     assert_non_null(strstr(err.message, "w0"));
     for (int a = 0; a < m; a++)
         for (int bb = 0; bb < m; bb++) tb_cube_net(m, a, bb, 0, pts + (a * m + bb) * 3);
-    assert_coons_ok(coons_patch_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[4], &err), &err);
-    assert_int_equal(coons_body_body2((const coons_patch *const *)f, COONS_BLEND_LINEAR,
-                                      COONS_TOL_DEFAULT, &b, &err),
+    assert_coons_ok(coons_patch_new_bspline(3, 3, pts, m, m, NULL, NULL, NULL, &f[4], &err), &err);
+    assert_int_equal(coons_body_new_body2(f, COONS_BLEND_LINEAR,
+                                          COONS_TOL_DEFAULT, &b, &err),
                      COONS_E_INCOMPATIBLE);
     assert_non_null(strstr(err.message, "edge w11 (u=1,v=1)"));
     assert_non_null(strstr(err.message, "faces u1 and v1"));

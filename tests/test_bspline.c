@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * General B-spline and NURBS curves through the public API
- * (coons_curve_bspline), checking src/core/bspline.c: knot validation, span
+ * (coons_curve_new_bspline), checking src/core/bspline.c: knot validation, span
  * search, Cox-de Boor basis with derivatives, the mapping of the domain
  * [k_p, k_{n+1}] onto t in [0,1] (model format, "Curves" and "Resolved
  * details").
@@ -114,7 +114,7 @@ static void test_nonuniform_cubic(void **state)
     const double k[] = {0, 0, 0, 0, 0.5, 1.5, 1.75, 4, 4, 4, 4};
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_bspline(3, P, 7, k, NULL, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_bspline(3, P, 7, k, NULL, &c, &e), &e);
     assert_int_equal(coons_curve_get_type(c), COONS_CURVE_BSPLINE);
     check_against_naive(c, 3, P, 7, k, NULL, 1e-13);
     double a[3], b[3];
@@ -144,7 +144,7 @@ static void test_default_knots(void **state)
     const double P[] = {0, 0, 0, 1, 3, 0, 4, 4, 1, 6, 0, 1, 7, 2, 2};
     const double k[] = {0, 0, 0, 1, 2, 3, 3, 3};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_bspline(2, P, 5, NULL, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(2, P, 5, NULL, NULL, &c, NULL), COONS_OK);
     check_against_naive(c, 2, P, 5, k, NULL, 1e-13);
     coons_curve_free(c);
 }
@@ -160,7 +160,7 @@ static void test_interior_multiplicity_p(void **state)
     const double k[] = {0, 0, 0, 0, 2, 2, 2, 4, 4, 4, 4};
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_bspline(3, P, 7, k, NULL, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_bspline(3, P, 7, k, NULL, &c, &e), &e);
     check_against_naive(c, 3, P, 7, k, NULL, 1e-13);
     double d[3][3], want[3], left[3][3];
     coons_curve_eval_derivs(c, 0.5, 1, d);
@@ -184,7 +184,7 @@ static void test_interior_multiplicity_p_plus_1(void **state)
                         13, 0, 0};
     const double k[] = {0, 0, 0, 0, 2, 2, 2, 2, 4, 4, 4, 4};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_bspline(3, P, 8, k, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(3, P, 8, k, NULL, &c, NULL), COONS_OK);
     double v[3];
     coons_curve_eval(c, 0.5, v);
     assert_vec3_near(v, P + 12, 1e-15);
@@ -214,8 +214,8 @@ static void test_domain_mapping(void **state)
     const double k[] = {10, 10, 10, 13, 17, 20, 20, 20};
     const double u[] = {0, 0, 0, 0.3, 0.7, 1, 1, 1};
     coons_curve *c = NULL, *cu = NULL;
-    assert_int_equal(coons_curve_bspline(2, P, 5, k, NULL, &c, NULL), COONS_OK);
-    assert_int_equal(coons_curve_bspline(2, P, 5, u, NULL, &cu, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(2, P, 5, k, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(2, P, 5, u, NULL, &cu, NULL), COONS_OK);
     check_against_naive(c, 2, P, 5, k, NULL, 1e-13);
     for (int i = 0; i <= 50; i++) {
         double t = i / 50.0, a[3][3], b[3][3];
@@ -248,7 +248,7 @@ static void test_unclamped_uniform(void **state)
     const double P[] = {0, 0, 0, 2, 2, 0, 4, 0, 2, 6, 2, 2};
     const double k[] = {0, 1, 2, 3, 4, 5, 6};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_bspline(2, P, 4, k, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(2, P, 4, k, NULL, &c, NULL), COONS_OK);
     double v[3], want[3], d[2][3];
     coons_curve_eval(c, 0.0, v);
     for (int i = 0; i < 3; i++) want[i] = (P[i] + P[3 + i]) / 2;
@@ -277,7 +277,7 @@ static void test_right_end_in_multiple_knot(void **state)
     const double P[] = {0, 0, 0, 1, 2, 0, 3, 3, 1, 5, 1, 2, 6, -1, 0};
     const double k[] = {0, 0, 0, 1, 2, 2, 3, 4};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_bspline(2, P, 5, k, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(2, P, 5, k, NULL, &c, NULL), COONS_OK);
     double d[2][3], want[3];
     coons_curve_eval_derivs(c, 1.0, 1, d);
     assert_vec3_near(d[0], P + 9, 1e-15);
@@ -296,7 +296,7 @@ static void test_degree1_is_polyline(void **state)
     const double P[] = {0, 0, 0, 1, 0, 0, 1, 2, 0, 4, 2, 1};
     const double k[] = {0, 0, 1, 3, 4, 4};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_bspline(1, P, 4, k, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(1, P, 4, k, NULL, &c, NULL), COONS_OK);
     double v[3], want[3];
     coons_curve_eval(c, 0.25, v);
     assert_vec3_near(v, P + 3, 1e-15);
@@ -336,7 +336,7 @@ static void test_bezier_extraction(void **state)
     const double k[] = {0, 0, 0, 0, 1, 1, 2.5, 4, 4, 4, 4};
     const double xs[] = {0, 1, 2.5, 4};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_bspline(3, P, 7, k, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(3, P, 7, k, NULL, &c, NULL), COONS_OK);
     size_t nseg = 0;
     int deg = 0;
     double B[3 * 12];
@@ -378,7 +378,7 @@ static void test_nurbs_quarter_circle(void **state)
     const double k[] = {0, 0, 0, 1, 1, 1};
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_bspline(2, P, 3, NULL, w, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_bspline(2, P, 3, NULL, w, &c, &e), &e);
     for (int i = 0; i <= 1000; i++) {
         double t = i / 1000.0, d[2][3];
         coons_curve_eval_derivs(c, t, 1, d);
@@ -429,7 +429,7 @@ static void test_nurbs_full_circle(void **state)
     for (int i = 0; i < 12; i++) k[i] *= 2.5;
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_bspline(2, P, 9, k, w, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_bspline(2, P, 9, k, w, &c, &e), &e);
     const double nrm[3] = {0, -sa, ca};
     for (int i = 0; i <= 4000; i++) {
         double t = i / 4000.0, v[3];
@@ -456,8 +456,8 @@ static void test_equal_weights_polynomial(void **state)
     const double P[] = {0, 0, 0, 1, 2, 0, 3, 3, 1, 5, 1, 2, 6, -1, 0};
     const double w[] = {3, 3, 3, 3, 3};
     coons_curve *a = NULL, *b = NULL;
-    assert_int_equal(coons_curve_bspline(3, P, 5, NULL, w, &a, NULL), COONS_OK);
-    assert_int_equal(coons_curve_bspline(3, P, 5, NULL, NULL, &b, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(3, P, 5, NULL, w, &a, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(3, P, 5, NULL, NULL, &b, NULL), COONS_OK);
     for (int i = 0; i <= 64; i++) {
         double da[3][3], db[3][3];
         coons_curve_eval_derivs(a, i / 64.0, 2, da);
@@ -508,19 +508,19 @@ static void test_knot_errors(void **state)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         coons_curve *c = (coons_curve *)&c;
         coons_error e = COONS_ERROR_INIT;
-        expect_error(coons_curve_bspline(cases[i].p, P, cases[i].n, cases[i].k, NULL, &c, &e),
+        expect_error(coons_curve_new_bspline(cases[i].p, P, cases[i].n, cases[i].k, NULL, &c, &e),
                      COONS_E_INVALID, &e, cases[i].word, &c);
         assert_non_null(strstr(e.message, "knot"));
         c = (coons_curve *)&c;
-        assert_int_equal(coons_curve_bspline(cases[i].p, P, cases[i].n, cases[i].k, NULL, &c,
-                                             NULL),
+        assert_int_equal(coons_curve_new_bspline(cases[i].p, P, cases[i].n, cases[i].k, NULL, &c,
+                                                 NULL),
                          COONS_E_INVALID);
         assert_null(c);
     }
     /* multiplicity exactly p+1, inside and at the ends, is accepted */
     static const double ok[] = {0, 0, 0, 1, 1, 1, 2, 2, 2};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_bspline(2, P, 6, ok, NULL, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bspline(2, P, 6, ok, NULL, &c, NULL), COONS_OK);
     coons_curve_free(c);
 }
 
@@ -533,33 +533,33 @@ static void test_weight_errors(void **state)
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         coons_curve *c = (coons_curve *)&c;
         coons_error e = COONS_ERROR_INIT;
-        expect_error(coons_curve_bspline(2, P, 3, NULL, bad[i], &c, &e), COONS_E_INVALID, &e,
+        expect_error(coons_curve_new_bspline(2, P, 3, NULL, bad[i], &c, &e), COONS_E_INVALID, &e,
                      "weight", &c);
-        assert_int_equal(coons_curve_bspline(2, P, 3, NULL, bad[i], &c, NULL), COONS_E_INVALID);
+        assert_int_equal(coons_curve_new_bspline(2, P, 3, NULL, bad[i], &c, NULL), COONS_E_INVALID);
     }
 }
 
-/* Degree outside 1..COONS_MAX_DEGREE, and too few points for the degree. */
+/* Degree outside 1..COONS_SPLINE_MAX_DEGREE, and too few points for the degree. */
 static void test_degree_errors(void **state)
 {
     (void)state;
-    static double P[3 * (COONS_MAX_DEGREE + 2)];
-    for (int i = 0; i < COONS_MAX_DEGREE + 2; i++) P[3 * i] = i;
-    const int bad[] = {0, -1, COONS_MAX_DEGREE + 1, 1000};
+    static double P[3 * (COONS_SPLINE_MAX_DEGREE + 2)];
+    for (int i = 0; i < COONS_SPLINE_MAX_DEGREE + 2; i++) P[3 * i] = i;
+    const int bad[] = {0, -1, COONS_SPLINE_MAX_DEGREE + 1, 1000};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         coons_curve *c = (coons_curve *)&c;
         coons_error e = COONS_ERROR_INIT;
-        expect_error(coons_curve_bspline(bad[i], P, COONS_MAX_DEGREE + 2, NULL, NULL, &c, &e),
+        expect_error(coons_curve_new_bspline(bad[i], P, COONS_SPLINE_MAX_DEGREE + 2, NULL, NULL, &c, &e),
                      COONS_E_INVALID, &e, "degree", &c);
-        assert_int_equal(coons_curve_bspline(bad[i], P, 4, NULL, NULL, &c, NULL),
+        assert_int_equal(coons_curve_new_bspline(bad[i], P, 4, NULL, NULL, &c, NULL),
                          COONS_E_INVALID);
     }
     /* the largest degree works and is the Bezier curve of the same points */
     coons_curve *c = NULL, *bz = NULL;
-    assert_int_equal(coons_curve_bspline(COONS_MAX_DEGREE, P, COONS_MAX_DEGREE + 1, NULL, NULL,
-                                         &c, NULL),
+    assert_int_equal(coons_curve_new_bspline(COONS_SPLINE_MAX_DEGREE, P, COONS_SPLINE_MAX_DEGREE + 1, NULL, NULL,
+                                             &c, NULL),
                      COONS_OK);
-    assert_int_equal(coons_curve_bezier(P, COONS_MAX_DEGREE + 1, &bz, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bezier(P, COONS_SPLINE_MAX_DEGREE + 1, &bz, NULL), COONS_OK);
     double a[3], b[3];
     coons_curve_eval(c, 0.37, a);
     coons_curve_eval(bz, 0.37, b);
@@ -571,7 +571,7 @@ static void test_degree_errors(void **state)
     /* p + 1 points needed */
     coons_error e = COONS_ERROR_INIT;
     c = (coons_curve *)&c;
-    expect_error(coons_curve_bspline(3, P, 3, NULL, NULL, &c, &e), COONS_E_INVALID, &e, "at least",
+    expect_error(coons_curve_new_bspline(3, P, 3, NULL, NULL, &c, &e), COONS_E_INVALID, &e, "at least",
                  &c);
 }
 
@@ -588,28 +588,28 @@ static void test_point_errors(void **state)
             Q[slot] = vals[v];
             coons_curve *c = (coons_curve *)&c;
             coons_error e = COONS_ERROR_INIT;
-            expect_error(coons_curve_bspline(2, Q, 4, NULL, NULL, &c, &e), COONS_E_INVALID, &e,
+            expect_error(coons_curve_new_bspline(2, Q, 4, NULL, NULL, &c, &e), COONS_E_INVALID, &e,
                          "finite", &c);
-            assert_int_equal(coons_curve_bspline(2, Q, 4, NULL, NULL, &c, NULL), COONS_E_INVALID);
+            assert_int_equal(coons_curve_new_bspline(2, Q, 4, NULL, NULL, &c, NULL), COONS_E_INVALID);
         }
     }
     coons_curve *c = (coons_curve *)&c;
     coons_error e = COONS_ERROR_INIT;
-    expect_error(coons_curve_bspline(2, NULL, 4, NULL, NULL, &c, &e), COONS_E_INVALID, &e, "NULL",
+    expect_error(coons_curve_new_bspline(2, NULL, 4, NULL, NULL, &c, &e), COONS_E_INVALID, &e, "NULL",
                  &c);
 }
 
-/* More than COONS_MAX_CURVE_POINTS points: COONS_E_LIMIT. */
+/* More than COONS_CURVE_MAX_POINTS points: COONS_E_LIMIT. */
 static void test_size_limit(void **state)
 {
     (void)state;
-    size_t n = (size_t)COONS_MAX_CURVE_POINTS + 1;
+    size_t n = (size_t)COONS_CURVE_MAX_POINTS + 1;
     double *P = calloc(3 * n, sizeof *P);
     assert_non_null(P);
     coons_curve *c = (coons_curve *)&c;
     coons_error e = COONS_ERROR_INIT;
-    expect_error(coons_curve_bspline(3, P, n, NULL, NULL, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
-    assert_int_equal(coons_curve_bspline(3, P, n, NULL, NULL, &c, NULL), COONS_E_LIMIT);
+    expect_error(coons_curve_new_bspline(3, P, n, NULL, NULL, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
+    assert_int_equal(coons_curve_new_bspline(3, P, n, NULL, NULL, &c, NULL), COONS_E_LIMIT);
     free(P);
 }
 

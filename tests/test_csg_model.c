@@ -23,7 +23,7 @@ static void check_union(const char *rel, double tol)
     snprintf(path, sizeof path, "%s/%s", COONS_SOURCE_DIR, rel);
     coons_model *m = NULL;
     coons_error err;
-    assert_coons_ok(coons_model_load(path, &m, &err), &err);
+    assert_coons_ok(coons_model_load_file(path, NULL, &m, &err), &err);
     assert_int_equal(coons_model_operation(m), COONS_OP_UNION);
     double vmax = 0.0, vsum = 0.0;
     for (size_t i = 0; i < coons_model_body_count(m); i++) {
@@ -39,15 +39,15 @@ static void check_union(const char *rel, double tol)
     int calls = 0;
     co.progress = progress;
     co.userdata = &calls;
-    coons_csg_report rep;
+    coons_csg_report rep = COONS_CSG_REPORT_INIT;
     coons_mesh *solid = NULL;
-    assert_coons_ok(coons_model_solid(m, &so, &co, &solid, &rep, &err), &err);
+    assert_coons_ok(coons_model_solidify(m, &so, &co, &solid, &rep, &err), &err);
     assert_true(calls > 0);
     assert_int_equal(coons_mesh_part_count(solid), 1);
     coons_mesh_report mr = COONS_MESH_REPORT_INIT;
     assert_coons_ok(coons_mesh_check(solid, &mr, &err), &err);
     size_t pairs = 99;
-    assert_coons_ok(coons_mesh_self_intersections(solid, &pairs, &err), &err);
+    assert_coons_ok(coons_mesh_count_self_intersections(solid, &pairs, &err), &err);
     double vol = coons_mesh_volume(solid);
     printf("%s: %zu bodies, %zu -> %zu triangles, %zu patches (%zu kept), volume %.6f in "
            "[%.6f, %.6f], closed %d manifold %d oriented %d shells %zu euler %ld, pairs %zu\n",

@@ -141,7 +141,7 @@ static void test_line(void **state)
     const double a[3] = {1, 2, 3}, b[3] = {-3, 4, 11};
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_line(a, b, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_line(a, b, &c, &e), &e);
     assert_int_equal(coons_curve_get_type(c), COONS_CURVE_LINE);
     for (int i = 0; i <= 16; i++) {
         double t = i / 16.0, d[3][3], want[3];
@@ -172,7 +172,7 @@ static void test_polyline(void **state)
     const double P[] = {0, 0, 0, 1, 0, 0, 1, 3, 0, 2, 3, 4, 2, 3, 6};
     const int n = 4;
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_polyline(P, 5, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_polyline(P, 5, &c, NULL), COONS_OK);
     assert_int_equal(coons_curve_get_type(c), COONS_CURVE_POLYLINE);
     for (int i = 0; i <= n; i++) {
         double d[2][3], want[3];
@@ -194,9 +194,9 @@ static void test_polyline(void **state)
     coons_curve *l = NULL;
     const double a[3] = {0, 0, 0}, b[3] = {2, 2, 2};
     double ab[6] = {0, 0, 0, 2, 2, 2};
-    assert_int_equal(coons_curve_polyline(ab, 2, &l, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_polyline(ab, 2, &l, NULL), COONS_OK);
     coons_curve *ln = NULL;
-    assert_int_equal(coons_curve_line(a, b, &ln, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_line(a, b, &ln, NULL), COONS_OK);
     assert_same_curve(l, ln, 20, 1e-15);
     coons_curve_free(l);
     coons_curve_free(ln);
@@ -211,7 +211,7 @@ static void test_bezier(void **state)
     const double P[] = {0, 0, 0, 1, 3, 0, 3, 4, 2, 5, 1, 3, 6, -2, 1, 8, 0, 0};
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_bezier(P, 6, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_bezier(P, 6, &c, &e), &e);
     assert_int_equal(coons_curve_get_type(c), COONS_CURVE_BEZIER);
     for (int i = 0; i <= 50; i++) {
         double t = i / 50.0, got[3], want[3];
@@ -241,7 +241,7 @@ static void test_bezier(void **state)
     for (int i = 0; i < 18; i++) assert_near(B[i], P[i], 1e-14);
     coons_curve_free(c);
     /* degree 1 Bezier = line */
-    assert_int_equal(coons_curve_bezier(P, 2, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bezier(P, 2, &c, NULL), COONS_OK);
     double m[3];
     coons_curve_eval(c, 0.25, m);
     lerp3(want, P, P + 3, 0.25);
@@ -258,7 +258,7 @@ static void test_hermite(void **state)
     const double p0[3] = {0, 0, 0}, t0[3] = {3, 6, 0}, p1[3] = {4, 1, 2}, t1[3] = {0, -6, 3};
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_hermite(p0, t0, p1, t1, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_hermite(p0, t0, p1, t1, &c, &e), &e);
     assert_int_equal(coons_curve_get_type(c), COONS_CURVE_HERMITE);
     const double *V[4] = {p0, t0, t1, p1};
     for (int i = 0; i <= 40; i++) {
@@ -317,7 +317,7 @@ static void test_coons_single_segment(void **state)
     const double *Q[4] = {P, P + 3, P + 6, P + 9};
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_coons_cubic(P, 4, 0, &c, &e), &e);
+    assert_coons_ok(coons_curve_new_coons_cubic(P, 4, 0, &c, &e), &e);
     assert_int_equal(coons_curve_get_type(c), COONS_CURVE_COONS_CUBIC);
     double d[3][3], want[3];
     coons_curve_eval_derivs(c, 0.0, 2, d);
@@ -353,7 +353,7 @@ static void test_coons_construction(void **state)
     (void)state;
     const double P[] = {0, 0, 0, 3, 6, 0, 9, 6, 0, 12, 0, 0};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_coons_cubic(P, 4, 0, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 4, 0, &c, NULL), COONS_OK);
     double d[2][3], on01[3], on12[3], on23[3], mid[3], x[3];
     coons_curve_eval_derivs(c, 0.0, 1, d);
     lerp3(on01, P, P + 3, 2.0 / 3); /* point "0": one third from P1 */
@@ -387,7 +387,7 @@ static void test_exercise_2_19(void **state)
     double P[18];
     xy_to_3d(xy, 6, P);
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_coons_cubic(P, 6, 0, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 6, 0, &c, NULL), COONS_OK);
     size_t nseg;
     int deg;
     assert_int_equal(coons_curve_bezier_segments(c, NULL, 0, &nseg, &deg, NULL), COONS_OK);
@@ -421,7 +421,7 @@ static void test_coons_open_knots_c2(void **state)
     const size_t cnt = 8, nseg = cnt - 3;
     const double ns = (double)nseg;
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_coons_cubic(P, cnt, 0, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_coons_cubic(P, cnt, 0, &c, NULL), COONS_OK);
     double br[8];
     for (size_t s = 0; s <= nseg; s++) {
         const double *Q[4] = {P + 3 * s, P + 3 * (s + 1), P + 3 * (s + 2), NULL};
@@ -482,7 +482,7 @@ static void test_example_2_13(void **state)
     xy_to_3d(xy, 9, P);
     coons_curve *open = NULL, *reopen = NULL, *closed = NULL;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_curve_coons_cubic(P, 7, 0, &open, &e), &e);
+    assert_coons_ok(coons_curve_new_coons_cubic(P, 7, 0, &open, &e), &e);
     size_t nseg;
     int deg;
     double B[4 * 12];
@@ -493,7 +493,7 @@ static void test_example_2_13(void **state)
     for (int s = 0; s < 4; s++) {
         /* segment s is the Coons cubic curve of the polygon P_s..P_s+3 */
         coons_curve *seg = NULL;
-        assert_int_equal(coons_curve_coons_cubic(P + 3 * s, 4, 0, &seg, NULL), COONS_OK);
+        assert_int_equal(coons_curve_new_coons_cubic(P + 3 * s, 4, 0, &seg, NULL), COONS_OK);
         for (int i = 0; i <= 10; i++) {
             double u = i / 10.0, a[3], b[3];
             coons_curve_eval(open, (s + u) / 4.0, a);
@@ -515,8 +515,8 @@ static void test_example_2_13(void **state)
     assert_true(fabs(v[0] - knots[4][0]) > 1.0);
 
     /* closing: 9 points open (last three repeat the first three) = closed of 6 */
-    assert_coons_ok(coons_curve_coons_cubic(P, 9, 0, &reopen, &e), &e);
-    assert_coons_ok(coons_curve_coons_cubic(P, 6, 1, &closed, &e), &e);
+    assert_coons_ok(coons_curve_new_coons_cubic(P, 9, 0, &reopen, &e), &e);
+    assert_coons_ok(coons_curve_new_coons_cubic(P, 6, 1, &closed, &e), &e);
     assert_int_equal(coons_curve_bezier_segments(closed, NULL, 0, &nseg, &deg, NULL), COONS_OK);
     assert_int_equal(nseg, 6);
     assert_same_curve(reopen, closed, 240, 1e-13);
@@ -527,11 +527,11 @@ static void test_example_2_13(void **state)
     for (int d = 0; d < 3; d++) assert_vec3_near(d0[d], d1[d], 1e-12);
     /* the same list given as closed is the mistake the model format rejects */
     coons_curve *bad = (coons_curve *)&bad;
-    expect_error(coons_curve_coons_cubic(P, 9, 1, &bad, &e), COONS_E_INVALID, &e, "repeat", &bad);
-    assert_int_equal(coons_curve_coons_cubic(P, 9, 1, &bad, NULL), COONS_E_INVALID);
+    expect_error(coons_curve_new_coons_cubic(P, 9, 1, &bad, &e), COONS_E_INVALID, &e, "repeat", &bad);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 9, 1, &bad, NULL), COONS_E_INVALID);
     /* the example's own list (P6 = P0 only) is a legitimate closed curve of 7 */
     coons_curve *seven = NULL;
-    assert_int_equal(coons_curve_coons_cubic(P, 7, 1, &seven, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 7, 1, &seven, NULL), COONS_OK);
     assert_int_equal(coons_curve_bezier_segments(seven, NULL, 0, &nseg, &deg, NULL), COONS_OK);
     assert_int_equal(nseg, 7);
     coons_curve_free(seven);
@@ -550,7 +550,7 @@ static void test_coons_closed(void **state)
     for (size_t m = 3; m <= 5; m++) {
         coons_curve *c = NULL;
         coons_error e = COONS_ERROR_INIT;
-        assert_coons_ok(coons_curve_coons_cubic(P, m, 1, &c, &e), &e);
+        assert_coons_ok(coons_curve_new_coons_cubic(P, m, 1, &c, &e), &e);
         double d0[3][3], d1[3][3], l[3][3];
         coons_curve_eval_derivs(c, 0.0, 2, d0);
         coons_curve_eval_derivs(c, 1.0, 2, d1);
@@ -590,7 +590,7 @@ static void test_coons_closed_repeat_signed_zero(void **state)
                         -0.0, 0, 0, 1, -0.0, 0, 1, 1, -0.0};
     coons_curve *c = (coons_curve *)&c;
     coons_error e = COONS_ERROR_INIT;
-    expect_error(coons_curve_coons_cubic(P, 7, 1, &c, &e), COONS_E_INVALID, &e, "repeat", &c);
+    expect_error(coons_curve_new_coons_cubic(P, 7, 1, &c, &e), COONS_E_INVALID, &e, "repeat", &c);
 }
 
 /* Coons cubic Bezier form: each segment's Bezier points are the knot
@@ -602,7 +602,7 @@ static void test_coons_bezier_segments(void **state)
     (void)state;
     const double P[] = {0, 0, 0, 1, 3, 1, 4, 4, -1, 6, 1, 0, 7, -2, 2, 10, 0, 1};
     coons_curve *c = NULL;
-    assert_int_equal(coons_curve_coons_cubic(P, 6, 0, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 6, 0, &c, NULL), COONS_OK);
     double B[3 * 12];
     size_t nseg;
     int deg;
@@ -646,7 +646,7 @@ static void test_clamped_ends(void **state)
         double m = (double)(n - 2);
         coons_curve *c = NULL;
         coons_error e = COONS_ERROR_INIT;
-        assert_coons_ok(coons_curve_clamped_cubic(P, cnt, &c, &e), &e);
+        assert_coons_ok(coons_curve_new_clamped_cubic(P, cnt, &c, &e), &e);
         assert_int_equal(coons_curve_get_type(c), COONS_CURVE_CLAMPED_CUBIC);
         double d[2][3], want[3];
         coons_curve_eval_derivs(c, 0.0, 1, d);
@@ -692,25 +692,25 @@ static void test_open_to_clamped(void **state)
             want[3 * n + k] = T[3 * (n - 2) + k] / 6 + 2 * T[3 * (n - 1) + k] / 3 + T[3 * n + k] / 6;
         }
         coons_error e = COONS_ERROR_INIT;
-        assert_coons_ok(coons_cubic_open_to_clamped(T, cnt, got, &e), &e);
+        assert_coons_ok(coons_curve_convert_open_to_clamped(T, cnt, got, &e), &e);
         for (size_t i = 0; i < 3 * cnt; i++) assert_near(got[i], want[i], 1e-14);
         memcpy(inplace, T, 3 * cnt * sizeof(double));
-        assert_coons_ok(coons_cubic_open_to_clamped(inplace, cnt, inplace, &e), &e);
+        assert_coons_ok(coons_curve_convert_open_to_clamped(inplace, cnt, inplace, &e), &e);
         for (size_t i = 0; i < 3 * cnt; i++) assert_near(inplace[i], want[i], 1e-14);
 
         coons_curve *open = NULL, *clamped = NULL;
-        assert_coons_ok(coons_curve_coons_cubic(T, cnt, 0, &open, &e), &e);
-        assert_coons_ok(coons_curve_clamped_cubic(got, cnt, &clamped, &e), &e);
+        assert_coons_ok(coons_curve_new_coons_cubic(T, cnt, 0, &open, &e), &e);
+        assert_coons_ok(coons_curve_new_clamped_cubic(got, cnt, &clamped, &e), &e);
         assert_same_curve(open, clamped, 300, 1e-12);
         coons_curve_free(open);
         coons_curve_free(clamped);
     }
     double out[9];
     coons_error e = COONS_ERROR_INIT;
-    assert_int_equal(coons_cubic_open_to_clamped(T, 3, out, &e), COONS_E_INVALID);
+    assert_int_equal(coons_curve_convert_open_to_clamped(T, 3, out, &e), COONS_E_INVALID);
     assert_int_equal(e.code, COONS_E_INVALID);
     assert_true(strlen(e.message) > 0);
-    assert_int_equal(coons_cubic_open_to_clamped(T, 3, out, NULL), COONS_E_INVALID);
+    assert_int_equal(coons_curve_convert_open_to_clamped(T, 3, out, NULL), COONS_E_INVALID);
 }
 
 /*
@@ -787,7 +787,7 @@ static void test_exercise_2_26(void **state)
         }
         coons_curve *c = NULL;
         coons_error e = COONS_ERROR_INIT;
-        assert_coons_ok(coons_curve_clamped_cubic(P, cnt, &c, &e), &e);
+        assert_coons_ok(coons_curve_new_clamped_cubic(P, cnt, &c, &e), &e);
         size_t nseg = 0;
         int deg = 0;
         assert_coons_ok(coons_curve_bezier_segments(c, NULL, 0, &nseg, &deg, &e), &e);
@@ -826,24 +826,24 @@ static void test_too_few_points(void **state)
     const double P[] = {0, 0, 0, 1, 0, 0, 2, 1, 0, 3, 0, 0, 4, 4, 4};
     coons_curve *c = (coons_curve *)&c;
     coons_error e = COONS_ERROR_INIT;
-    expect_error(coons_curve_polyline(P, 1, &c, &e), COONS_E_INVALID, &e, "at least", &c);
-    expect_error(coons_curve_polyline(P, 0, &c, &e), COONS_E_INVALID, &e, "at least", &c);
-    expect_error(coons_curve_bezier(P, 1, &c, &e), COONS_E_INVALID, &e, "at least", &c);
-    expect_error(coons_curve_coons_cubic(P, 3, 0, &c, &e), COONS_E_INVALID, &e, "at least", &c);
-    expect_error(coons_curve_coons_cubic(P, 2, 1, &c, &e), COONS_E_INVALID, &e, "at least", &c);
-    expect_error(coons_curve_clamped_cubic(P, 3, &c, &e), COONS_E_INVALID, &e, "at least", &c);
-    expect_error(coons_curve_bspline(2, P, 2, NULL, NULL, &c, &e), COONS_E_INVALID, &e, "at least",
+    expect_error(coons_curve_new_polyline(P, 1, &c, &e), COONS_E_INVALID, &e, "at least", &c);
+    expect_error(coons_curve_new_polyline(P, 0, &c, &e), COONS_E_INVALID, &e, "at least", &c);
+    expect_error(coons_curve_new_bezier(P, 1, &c, &e), COONS_E_INVALID, &e, "at least", &c);
+    expect_error(coons_curve_new_coons_cubic(P, 3, 0, &c, &e), COONS_E_INVALID, &e, "at least", &c);
+    expect_error(coons_curve_new_coons_cubic(P, 2, 1, &c, &e), COONS_E_INVALID, &e, "at least", &c);
+    expect_error(coons_curve_new_clamped_cubic(P, 3, &c, &e), COONS_E_INVALID, &e, "at least", &c);
+    expect_error(coons_curve_new_bspline(2, P, 2, NULL, NULL, &c, &e), COONS_E_INVALID, &e, "at least",
                  &c);
-    assert_int_equal(coons_curve_polyline(P, 1, &c, NULL), COONS_E_INVALID);
-    assert_int_equal(coons_curve_bezier(P, 1, &c, NULL), COONS_E_INVALID);
-    assert_int_equal(coons_curve_coons_cubic(P, 3, 0, &c, NULL), COONS_E_INVALID);
-    assert_int_equal(coons_curve_coons_cubic(P, 2, 1, &c, NULL), COONS_E_INVALID);
-    assert_int_equal(coons_curve_clamped_cubic(P, 3, &c, NULL), COONS_E_INVALID);
+    assert_int_equal(coons_curve_new_polyline(P, 1, &c, NULL), COONS_E_INVALID);
+    assert_int_equal(coons_curve_new_bezier(P, 1, &c, NULL), COONS_E_INVALID);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 3, 0, &c, NULL), COONS_E_INVALID);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 2, 1, &c, NULL), COONS_E_INVALID);
+    assert_int_equal(coons_curve_new_clamped_cubic(P, 3, &c, NULL), COONS_E_INVALID);
     /* NULL point arrays */
-    expect_error(coons_curve_polyline(NULL, 3, &c, &e), COONS_E_INVALID, &e, "NULL", &c);
-    expect_error(coons_curve_bezier(NULL, 3, &c, &e), COONS_E_INVALID, &e, "NULL", &c);
-    assert_int_equal(coons_curve_coons_cubic(NULL, 5, 0, &c, &e), COONS_E_INVALID);
-    assert_int_equal(coons_curve_clamped_cubic(NULL, 5, &c, &e), COONS_E_INVALID);
+    expect_error(coons_curve_new_polyline(NULL, 3, &c, &e), COONS_E_INVALID, &e, "NULL", &c);
+    expect_error(coons_curve_new_bezier(NULL, 3, &c, &e), COONS_E_INVALID, &e, "NULL", &c);
+    assert_int_equal(coons_curve_new_coons_cubic(NULL, 5, 0, &c, &e), COONS_E_INVALID);
+    assert_int_equal(coons_curve_new_clamped_cubic(NULL, 5, &c, &e), COONS_E_INVALID);
 }
 
 /* NaN and infinite coordinates are refused by every constructor. */
@@ -857,55 +857,55 @@ static void test_non_finite(void **state)
         double good[3] = {0, 0, 0}, badp[3] = {0, bad[v], 0};
         coons_curve *c = (coons_curve *)&c;
         coons_error e = COONS_ERROR_INIT;
-        expect_error(coons_curve_line(good, badp, &c, &e), COONS_E_INVALID, &e, "finite", &c);
-        expect_error(coons_curve_line(badp, good, &c, &e), COONS_E_INVALID, &e, "finite", &c);
-        expect_error(coons_curve_polyline(P, 5, &c, &e), COONS_E_INVALID, &e, "finite", &c);
-        expect_error(coons_curve_bezier(P, 5, &c, &e), COONS_E_INVALID, &e, "finite", &c);
-        expect_error(coons_curve_coons_cubic(P, 5, 0, &c, &e), COONS_E_INVALID, &e, "finite", &c);
-        expect_error(coons_curve_coons_cubic(P, 5, 1, &c, &e), COONS_E_INVALID, &e, "finite", &c);
-        expect_error(coons_curve_clamped_cubic(P, 5, &c, &e), COONS_E_INVALID, &e, "finite", &c);
-        expect_error(coons_curve_hermite(badp, good, good, good, &c, &e), COONS_E_INVALID, &e,
+        expect_error(coons_curve_new_line(good, badp, &c, &e), COONS_E_INVALID, &e, "finite", &c);
+        expect_error(coons_curve_new_line(badp, good, &c, &e), COONS_E_INVALID, &e, "finite", &c);
+        expect_error(coons_curve_new_polyline(P, 5, &c, &e), COONS_E_INVALID, &e, "finite", &c);
+        expect_error(coons_curve_new_bezier(P, 5, &c, &e), COONS_E_INVALID, &e, "finite", &c);
+        expect_error(coons_curve_new_coons_cubic(P, 5, 0, &c, &e), COONS_E_INVALID, &e, "finite", &c);
+        expect_error(coons_curve_new_coons_cubic(P, 5, 1, &c, &e), COONS_E_INVALID, &e, "finite", &c);
+        expect_error(coons_curve_new_clamped_cubic(P, 5, &c, &e), COONS_E_INVALID, &e, "finite", &c);
+        expect_error(coons_curve_new_hermite(badp, good, good, good, &c, &e), COONS_E_INVALID, &e,
                      "finite", &c);
-        expect_error(coons_curve_hermite(good, badp, good, good, &c, &e), COONS_E_INVALID, &e,
+        expect_error(coons_curve_new_hermite(good, badp, good, good, &c, &e), COONS_E_INVALID, &e,
                      "finite", &c);
-        expect_error(coons_curve_hermite(good, good, badp, good, &c, &e), COONS_E_INVALID, &e,
+        expect_error(coons_curve_new_hermite(good, good, badp, good, &c, &e), COONS_E_INVALID, &e,
                      "finite", &c);
-        expect_error(coons_curve_hermite(good, good, good, badp, &c, &e), COONS_E_INVALID, &e,
+        expect_error(coons_curve_new_hermite(good, good, good, badp, &c, &e), COONS_E_INVALID, &e,
                      "finite", &c);
-        assert_int_equal(coons_curve_line(good, badp, &c, NULL), COONS_E_INVALID);
-        assert_int_equal(coons_curve_coons_cubic(P, 5, 1, &c, NULL), COONS_E_INVALID);
-        assert_int_equal(coons_curve_hermite(good, badp, good, good, &c, NULL), COONS_E_INVALID);
+        assert_int_equal(coons_curve_new_line(good, badp, &c, NULL), COONS_E_INVALID);
+        assert_int_equal(coons_curve_new_coons_cubic(P, 5, 1, &c, NULL), COONS_E_INVALID);
+        assert_int_equal(coons_curve_new_hermite(good, badp, good, good, &c, NULL), COONS_E_INVALID);
     }
 }
 
-/* Size limits: more than COONS_MAX_CURVE_POINTS points, or a Bezier degree
- * above COONS_MAX_DEGREE, is COONS_E_LIMIT; the largest Bezier degree works. */
+/* Size limits: more than COONS_CURVE_MAX_POINTS points, or a Bezier degree
+ * above COONS_SPLINE_MAX_DEGREE, is COONS_E_LIMIT; the largest Bezier degree works. */
 static void test_limits(void **state)
 {
     (void)state;
-    size_t n = (size_t)COONS_MAX_CURVE_POINTS + 1;
+    size_t n = (size_t)COONS_CURVE_MAX_POINTS + 1;
     double *P = calloc(3 * n, sizeof *P);
     assert_non_null(P);
     coons_curve *c = (coons_curve *)&c;
     coons_error e = COONS_ERROR_INIT;
-    expect_error(coons_curve_polyline(P, n, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
-    expect_error(coons_curve_coons_cubic(P, n, 0, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
-    expect_error(coons_curve_coons_cubic(P, n, 1, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
-    expect_error(coons_curve_clamped_cubic(P, n, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
-    expect_error(coons_curve_bezier(P, COONS_MAX_DEGREE + 2, &c, &e), COONS_E_LIMIT, &e, "limit",
+    expect_error(coons_curve_new_polyline(P, n, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
+    expect_error(coons_curve_new_coons_cubic(P, n, 0, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
+    expect_error(coons_curve_new_coons_cubic(P, n, 1, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
+    expect_error(coons_curve_new_clamped_cubic(P, n, &c, &e), COONS_E_LIMIT, &e, "limit", &c);
+    expect_error(coons_curve_new_bezier(P, COONS_SPLINE_MAX_DEGREE + 2, &c, &e), COONS_E_LIMIT, &e, "limit",
                  &c);
-    assert_int_equal(coons_curve_polyline(P, n, &c, NULL), COONS_E_LIMIT);
-    assert_int_equal(coons_curve_bezier(P, COONS_MAX_DEGREE + 2, &c, NULL), COONS_E_LIMIT);
+    assert_int_equal(coons_curve_new_polyline(P, n, &c, NULL), COONS_E_LIMIT);
+    assert_int_equal(coons_curve_new_bezier(P, COONS_SPLINE_MAX_DEGREE + 2, &c, NULL), COONS_E_LIMIT);
     /* exactly the limit is accepted */
     for (size_t i = 0; i < n; i++) P[3 * i] = (double)i;
-    assert_int_equal(coons_curve_polyline(P, n - 1, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_polyline(P, n - 1, &c, NULL), COONS_OK);
     double v[3];
     coons_curve_eval(c, 0.5, v);
     assert_near(v[0], (double)(n - 2) / 2, 1e-9);
     coons_curve_free(c);
-    assert_int_equal(coons_curve_bezier(P, COONS_MAX_DEGREE + 1, &c, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_bezier(P, COONS_SPLINE_MAX_DEGREE + 1, &c, NULL), COONS_OK);
     coons_curve_eval(c, 0.25, v); /* linear precision: x = 64 t */
-    assert_near(v[0], COONS_MAX_DEGREE * 0.25, 1e-11);
+    assert_near(v[0], COONS_SPLINE_MAX_DEGREE * 0.25, 1e-11);
     coons_curve_free(c);
     free(P);
 }
@@ -916,8 +916,8 @@ static void test_eval_outside(void **state)
     (void)state;
     const double P[] = {0, 0, 0, 1, 3, 1, 4, 4, -1, 6, 1, 0, 7, -2, 2};
     coons_curve *cc = NULL, *bs = NULL;
-    assert_int_equal(coons_curve_coons_cubic(P, 5, 0, &cc, NULL), COONS_OK);
-    assert_int_equal(coons_curve_clamped_cubic(P, 5, &bs, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_coons_cubic(P, 5, 0, &cc, NULL), COONS_OK);
+    assert_int_equal(coons_curve_new_clamped_cubic(P, 5, &bs, NULL), COONS_OK);
     coons_curve *cs[2] = {cc, bs};
     for (int i = 0; i < 2; i++) {
         double a[3][3], b[3][3];
@@ -949,25 +949,25 @@ static void test_eval_outside(void **state)
 typedef coons_status (*ctor_fn)(coons_curve **out, coons_error *err);
 
 static const double G[] = {0, 0, 0, 1, 3, 1, 4, 4, -1, 6, 1, 0, 7, -2, 2, 10, 0, 1};
-static coons_status mk_line(coons_curve **o, coons_error *e) { return coons_curve_line(G, G + 3, o, e); }
-static coons_status mk_polyline(coons_curve **o, coons_error *e) { return coons_curve_polyline(G, 6, o, e); }
-static coons_status mk_bezier(coons_curve **o, coons_error *e) { return coons_curve_bezier(G, 5, o, e); }
+static coons_status mk_line(coons_curve **o, coons_error *e) { return coons_curve_new_line(G, G + 3, o, e); }
+static coons_status mk_polyline(coons_curve **o, coons_error *e) { return coons_curve_new_polyline(G, 6, o, e); }
+static coons_status mk_bezier(coons_curve **o, coons_error *e) { return coons_curve_new_bezier(G, 5, o, e); }
 static coons_status mk_hermite(coons_curve **o, coons_error *e)
 {
-    return coons_curve_hermite(G, G + 3, G + 6, G + 9, o, e);
+    return coons_curve_new_hermite(G, G + 3, G + 6, G + 9, o, e);
 }
-static coons_status mk_open(coons_curve **o, coons_error *e) { return coons_curve_coons_cubic(G, 6, 0, o, e); }
-static coons_status mk_closed(coons_curve **o, coons_error *e) { return coons_curve_coons_cubic(G, 5, 1, o, e); }
-static coons_status mk_clamped(coons_curve **o, coons_error *e) { return coons_curve_clamped_cubic(G, 6, o, e); }
+static coons_status mk_open(coons_curve **o, coons_error *e) { return coons_curve_new_coons_cubic(G, 6, 0, o, e); }
+static coons_status mk_closed(coons_curve **o, coons_error *e) { return coons_curve_new_coons_cubic(G, 5, 1, o, e); }
+static coons_status mk_clamped(coons_curve **o, coons_error *e) { return coons_curve_new_clamped_cubic(G, 6, o, e); }
 static coons_status mk_bspline(coons_curve **o, coons_error *e)
 {
     static const double k[] = {0, 0, 0, 1, 1, 3, 4, 4, 4};
-    return coons_curve_bspline(2, G, 6, k, NULL, o, e);
+    return coons_curve_new_bspline(2, G, 6, k, NULL, o, e);
 }
 static coons_status mk_nurbs(coons_curve **o, coons_error *e)
 {
     static const double w[] = {1, 0.5, 2, 1, 0.7, 1};
-    return coons_curve_bspline(3, G, 6, NULL, w, o, e);
+    return coons_curve_new_bspline(3, G, 6, NULL, w, o, e);
 }
 static const ctor_fn ctors[] = {mk_line, mk_polyline, mk_bezier, mk_hermite, mk_open,
                                 mk_closed, mk_clamped, mk_bspline, mk_nurbs};

@@ -162,16 +162,16 @@ static void make_curves(coons_curve *c[NCURVES])
     static const double P[5][3] = {{0, 0, 0}, {1, 0.5, 0}, {2, 0.2, 1}, {3, 1, 0.5}, {4, 0, 0}};
     static const double T0[3] = {1, 1, 0}, T1[3] = {0, 1, 1};
     static const double knots[8] = {0, 0, 0, 0.4, 0.7, 1, 1, 1}, w[5] = {1, 2, 0.5, 1, 1.5};
-    assert_coons_ok(coons_curve_line(P[0], P[1], &c[COONS_CURVE_LINE], &err), &err);
-    assert_coons_ok(coons_curve_polyline(P[0], 5, &c[COONS_CURVE_POLYLINE], &err), &err);
-    assert_coons_ok(coons_curve_bezier(P[0], 4, &c[COONS_CURVE_BEZIER], &err), &err);
-    assert_coons_ok(coons_curve_hermite(P[0], T0, P[2], T1, &c[COONS_CURVE_HERMITE], &err),
+    assert_coons_ok(coons_curve_new_line(P[0], P[1], &c[COONS_CURVE_LINE], &err), &err);
+    assert_coons_ok(coons_curve_new_polyline(P[0], 5, &c[COONS_CURVE_POLYLINE], &err), &err);
+    assert_coons_ok(coons_curve_new_bezier(P[0], 4, &c[COONS_CURVE_BEZIER], &err), &err);
+    assert_coons_ok(coons_curve_new_hermite(P[0], T0, P[2], T1, &c[COONS_CURVE_HERMITE], &err),
                     &err);
-    assert_coons_ok(coons_curve_coons_cubic(P[0], 5, 1, &c[COONS_CURVE_COONS_CUBIC], &err),
+    assert_coons_ok(coons_curve_new_coons_cubic(P[0], 5, 1, &c[COONS_CURVE_COONS_CUBIC], &err),
                     &err);
-    assert_coons_ok(coons_curve_clamped_cubic(P[0], 5, &c[COONS_CURVE_CLAMPED_CUBIC], &err),
+    assert_coons_ok(coons_curve_new_clamped_cubic(P[0], 5, &c[COONS_CURVE_CLAMPED_CUBIC], &err),
                     &err);
-    assert_coons_ok(coons_curve_bspline(2, P[0], 5, knots, w, &c[COONS_CURVE_BSPLINE], &err),
+    assert_coons_ok(coons_curve_new_bspline(2, P[0], 5, knots, w, &c[COONS_CURVE_BSPLINE], &err),
                     &err);
 }
 
@@ -189,18 +189,18 @@ static void make_patches(coons_patch *p[NPATCHES])
             q[2] = 0.3 * sin(i + 2.0 * j);
         }
     static const double ks[7] = {0, 0, 0, 0.5, 1, 1, 1};
-    assert_coons_ok(coons_patch_bilinear(fx_corner, &p[COONS_PATCH_BILINEAR], &err), &err);
-    assert_coons_ok(coons_patch_ruled(b.c[COONS_T0], b.c[COONS_T1], &p[COONS_PATCH_RULED], &err),
+    assert_coons_ok(coons_patch_new_bilinear(fx_corner[0], &p[COONS_PATCH_BILINEAR], &err), &err);
+    assert_coons_ok(coons_patch_new_ruled(b.c[COONS_SIDE_T0], b.c[COONS_SIDE_T1], &p[COONS_PATCH_RULED], &err),
                     &err);
-    assert_coons_ok(coons_patch_coons(fx_curves(&b), COONS_BLEND_CUBIC, COONS_TOL_DEFAULT,
-                                      &p[COONS_PATCH_COONS], &err),
+    assert_coons_ok(coons_patch_new_coons(fx_curves(&b), COONS_BLEND_CUBIC, COONS_TOL_DEFAULT,
+                                          &p[COONS_PATCH_COONS], &err),
                     &err);
     assert_coons_ok(
-        coons_patch_hermite_coons(fx_curves(&b), NULL, &p[COONS_PATCH_HERMITE_COONS], &err),
+        coons_patch_new_hermite_coons(fx_curves(&b), NULL, &p[COONS_PATCH_HERMITE_COONS], &err),
         &err);
-    assert_coons_ok(coons_patch_bezier(net, 4, 3, &p[COONS_PATCH_BEZIER], &err), &err);
+    assert_coons_ok(coons_patch_new_bezier(net, 4, 3, &p[COONS_PATCH_BEZIER], &err), &err);
     assert_coons_ok(
-        coons_patch_bspline(2, 2, net, 4, 3, ks, NULL, NULL, &p[COONS_PATCH_BSPLINE], &err),
+        coons_patch_new_bspline(2, 2, net, 4, 3, ks, NULL, NULL, &p[COONS_PATCH_BSPLINE], &err),
         &err);
     fx_boundary_free(&b);
 }
@@ -332,10 +332,10 @@ static void test_breaks_come_from_the_rows(void **state)
         poly[6 + r] = hex[4][r];
     }
     coons_curve_free(e[0]);
-    assert_coons_ok(coons_curve_polyline(poly, 3, &e[0], &err), &err);
+    assert_coons_ok(coons_curve_new_polyline(poly, 3, &e[0], &err), &err);
     coons_body *b1 = NULL;
-    assert_coons_ok(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_LINEAR,
-                                     COONS_TOL_DEFAULT, &b1, &err),
+    assert_coons_ok(coons_body_new_body1(e, COONS_BLEND_LINEAR,
+                                         COONS_TOL_DEFAULT, &b1, &err),
                     &err);
     static const double half[3] = {0, 0.5, 1};
     expect_breaks(b1, 0, half, 3);
@@ -347,7 +347,7 @@ static void test_breaks_come_from_the_rows(void **state)
     /* a closed Coons cubic of 5 points has 5 equal segments */
     static const double P[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 1}, {-1, 0.5, 0}};
     coons_curve *cc = NULL;
-    assert_coons_ok(coons_curve_coons_cubic(P[0], 5, 1, &cc, &err), &err);
+    assert_coons_ok(coons_curve_new_coons_cubic(P[0], 5, 1, &cc, &err), &err);
     coons__breaks B = {0};
     coons__curve_breaks(cc, &B);
     assert_int_equal(B.n, 4);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
- * The model loader (coons_model_load_buffer): defaults worked out by hand,
+ * The model loader (coons_model_load_memory): defaults worked out by hand,
  * error positions (line, column in code points, JSON pointer) counted by
  * hand in the literal texts below, limits, locale independence, and a
  * failing allocator at every allocation point (COONS_E_NOMEM, no leak).
@@ -20,7 +20,7 @@
 
 static coons_status load(const char *text, coons_model **m, coons_error *err)
 {
-    return coons_model_load_buffer(text, strlen(text), "t.json", m, err);
+    return coons_model_load_memory(text, strlen(text), "t.json", NULL, m, err);
 }
 
 static void test_defaults(void **state)
@@ -313,43 +313,43 @@ static void test_limits(void **state)
     const char *t = "{\"coons\": 1, \"bodies\": [" BOX "]}";
     coons_model_load_options o = COONS_MODEL_LOAD_OPTIONS_INIT;
     o.max_bytes = strlen(t) - 1;
-    assert_int_equal(coons_model_load_buffer_opts(t, strlen(t), "t.json", &o, &m, &err),
+    assert_int_equal(coons_model_load_memory(t, strlen(t), "t.json", &o, &m, &err),
                      COONS_E_LIMIT);
     assert_non_null(strstr(err.message, "limit"));
     assert_int_equal(err.line, 0);
     o.max_bytes = strlen(t);
-    assert_coons_ok(coons_model_load_buffer_opts(t, strlen(t), "t.json", &o, &m, &err), &err);
+    assert_coons_ok(coons_model_load_memory(t, strlen(t), "t.json", &o, &m, &err), &err);
     coons_model_free(m);
 
     /* root, "coons", 1, "bodies", [ , body, "type", "body0", "corners", [ : 10 values,
      * and 8 points of 1 array + 3 numbers: 42 in all */
     coons_model_load_options v = COONS_MODEL_LOAD_OPTIONS_INIT;
     v.max_values = 41;
-    assert_int_equal(coons_model_load_buffer_opts(t, strlen(t), "t.json", &v, &m, &err),
+    assert_int_equal(coons_model_load_memory(t, strlen(t), "t.json", &v, &m, &err),
                      COONS_E_LIMIT);
     assert_non_null(strstr(err.message, "41"));
     v.max_values = 42;
-    assert_coons_ok(coons_model_load_buffer_opts(t, strlen(t), "t.json", &v, &m, &err), &err);
+    assert_coons_ok(coons_model_load_memory(t, strlen(t), "t.json", &v, &m, &err), &err);
     coons_model_free(m);
 
     /* depth: root 1, bodies 2, body 3, corners 4, point 5 */
     coons_model_load_options d = COONS_MODEL_LOAD_OPTIONS_INIT;
     d.max_depth = 4;
-    assert_int_equal(coons_model_load_buffer_opts(t, strlen(t), "t.json", &d, &m, &err),
+    assert_int_equal(coons_model_load_memory(t, strlen(t), "t.json", &d, &m, &err),
                      COONS_E_LIMIT);
     assert_string_equal(err.path, "/bodies/0/corners/0");
     assert_int_equal(err.column, 55);
     d.max_depth = 5;
-    assert_coons_ok(coons_model_load_buffer_opts(t, strlen(t), "t.json", &d, &m, &err), &err);
+    assert_coons_ok(coons_model_load_memory(t, strlen(t), "t.json", &d, &m, &err), &err);
     coons_model_free(m);
 
     coons_model_load_options p = COONS_MODEL_LOAD_OPTIONS_INIT;
     p.max_points = 7;
-    assert_int_equal(coons_model_load_buffer_opts(t, strlen(t), "t.json", &p, &m, &err),
+    assert_int_equal(coons_model_load_memory(t, strlen(t), "t.json", &p, &m, &err),
                      COONS_E_LIMIT);
     assert_string_equal(err.path, "/bodies/0/corners");
     p.max_points = 8;
-    assert_coons_ok(coons_model_load_buffer_opts(t, strlen(t), "t.json", &p, &m, &err), &err);
+    assert_coons_ok(coons_model_load_memory(t, strlen(t), "t.json", &p, &m, &err), &err);
     coons_model_free(m);
 
     /* default depth limit 64 */
@@ -375,10 +375,10 @@ static void test_not_terminated(void **state)
     memcpy(b, t, n);
     coons_error err = COONS_ERROR_INIT;
     coons_model *m = NULL;
-    assert_coons_ok(coons_model_load_buffer(b, n, NULL, &m, &err), &err);
+    assert_coons_ok(coons_model_load_memory(b, n, NULL, NULL, &m, &err), &err);
     assert_near(coons_model_tolerance(m), 0.125, 0);
     coons_model_free(m);
-    assert_int_equal(coons_model_load_buffer(b, n - 1, NULL, &m, &err), COONS_E_PARSE);
+    assert_int_equal(coons_model_load_memory(b, n - 1, NULL, NULL, &m, &err), COONS_E_PARSE);
     assert_string_equal(err.file, "<buffer>");
     free(b);
 }
@@ -388,10 +388,10 @@ static void test_file_errors(void **state)
     (void)state;
     coons_error err = COONS_ERROR_INIT;
     coons_model *m = NULL;
-    assert_int_equal(coons_model_load("/nonexistent/dir/m.json", &m, &err), COONS_E_IO);
+    assert_int_equal(coons_model_load_file("/nonexistent/dir/m.json", NULL, &m, &err), COONS_E_IO);
     assert_non_null(strstr(err.message, "No such file or directory"));
     assert_string_equal(err.file, "/nonexistent/dir/m.json");
-    assert_int_equal(coons_model_load("/", &m, &err), COONS_E_IO);
+    assert_int_equal(coons_model_load_file("/", NULL, &m, &err), COONS_E_IO);
     assert_null(m);
 }
 

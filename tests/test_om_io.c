@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* What the writers produce reads back through OpenMesh's readers
- * (coons_mesh_read) and through the test's own readers with the same
+ * (coons__mesh_read) and through the test's own readers with the same
  * vertex and face counts; OpenMesh's coordinates are the float32 roundings
  * of ours (it reads single precision), and OFF keeps the faces verbatim. */
 #define _XOPEN_SOURCE 700
+#include "coons_test_hooks.h"
 #include "io_test_util.h"
 
 static coons_mesh *hand_mesh(void)
@@ -32,7 +33,7 @@ static coons_mesh *sampled_mesh(void)
     const size_t n[3] = {3, 3, 2};
     coons_body *b;
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_bezier(&P[0][0][0][0], n, &b, &e), &e);
+    assert_coons_ok(coons_body_new_bezier(&P[0][0][0][0], n, &b, &e), &e);
     coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
     o.resolution = 9;
     coons_mesh *m;
@@ -71,7 +72,7 @@ static void check_mesh(coons_mesh *m)
         assert_coons_ok(coons_mesh_write(m, p, outs[i].format, NULL, &e), &e);
         /* OpenMesh. */
         coons_mesh *r;
-        assert_coons_ok(coons_mesh_read(p, &r, &e), &e);
+        assert_coons_ok(coons__mesh_read(p, &r, &e), &e);
         assert_int_equal(coons_mesh_triangle_count(r), nt);
         assert_int_equal(coons_mesh_vertex_count(r), nv);
         const double *rx = coons_mesh_vertices(r);

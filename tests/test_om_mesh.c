@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 #define _POSIX_C_SOURCE 200809L
 /* coons_mesh_check() with OpenMesh, on good and deliberately broken meshes,
- * and coons_mesh_read() through OpenMesh's readers. The expected counts are
+ * and coons__mesh_read() through OpenMesh's readers. The expected counts are
  * worked out by hand for each small mesh. The library must not print: stderr
  * is captured around the calls that make OpenMesh complain. */
 #include <math.h>
@@ -10,6 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "coons_test_hooks.h"
 #include "test_util.h"
 
 static const double TET_V[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -83,7 +84,7 @@ static void test_sampled_box(void **state)
     coons_body *b = NULL;
     coons_mesh *m = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_sample(b, NULL, NULL, &m, &err), &err);
     coons_mesh_report r = check(m);
     assert_true(r.closed && r.manifold && r.oriented);
@@ -239,7 +240,7 @@ static void test_read_stl_off(void **state)
     write_file(path, stl, len);
     coons_mesh *m = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_mesh_read(path, &m, &err), &err);
+    assert_coons_ok(coons__mesh_read(path, &m, &err), &err);
     assert_int_equal(coons_mesh_vertex_count(m), 4);
     assert_int_equal(coons_mesh_triangle_count(m), 4);
     assert_string_equal(coons_mesh_part_name(m, 0), "test_om_mesh_tet.stl");
@@ -255,7 +256,7 @@ static void test_read_stl_off(void **state)
                       "4 0 3 2 1\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n";
     snprintf(path, sizeof path, "%s/test_om_mesh_pyr.off", COONS_BINARY_DIR);
     write_file(path, off, strlen(off));
-    assert_coons_ok(coons_mesh_read(path, &m, &err), &err);
+    assert_coons_ok(coons__mesh_read(path, &m, &err), &err);
     assert_int_equal(coons_mesh_vertex_count(m), 5);
     assert_int_equal(coons_mesh_triangle_count(m), 6);
     r = check(m);
@@ -271,7 +272,7 @@ static void read_bad(void *arg)
     coons_error err = COONS_ERROR_INIT;
     for (int i = 0; paths[i]; i++) {
         coons_mesh *m = (coons_mesh *)arg;
-        assert_int_equal(coons_mesh_read(paths[i], &m, &err), COONS_E_IO);
+        assert_int_equal(coons__mesh_read(paths[i], &m, &err), COONS_E_IO);
         assert_null(m);
     }
 }

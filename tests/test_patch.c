@@ -26,23 +26,23 @@ static coons_hermite_options hopts(coons_twist tw)
 /* Cross curves compatible with the fixture's corner tangents and with the
  * explicit twists tw (cubic Hermite curves: value = corner tangent,
  * derivative = twist at each end). */
-static void make_cross(const fx_boundary *b, const double tw[4][3], coons_curve *cross[4])
+static void make_cross(const fx_boundary *b, double tw[4][3], coons_curve *cross[4])
 {
     coons_error err = COONS_ERROR_INIT;
     double xs[4][3], xt[4][3], r[2][3];
     for (int k = 0; k < 4; k++) {
         int a = k & 1, bb = k >> 1;
-        coons_curve_eval_derivs(b->c[bb ? COONS_T1 : COONS_T0], a, 1, r);
+        coons_curve_eval_derivs(b->c[bb ? COONS_SIDE_T1 : COONS_SIDE_T0], a, 1, r);
         memcpy(xs[k], r[1], sizeof r[1]);
-        coons_curve_eval_derivs(b->c[a ? COONS_S1 : COONS_S0], bb, 1, r);
+        coons_curve_eval_derivs(b->c[a ? COONS_SIDE_S1 : COONS_SIDE_S0], bb, 1, r);
         memcpy(xt[k], r[1], sizeof r[1]);
     }
     /* x_t(s,b): from x_t(0,b) to x_t(1,b), d/ds = x_st(0,b), x_st(1,b) */
-    assert_coons_ok(coons_curve_hermite(xt[0], tw[0], xt[1], tw[1], &cross[0], &err), &err);
-    assert_coons_ok(coons_curve_hermite(xt[2], tw[2], xt[3], tw[3], &cross[1], &err), &err);
+    assert_coons_ok(coons_curve_new_hermite(xt[0], tw[0], xt[1], tw[1], &cross[0], &err), &err);
+    assert_coons_ok(coons_curve_new_hermite(xt[2], tw[2], xt[3], tw[3], &cross[1], &err), &err);
     /* x_s(a,t): from x_s(a,0) to x_s(a,1), d/dt = x_st(a,0), x_st(a,1) */
-    assert_coons_ok(coons_curve_hermite(xs[0], tw[0], xs[2], tw[2], &cross[2], &err), &err);
-    assert_coons_ok(coons_curve_hermite(xs[1], tw[1], xs[3], tw[3], &cross[3], &err), &err);
+    assert_coons_ok(coons_curve_new_hermite(xs[0], tw[0], xs[2], tw[2], &cross[2], &err), &err);
+    assert_coons_ok(coons_curve_new_hermite(xs[1], tw[1], xs[3], tw[3], &cross[3], &err), &err);
 }
 
 /* Every Boolean-sum patch of the fixture boundary (with cross curves for
@@ -53,17 +53,17 @@ static coons_patch *make_kind(const fx_boundary *b, int kind, coons_curve *cross
     coons_error err = COONS_ERROR_INIT;
     coons_patch *p = NULL;
     if (kind == 0) {
-        assert_coons_ok(coons_patch_coons(fx_curves(b), COONS_BLEND_LINEAR, 0.0, &p, &err), &err);
+        assert_coons_ok(coons_patch_new_coons(fx_curves(b), COONS_BLEND_LINEAR, 0.0, &p, &err), &err);
     } else if (kind == 1) {
-        assert_coons_ok(coons_patch_coons(fx_curves(b), COONS_BLEND_CUBIC, 0.0, &p, &err), &err);
+        assert_coons_ok(coons_patch_new_coons(fx_curves(b), COONS_BLEND_CUBIC, 0.0, &p, &err), &err);
     } else if (kind <= 5) {
         coons_hermite_options o = hopts((coons_twist)(kind - 2));
-        assert_coons_ok(coons_patch_hermite_coons(fx_curves(b), &o, &p, &err), &err);
+        assert_coons_ok(coons_patch_new_hermite_coons(fx_curves(b), &o, &p, &err), &err);
     } else {
         coons_hermite_options o = hopts(COONS_TWIST_EXPLICIT);
-        make_cross(b, (const double(*)[3])o.twists, cross);
+        make_cross(b, o.twists, cross);
         for (int k = 0; k < 4; k++) o.cross[k] = cross[k];
-        assert_coons_ok(coons_patch_hermite_coons(fx_curves(b), &o, &p, &err), &err);
+        assert_coons_ok(coons_patch_new_hermite_coons(fx_curves(b), &o, &p, &err), &err);
     }
     return p;
 }
@@ -76,21 +76,21 @@ static void free_cross(coons_curve *cross[4])
     }
 }
 
-static void check_boundary(const coons_patch *p, const coons_curve *const c[4], double tol)
+static void check_boundary(const coons_patch *p, coons_curve *const *c, double tol)
 {
     for (int i = 0; i < 11; i++) {
         double u = par11[i], x[3], y[3];
         coons_patch_eval(p, u, 0.0, x);
-        coons_curve_eval(c[COONS_T0], u, y);
+        coons_curve_eval(c[COONS_SIDE_T0], u, y);
         assert_vec3_near(x, y, tol);
         coons_patch_eval(p, u, 1.0, x);
-        coons_curve_eval(c[COONS_T1], u, y);
+        coons_curve_eval(c[COONS_SIDE_T1], u, y);
         assert_vec3_near(x, y, tol);
         coons_patch_eval(p, 0.0, u, x);
-        coons_curve_eval(c[COONS_S0], u, y);
+        coons_curve_eval(c[COONS_SIDE_S0], u, y);
         assert_vec3_near(x, y, tol);
         coons_patch_eval(p, 1.0, u, x);
-        coons_curve_eval(c[COONS_S1], u, y);
+        coons_curve_eval(c[COONS_SIDE_S1], u, y);
         assert_vec3_near(x, y, tol);
     }
 }
@@ -104,12 +104,12 @@ static void blend_probe(coons_blend blend, double s, double *g1)
     const double O[3] = {0, 0, 0}, E[3] = {0, 0, 1}, Q[3] = {1, 0, 0.5};
     const double poly[9] = {O[0], O[1], O[2], Q[0], Q[1], Q[2], E[0], E[1], E[2]};
     coons_curve *c[4];
-    assert_coons_ok(coons_curve_line(O, O, &c[COONS_T0], &err), &err);
-    assert_coons_ok(coons_curve_line(E, E, &c[COONS_T1], &err), &err);
-    assert_coons_ok(coons_curve_line(O, E, &c[COONS_S0], &err), &err);
-    assert_coons_ok(coons_curve_polyline(poly, 3, &c[COONS_S1], &err), &err);
+    assert_coons_ok(coons_curve_new_line(O, O, &c[COONS_SIDE_T0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(E, E, &c[COONS_SIDE_T1], &err), &err);
+    assert_coons_ok(coons_curve_new_line(O, E, &c[COONS_SIDE_S0], &err), &err);
+    assert_coons_ok(coons_curve_new_polyline(poly, 3, &c[COONS_SIDE_S1], &err), &err);
     coons_patch *p = NULL;
-    assert_coons_ok(coons_patch_coons((const coons_curve *const *)c, blend, 0.0, &p, &err), &err);
+    assert_coons_ok(coons_patch_new_coons(c, blend, 0.0, &p, &err), &err);
     double x[3];
     coons_patch_eval(p, s, 0.5, x);
     assert_near(x[1], 0.0, 1e-15);
@@ -142,17 +142,17 @@ static void test_blends_sum_to_one(void **state)
     coons_error err = COONS_ERROR_INIT;
     const double c0[3] = {0.3, -1.2, 2.5};
     coons_curve *c[4];
-    for (int k = 0; k < 4; k++) assert_coons_ok(coons_curve_line(c0, c0, &c[k], &err), &err);
+    for (int k = 0; k < 4; k++) assert_coons_ok(coons_curve_new_line(c0, c0, &c[k], &err), &err);
     for (int kind = 0; kind < 6; kind++) {
         coons_patch *p = NULL;
         if (kind < 2) {
-            assert_coons_ok(coons_patch_coons((const coons_curve *const *)c, (coons_blend)kind,
-                                              0.0, &p, &err),
+            assert_coons_ok(coons_patch_new_coons(c, (coons_blend)kind,
+                                                  0.0, &p, &err),
                             &err);
         } else {
             coons_hermite_options o = hopts((coons_twist)(kind - 2));
             memset(o.twists, 0, sizeof o.twists);
-            assert_coons_ok(coons_patch_hermite_coons((const coons_curve *const *)c, &o, &p, &err),
+            assert_coons_ok(coons_patch_new_hermite_coons(c, &o, &p, &err),
                             &err);
         }
         for (int i = 0; i < 11; i++)
@@ -219,12 +219,12 @@ static void test_ruled(void **state)
     fx_boundary_make(&b);
     coons_error err = COONS_ERROR_INIT;
     coons_patch *p = NULL;
-    assert_coons_ok(coons_patch_ruled(b.c[COONS_T0], b.c[COONS_T1], &p, &err), &err);
+    assert_coons_ok(coons_patch_new_ruled(b.c[COONS_SIDE_T0], b.c[COONS_SIDE_T1], &p, &err), &err);
     assert_int_equal(coons_patch_get_type(p), COONS_PATCH_RULED);
     for (int i = 0; i < 11; i++) {
         double u = par11[i], x[3], c0[3], c1[3];
-        coons_curve_eval(b.c[COONS_T0], u, c0);
-        coons_curve_eval(b.c[COONS_T1], u, c1);
+        coons_curve_eval(b.c[COONS_SIDE_T0], u, c0);
+        coons_curve_eval(b.c[COONS_SIDE_T1], u, c1);
         coons_patch_eval(p, u, 0.0, x);
         assert_vec3_near(x, c0, 1e-15);
         coons_patch_eval(p, u, 1.0, x);
@@ -246,17 +246,17 @@ static void test_bilinear_equals_coons_of_lines(void **state)
     (void)state;
     coons_error err = COONS_ERROR_INIT;
     coons_patch *p = NULL, *q = NULL;
-    assert_coons_ok(coons_patch_bilinear(fx_corner, &p, &err), &err);
+    assert_coons_ok(coons_patch_new_bilinear(fx_corner[0], &p, &err), &err);
     assert_int_equal(coons_patch_get_type(p), COONS_PATCH_BILINEAR);
     coons_curve *c[4];
-    assert_coons_ok(coons_curve_line(fx_corner[0], fx_corner[1], &c[COONS_T0], &err), &err);
-    assert_coons_ok(coons_curve_line(fx_corner[2], fx_corner[3], &c[COONS_T1], &err), &err);
-    assert_coons_ok(coons_curve_line(fx_corner[0], fx_corner[2], &c[COONS_S0], &err), &err);
-    assert_coons_ok(coons_curve_line(fx_corner[1], fx_corner[3], &c[COONS_S1], &err), &err);
-    assert_coons_ok(coons_patch_coons((const coons_curve *const *)c, COONS_BLEND_LINEAR, 0.0,
-                                      &q, &err),
+    assert_coons_ok(coons_curve_new_line(fx_corner[0], fx_corner[1], &c[COONS_SIDE_T0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(fx_corner[2], fx_corner[3], &c[COONS_SIDE_T1], &err), &err);
+    assert_coons_ok(coons_curve_new_line(fx_corner[0], fx_corner[2], &c[COONS_SIDE_S0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(fx_corner[1], fx_corner[3], &c[COONS_SIDE_S1], &err), &err);
+    assert_coons_ok(coons_patch_new_coons(c, COONS_BLEND_LINEAR, 0.0,
+                                          &q, &err),
                     &err);
-    check_boundary(p, (const coons_curve *const *)c, 1e-15);
+    check_boundary(p, c, 1e-15);
     for (int k = 0; k < 4; k++) {
         double x[3];
         coons_patch_eval(p, k & 1, k >> 1, x);
@@ -286,18 +286,18 @@ static void test_ruled_equals_coons_with_straight_sides(void **state)
     fx_boundary b;
     fx_boundary_make(&b);
     coons_error err = COONS_ERROR_INIT;
-    coons_curve *c[4] = {b.c[COONS_T0], b.c[COONS_T1], NULL, NULL};
+    coons_curve *c[4] = {b.c[COONS_SIDE_T0], b.c[COONS_SIDE_T1], NULL, NULL};
     double a0[3], a1[3], b0[3], b1[3];
-    coons_curve_eval(b.c[COONS_T0], 0.0, a0);
-    coons_curve_eval(b.c[COONS_T0], 1.0, a1);
-    coons_curve_eval(b.c[COONS_T1], 0.0, b0);
-    coons_curve_eval(b.c[COONS_T1], 1.0, b1);
-    assert_coons_ok(coons_curve_line(a0, b0, &c[COONS_S0], &err), &err);
-    assert_coons_ok(coons_curve_line(a1, b1, &c[COONS_S1], &err), &err);
+    coons_curve_eval(b.c[COONS_SIDE_T0], 0.0, a0);
+    coons_curve_eval(b.c[COONS_SIDE_T0], 1.0, a1);
+    coons_curve_eval(b.c[COONS_SIDE_T1], 0.0, b0);
+    coons_curve_eval(b.c[COONS_SIDE_T1], 1.0, b1);
+    assert_coons_ok(coons_curve_new_line(a0, b0, &c[COONS_SIDE_S0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(a1, b1, &c[COONS_SIDE_S1], &err), &err);
     coons_patch *p = NULL, *q = NULL;
-    assert_coons_ok(coons_patch_ruled(c[0], c[1], &p, &err), &err);
-    assert_coons_ok(coons_patch_coons((const coons_curve *const *)c, COONS_BLEND_LINEAR, 0.0,
-                                      &q, &err),
+    assert_coons_ok(coons_patch_new_ruled(c[0], c[1], &p, &err), &err);
+    assert_coons_ok(coons_patch_new_coons(c, COONS_BLEND_LINEAR, 0.0,
+                                          &q, &err),
                     &err);
     for (int i = 0; i < 11; i++)
         for (int j = 0; j < 11; j++) {
@@ -372,14 +372,14 @@ static void test_hermite_reproduces_bicubic(void **state)
             P[i][j][2] = sin(1.0 + i * 1.3 + j * 0.7);
         }
     coons_patch *bez = NULL, *h = NULL;
-    assert_coons_ok(coons_patch_bezier(&P[0][0][0], 4, 4, &bez, &err), &err);
+    assert_coons_ok(coons_patch_new_bezier(&P[0][0][0], 4, 4, &bez, &err), &err);
     double e[4][4][3], xd[4][4][3];
     for (int m = 0; m < 4; m++)
         for (int k = 0; k < 3; k++) {
-            e[COONS_T0][m][k] = P[m][0][k];
-            e[COONS_T1][m][k] = P[m][3][k];
-            e[COONS_S0][m][k] = P[0][m][k];
-            e[COONS_S1][m][k] = P[3][m][k];
+            e[COONS_SIDE_T0][m][k] = P[m][0][k];
+            e[COONS_SIDE_T1][m][k] = P[m][3][k];
+            e[COONS_SIDE_S0][m][k] = P[0][m][k];
+            e[COONS_SIDE_S1][m][k] = P[3][m][k];
             xd[0][m][k] = 3 * (P[m][1][k] - P[m][0][k]);
             xd[1][m][k] = 3 * (P[m][3][k] - P[m][2][k]);
             xd[2][m][k] = 3 * (P[1][m][k] - P[0][m][k]);
@@ -387,8 +387,8 @@ static void test_hermite_reproduces_bicubic(void **state)
         }
     coons_curve *c[4], *cr[4];
     for (int k = 0; k < 4; k++) {
-        assert_coons_ok(coons_curve_bezier(&e[k][0][0], 4, &c[k], &err), &err);
-        assert_coons_ok(coons_curve_bezier(&xd[k][0][0], 4, &cr[k], &err), &err);
+        assert_coons_ok(coons_curve_new_bezier(&e[k][0][0], 4, &c[k], &err), &err);
+        assert_coons_ok(coons_curve_new_bezier(&xd[k][0][0], 4, &cr[k], &err), &err);
     }
     coons_hermite_options o = COONS_HERMITE_OPTIONS_INIT;
     o.twist = COONS_TWIST_EXPLICIT;
@@ -398,7 +398,7 @@ static void test_hermite_reproduces_bicubic(void **state)
             o.twists[k][q] = 9 * (P[i + 1][j + 1][q] - P[i + 1][j][q] - P[i][j + 1][q] + P[i][j][q]);
         o.cross[k] = cr[k];
     }
-    assert_coons_ok(coons_patch_hermite_coons((const coons_curve *const *)c, &o, &h, &err), &err);
+    assert_coons_ok(coons_patch_new_hermite_coons(c, &o, &h, &err), &err);
     for (int i = 0; i < 11; i++)
         for (int j = 0; j < 11; j++) {
             double d1[6][3], d2[6][3];
@@ -493,8 +493,8 @@ static void test_hermite_zero_equals_cubic_coons(void **state)
     fx_boundary_make(&b);
     coons_error err = COONS_ERROR_INIT;
     coons_patch *h = NULL, *c = NULL;
-    assert_coons_ok(coons_patch_hermite_coons(fx_curves(&b), NULL, &h, &err), &err);
-    assert_coons_ok(coons_patch_coons(fx_curves(&b), COONS_BLEND_CUBIC, 0.0, &c, &err), &err);
+    assert_coons_ok(coons_patch_new_hermite_coons(fx_curves(&b), NULL, &h, &err), &err);
+    assert_coons_ok(coons_patch_new_coons(fx_curves(&b), COONS_BLEND_CUBIC, 0.0, &c, &err), &err);
     for (int i = 0; i < 11; i++)
         for (int j = 0; j < 11; j++) {
             double d1[6][3], d2[6][3];
@@ -523,10 +523,10 @@ static void test_derivs_fd(void **state)
         free_cross(cr);
     }
     coons_patch *p = NULL;
-    assert_coons_ok(coons_patch_ruled(b.c[COONS_S0], b.c[COONS_T1], &p, &err), &err);
+    assert_coons_ok(coons_patch_new_ruled(b.c[COONS_SIDE_S0], b.c[COONS_SIDE_T1], &p, &err), &err);
     fx_check_derivs_fd(p, 1e-6);
     coons_patch_free(p);
-    assert_coons_ok(coons_patch_bilinear(fx_corner, &p, &err), &err);
+    assert_coons_ok(coons_patch_new_bilinear(fx_corner[0], &p, &err), &err);
     fx_check_derivs_fd(p, 1e-6);
     coons_patch_free(p);
     fx_boundary_free(&b);
@@ -547,14 +547,14 @@ static void test_grid_equals_pointwise(void **state)
         free_cross(cr);
     }
     coons_patch *p = NULL;
-    assert_coons_ok(coons_patch_ruled(b.c[COONS_S0], b.c[COONS_T1], &p, &err), &err);
+    assert_coons_ok(coons_patch_new_ruled(b.c[COONS_SIDE_S0], b.c[COONS_SIDE_T1], &p, &err), &err);
     fx_check_grid(p);
     /* empty grids are fine, NULL arrays are not */
     assert_int_equal(coons_patch_eval_grid(p, NULL, 0, NULL, 0, NULL, &err), COONS_OK);
     double t = 0.5, out[3];
     assert_int_equal(coons_patch_eval_grid(p, NULL, 1, &t, 1, out, &err), COONS_E_INVALID);
     coons_patch_free(p);
-    assert_coons_ok(coons_patch_bilinear(fx_corner, &p, &err), &err);
+    assert_coons_ok(coons_patch_new_bilinear(fx_corner[0], &p, &err), &err);
     fx_check_grid(p);
     coons_patch_free(p);
     fx_boundary_free(&b);
@@ -629,10 +629,10 @@ static void lines_with_gap(int k, coons_curve *c[4])
     memcpy(T1b, X[3], sizeof T1b);
     double *moved = k == 0 ? T0a : k == 1 ? T0b : k == 2 ? T1a : T1b;
     moved[2] += 0.25;
-    assert_coons_ok(coons_curve_line(T0a, T0b, &c[COONS_T0], &err), &err);
-    assert_coons_ok(coons_curve_line(T1a, T1b, &c[COONS_T1], &err), &err);
-    assert_coons_ok(coons_curve_line(X[0], X[2], &c[COONS_S0], &err), &err);
-    assert_coons_ok(coons_curve_line(X[1], X[3], &c[COONS_S1], &err), &err);
+    assert_coons_ok(coons_curve_new_line(T0a, T0b, &c[COONS_SIDE_T0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(T1a, T1b, &c[COONS_SIDE_T1], &err), &err);
+    assert_coons_ok(coons_curve_new_line(X[0], X[2], &c[COONS_SIDE_S0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(X[1], X[3], &c[COONS_SIDE_S1], &err), &err);
 }
 
 /* Given boundary curves that miss one corner by 0.25, then construction
@@ -652,18 +652,18 @@ static void test_corner_mismatch_names_corner(void **state)
         lines_with_gap(k, c);
         coons_error err = COONS_ERROR_INIT;
         coons_patch *p = (coons_patch *)&err; /* must be reset to NULL */
-        assert_int_equal(coons_patch_coons((const coons_curve *const *)c, COONS_BLEND_LINEAR,
-                                           0.0, &p, &err),
+        assert_int_equal(coons_patch_new_coons(c, COONS_BLEND_LINEAR,
+                                               0.0, &p, &err),
                          COONS_E_INCOMPATIBLE);
         assert_null(p);
         assert_int_equal(err.code, COONS_E_INCOMPATIBLE);
         if (!strstr(err.message, want[k])) fail_msg("message '%s' lacks '%s'", err.message, want[k]);
-        assert_int_equal(coons_patch_hermite_coons((const coons_curve *const *)c, NULL, &p, &err),
+        assert_int_equal(coons_patch_new_hermite_coons(c, NULL, &p, &err),
                          COONS_E_INCOMPATIBLE);
         if (!strstr(err.message, want[k])) fail_msg("message '%s' lacks '%s'", err.message, want[k]);
         /* an absolute tolerance above the gap accepts it and averages the corner */
-        assert_coons_ok(coons_patch_coons((const coons_curve *const *)c, COONS_BLEND_LINEAR, 0.3,
-                                          &p, &err),
+        assert_coons_ok(coons_patch_new_coons(c, COONS_BLEND_LINEAR, 0.3,
+                                              &p, &err),
                         &err);
         double x[3], m[3];
         memcpy(m, fx_corner[k], sizeof m);
@@ -685,17 +685,17 @@ static void test_default_tolerance(void **state)
     memcpy(X, fx_corner, sizeof X);
     double moved[3] = {X[1][0], X[1][1], X[1][2] + 1e-6};
     coons_curve *c[4];
-    assert_coons_ok(coons_curve_line(X[0], moved, &c[COONS_T0], &err), &err);
-    assert_coons_ok(coons_curve_line(X[2], X[3], &c[COONS_T1], &err), &err);
-    assert_coons_ok(coons_curve_line(X[0], X[2], &c[COONS_S0], &err), &err);
-    assert_coons_ok(coons_curve_line(X[1], X[3], &c[COONS_S1], &err), &err);
+    assert_coons_ok(coons_curve_new_line(X[0], moved, &c[COONS_SIDE_T0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(X[2], X[3], &c[COONS_SIDE_T1], &err), &err);
+    assert_coons_ok(coons_curve_new_line(X[0], X[2], &c[COONS_SIDE_S0], &err), &err);
+    assert_coons_ok(coons_curve_new_line(X[1], X[3], &c[COONS_SIDE_S1], &err), &err);
     coons_patch *p = NULL;
-    assert_int_equal(coons_patch_coons((const coons_curve *const *)c, COONS_BLEND_CUBIC,
-                                       COONS_TOL_DEFAULT, &p, &err),
+    assert_int_equal(coons_patch_new_coons(c, COONS_BLEND_CUBIC,
+                                           COONS_TOL_DEFAULT, &p, &err),
                      COONS_E_INCOMPATIBLE);
     assert_non_null(strstr(err.message, "corner (s=1,t=0)"));
-    assert_coons_ok(coons_patch_coons((const coons_curve *const *)c, COONS_BLEND_CUBIC, 1e-5, &p,
-                                      &err),
+    assert_coons_ok(coons_patch_new_coons(c, COONS_BLEND_CUBIC, 1e-5, &p,
+                                          &err),
                     &err);
     coons_patch_free(p);
     for (int q = 0; q < 4; q++) coons_curve_free(c[q]);
@@ -711,23 +711,23 @@ static void test_cross_mismatch(void **state)
     coons_error err = COONS_ERROR_INIT;
     coons_hermite_options o = hopts(COONS_TWIST_EXPLICIT);
     coons_curve *cr[4] = {0};
-    make_cross(&b, (const double(*)[3])o.twists, cr);
+    make_cross(&b, o.twists, cr);
     /* replace cross s1 = x_s(1,t) by one whose start is off by 0.5 */
     double xs[2][3], xe[2][3];
-    coons_curve_eval_derivs(b.c[COONS_T0], 1.0, 1, xs);
-    coons_curve_eval_derivs(b.c[COONS_T1], 1.0, 1, xe);
+    coons_curve_eval_derivs(b.c[COONS_SIDE_T0], 1.0, 1, xs);
+    coons_curve_eval_derivs(b.c[COONS_SIDE_T1], 1.0, 1, xe);
     xs[1][0] += 0.5;
     coons_curve_free(cr[3]);
-    assert_coons_ok(coons_curve_hermite(xs[1], o.twists[1], xe[1], o.twists[3], &cr[3], &err), &err);
+    assert_coons_ok(coons_curve_new_hermite(xs[1], o.twists[1], xe[1], o.twists[3], &cr[3], &err), &err);
     for (int k = 0; k < 4; k++) o.cross[k] = cr[k];
     coons_patch *p = NULL;
-    assert_int_equal(coons_patch_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INCOMPATIBLE);
+    assert_int_equal(coons_patch_new_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INCOMPATIBLE);
     assert_null(p);
     const char *want = "corner (s=1,t=0): cross s1(0) and the boundary tangent t0'(1) are 0.5 apart";
     if (!strstr(err.message, want)) fail_msg("message '%s' lacks '%s'", err.message, want);
     /* three cross curves are not allowed */
     o.cross[3] = NULL;
-    assert_int_equal(coons_patch_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
     free_cross(cr);
     fx_boundary_free(&b);
 }
@@ -743,41 +743,41 @@ static void test_invalid_arguments(void **state)
     double bad[4][3];
     memcpy(bad, fx_corner, sizeof bad);
     bad[3][1] = NAN;
-    assert_int_equal(coons_patch_bilinear((const double(*)[3])bad, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bilinear(bad[0], &p, &err), COONS_E_INVALID);
     assert_null(p);
     bad[3][1] = INFINITY;
-    assert_int_equal(coons_patch_bilinear((const double(*)[3])bad, &p, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_bilinear(NULL, &p, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_bilinear(fx_corner, NULL, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_ruled(b.c[0], NULL, &p, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_ruled(NULL, b.c[0], &p, &err), COONS_E_INVALID);
-    const coons_curve *missing[4] = {b.c[0], b.c[1], NULL, b.c[3]};
-    assert_int_equal(coons_patch_coons(missing, COONS_BLEND_LINEAR, 0.0, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bilinear(bad[0], &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bilinear(NULL, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bilinear(fx_corner[0], NULL, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_ruled(b.c[0], NULL, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_ruled(NULL, b.c[0], &p, &err), COONS_E_INVALID);
+    coons_curve *missing[4] = {b.c[0], b.c[1], NULL, b.c[3]};
+    assert_int_equal(coons_patch_new_coons(missing, COONS_BLEND_LINEAR, 0.0, &p, &err), COONS_E_INVALID);
     assert_non_null(strstr(err.message, "s0"));
-    assert_int_equal(coons_patch_coons(NULL, COONS_BLEND_LINEAR, 0.0, &p, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_hermite_coons(missing, NULL, &p, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_coons(fx_curves(&b), (coons_blend)7, 0.0, &p, &err),
+    assert_int_equal(coons_patch_new_coons(NULL, COONS_BLEND_LINEAR, 0.0, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_hermite_coons(missing, NULL, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_coons(fx_curves(&b), (coons_blend)7, 0.0, &p, &err),
                      COONS_E_INVALID);
-    assert_int_equal(coons_patch_coons(fx_curves(&b), COONS_BLEND_LINEAR, -1.0, &p, &err),
+    assert_int_equal(coons_patch_new_coons(fx_curves(&b), COONS_BLEND_LINEAR, -1.0, &p, &err),
                      COONS_E_INVALID);
-    assert_int_equal(coons_patch_coons(fx_curves(&b), COONS_BLEND_LINEAR, NAN, &p, &err),
+    assert_int_equal(coons_patch_new_coons(fx_curves(&b), COONS_BLEND_LINEAR, NAN, &p, &err),
                      COONS_E_INVALID);
     coons_hermite_options o = COONS_HERMITE_OPTIONS_INIT;
     o.version = 99;
-    assert_int_equal(coons_patch_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
     o = hopts(COONS_TWIST_EXPLICIT);
     o.twists[2][0] = NAN;
-    assert_int_equal(coons_patch_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
     o = hopts(COONS_TWIST_ZERO);
     o.twist = (coons_twist)9;
-    assert_int_equal(coons_patch_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
     o.twist = COONS_TWIST_ZERO;
     o.tol = -1.0;
-    assert_int_equal(coons_patch_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_hermite_coons(fx_curves(&b), &o, &p, &err), COONS_E_INVALID);
     assert_null(p);
     assert_int_equal(coons_patch_copy(NULL, &p, &err), COONS_E_INVALID);
     /* NULL error record is allowed */
-    assert_int_equal(coons_patch_bilinear(NULL, &p, NULL), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bilinear(NULL, &p, NULL), COONS_E_INVALID);
     coons_patch_free(NULL);
     fx_boundary_free(&b);
 }

@@ -18,42 +18,42 @@ typedef coons_status (*build_fn)(ctx *c, coons_patch **out, coons_error *err);
 static coons_status b_bilinear(ctx *c, coons_patch **out, coons_error *err)
 {
     (void)c;
-    return coons_patch_bilinear(fx_corner, out, err);
+    return coons_patch_new_bilinear(fx_corner[0], out, err);
 }
 static coons_status b_ruled(ctx *c, coons_patch **out, coons_error *err)
 {
-    return coons_patch_ruled(c->b.c[COONS_T0], c->b.c[COONS_S0], out, err);
+    return coons_patch_new_ruled(c->b.c[COONS_SIDE_T0], c->b.c[COONS_SIDE_S0], out, err);
 }
 static coons_status b_coons(ctx *c, coons_patch **out, coons_error *err)
 {
-    return coons_patch_coons(fx_curves(&c->b), COONS_BLEND_CUBIC, 0.0, out, err);
+    return coons_patch_new_coons(fx_curves(&c->b), COONS_BLEND_CUBIC, 0.0, out, err);
 }
 static coons_status b_hermite(ctx *c, coons_patch **out, coons_error *err)
 {
     coons_hermite_options o = COONS_HERMITE_OPTIONS_INIT;
     o.twist = COONS_TWIST_ADINI;
-    return coons_patch_hermite_coons(fx_curves(&c->b), &o, out, err);
+    return coons_patch_new_hermite_coons(fx_curves(&c->b), &o, out, err);
 }
 static coons_status b_hermite_cross(ctx *c, coons_patch **out, coons_error *err)
 {
     coons_hermite_options o = COONS_HERMITE_OPTIONS_INIT;
     for (int k = 0; k < 4; k++) o.cross[k] = c->cross[k];
     o.tol = 1e6; /* only allocation is under test here */
-    return coons_patch_hermite_coons(fx_curves(&c->b), &o, out, err);
+    return coons_patch_new_hermite_coons(fx_curves(&c->b), &o, out, err);
 }
 static coons_status b_bezier(ctx *c, coons_patch **out, coons_error *err)
 {
-    return coons_patch_bezier(&c->net[0][0][0], 4, 5, out, err);
+    return coons_patch_new_bezier(&c->net[0][0][0], 4, 5, out, err);
 }
 static coons_status b_bspline(ctx *c, coons_patch **out, coons_error *err)
 {
-    return coons_patch_bspline(2, 3, &c->net[0][0][0], 4, 5, NULL, NULL, NULL, out, err);
+    return coons_patch_new_bspline(2, 3, &c->net[0][0][0], 4, 5, NULL, NULL, NULL, out, err);
 }
 static coons_status b_nurbs(ctx *c, coons_patch **out, coons_error *err)
 {
     const double ks[7] = {0, 0, 0, 0.3, 1, 1, 1};
     const double kt[9] = {0, 0, 0, 0, 2, 5, 5, 5, 5};
-    return coons_patch_bspline(2, 3, &c->net[0][0][0], 4, 5, ks, kt, &c->w[0][0], out, err);
+    return coons_patch_new_bspline(2, 3, &c->net[0][0][0], 4, 5, ks, kt, &c->w[0][0], out, err);
 }
 static coons_status b_copy(ctx *c, coons_patch **out, coons_error *err)
 {
@@ -94,7 +94,7 @@ static void ctx_make(ctx *c)
     coons_error err = COONS_ERROR_INIT;
     const double v[3] = {0.1, 0.2, 0.3}, w[3] = {-0.1, 0.0, 0.4};
     for (int k = 0; k < 4; k++)
-        assert_coons_ok(coons_curve_line(v, w, &c->cross[k], &err), &err);
+        assert_coons_ok(coons_curve_new_line(v, w, &c->cross[k], &err), &err);
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 5; j++) {
             c->net[i][j][0] = i;

@@ -34,8 +34,8 @@ static coons_patch *make_sphere(void)
         }
     coons_error err = COONS_ERROR_INIT;
     coons_patch *p = NULL;
-    assert_coons_ok(coons_patch_bspline(2, 2, &P[0][0][0], 5, 9, pk, circ_knots, &W[0][0], &p,
-                                        &err),
+    assert_coons_ok(coons_patch_new_bspline(2, 2, &P[0][0][0], 5, 9, pk, circ_knots, &W[0][0], &p,
+                                            &err),
                     &err);
     return p;
 }
@@ -53,8 +53,8 @@ static coons_patch *make_cylinder(void)
         }
     coons_error err = COONS_ERROR_INIT;
     coons_patch *p = NULL;
-    assert_coons_ok(coons_patch_bspline(1, 2, &P[0][0][0], 2, 9, NULL, circ_knots, &W[0][0], &p,
-                                        &err),
+    assert_coons_ok(coons_patch_new_bspline(1, 2, &P[0][0][0], 2, 9, NULL, circ_knots, &W[0][0], &p,
+                                            &err),
                     &err);
     return p;
 }
@@ -130,10 +130,10 @@ static void test_bezier_surface(void **state)
     double P[4][5][3];
     net(P);
     coons_patch *b = NULL, *s = NULL;
-    assert_coons_ok(coons_patch_bezier(&P[0][0][0], 4, 5, &b, &err), &err);
+    assert_coons_ok(coons_patch_new_bezier(&P[0][0][0], 4, 5, &b, &err), &err);
     assert_int_equal(coons_patch_get_type(b), COONS_PATCH_BEZIER);
     const double ks[8] = {0, 0, 0, 0, 1, 1, 1, 1}, kt[10] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1};
-    assert_coons_ok(coons_patch_bspline(3, 4, &P[0][0][0], 4, 5, ks, kt, NULL, &s, &err), &err);
+    assert_coons_ok(coons_patch_new_bspline(3, 4, &P[0][0][0], 4, 5, ks, kt, NULL, &s, &err), &err);
     for (int i = 0; i < 11; i++)
         for (int j = 0; j < 11; j++) {
             double d1[6][3], d2[6][3];
@@ -149,7 +149,7 @@ static void test_bezier_surface(void **state)
     for (int m = 0; m < 5; m++) memcpy(e[3][m], P[3][m], sizeof e[3][m]);
     coons_curve *c[4];
     for (int k = 0; k < 4; k++)
-        assert_coons_ok(coons_curve_bezier(&e[k][0][0], k < 2 ? 4 : 5, &c[k], &err), &err);
+        assert_coons_ok(coons_curve_new_bezier(&e[k][0][0], k < 2 ? 4 : 5, &c[k], &err), &err);
     for (int i = 0; i < 11; i++) {
         double u = par11[i], x[3], y[3];
         coons_patch_eval(b, u, 0.0, x);
@@ -195,7 +195,7 @@ static void test_bspline_surface(void **state)
      * default clamped knots. */
     const double ks[10] = {-1, -1, -1, -1, 0.7, 2.4, 3, 3, 3, 3};
     coons_patch *p = NULL;
-    assert_coons_ok(coons_patch_bspline(3, 2, &P[0][0][0], NS, NT, ks, NULL, &W[0][0], &p, &err),
+    assert_coons_ok(coons_patch_new_bspline(3, 2, &P[0][0][0], NS, NT, ks, NULL, &W[0][0], &p, &err),
                     &err);
     double row[NS][3], rw[NS], col[NT][3], cw[NT];
     for (int i = 0; i < NS; i++) {
@@ -207,8 +207,8 @@ static void test_bspline_surface(void **state)
         cw[j] = W[0][j];
     }
     coons_curve *t1 = NULL, *s0 = NULL;
-    assert_coons_ok(coons_curve_bspline(3, &row[0][0], NS, ks, rw, &t1, &err), &err);
-    assert_coons_ok(coons_curve_bspline(2, &col[0][0], NT, NULL, cw, &s0, &err), &err);
+    assert_coons_ok(coons_curve_new_bspline(3, &row[0][0], NS, ks, rw, &t1, &err), &err);
+    assert_coons_ok(coons_curve_new_bspline(2, &col[0][0], NT, NULL, cw, &s0, &err), &err);
     for (int i = 0; i < 11; i++) {
         double u = par11[i], x[3], y[3], d[6][3], cd[3][3];
         coons_patch_eval(p, u, 1.0, x);
@@ -255,14 +255,14 @@ static void test_bspline_bilinear(void **state)
     (void)state;
     coons_error err = COONS_ERROR_INIT;
     coons_patch *a = NULL, *b = NULL;
-    assert_coons_ok(coons_patch_bilinear(fx_corner, &a, &err), &err);
+    assert_coons_ok(coons_patch_new_bilinear(fx_corner[0], &a, &err), &err);
     /* points[(i*nt + j)]: i along s: X00, X01, X10, X11 */
     double P[4][3];
     memcpy(P[0], fx_corner[0], sizeof P[0]);
     memcpy(P[1], fx_corner[2], sizeof P[1]);
     memcpy(P[2], fx_corner[1], sizeof P[2]);
     memcpy(P[3], fx_corner[3], sizeof P[3]);
-    assert_coons_ok(coons_patch_bspline(1, 1, &P[0][0], 2, 2, NULL, NULL, NULL, &b, &err), &err);
+    assert_coons_ok(coons_patch_new_bspline(1, 1, &P[0][0], 2, 2, NULL, NULL, NULL, &b, &err), &err);
     for (int i = 0; i < 11; i++)
         for (int j = 0; j < 11; j++) {
             double x[3], y[3];
@@ -285,50 +285,50 @@ static void test_tensor_invalid(void **state)
     net(P);
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 5; j++) W[i][j] = 1.0;
-    assert_int_equal(coons_patch_bezier(&P[0][0][0], 1, 5, &p, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_bezier(NULL, 4, 5, &p, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_bezier(&P[0][0][0], 4, 5, NULL, &err), COONS_E_INVALID);
-    assert_int_equal(coons_patch_bezier(&P[0][0][0], COONS_MAX_DEGREE + 2, 2, &p, &err),
+    assert_int_equal(coons_patch_new_bezier(&P[0][0][0], 1, 5, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bezier(NULL, 4, 5, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bezier(&P[0][0][0], 4, 5, NULL, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bezier(&P[0][0][0], COONS_SPLINE_MAX_DEGREE + 2, 2, &p, &err),
                      COONS_E_LIMIT);
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 1000001, 1000001, NULL, NULL, NULL,
-                                         &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 1000001, 1000001, NULL, NULL, NULL,
+                                             &p, &err),
                      COONS_E_LIMIT);
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 2000, 501, NULL, NULL, NULL, &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 2000, 501, NULL, NULL, NULL, &p, &err),
                      COONS_E_LIMIT);
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], (size_t)-1 / 2, 4, NULL, NULL, NULL,
-                                         &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], (size_t)-1 / 2, 4, NULL, NULL, NULL,
+                                             &p, &err),
                      COONS_E_LIMIT);
-    assert_int_equal(coons_patch_bspline(0, 2, &P[0][0][0], 4, 5, NULL, NULL, NULL, &p, &err),
+    assert_int_equal(coons_patch_new_bspline(0, 2, &P[0][0][0], 4, 5, NULL, NULL, NULL, &p, &err),
                      COONS_E_INVALID);
-    assert_int_equal(coons_patch_bspline(4, 2, &P[0][0][0], 4, 5, NULL, NULL, NULL, &p, &err),
+    assert_int_equal(coons_patch_new_bspline(4, 2, &P[0][0][0], 4, 5, NULL, NULL, NULL, &p, &err),
                      COONS_E_INVALID);
-    assert_int_equal(coons_patch_bspline(2, COONS_MAX_DEGREE + 1, &P[0][0][0], 4, 5, NULL, NULL,
-                                         NULL, &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, COONS_SPLINE_MAX_DEGREE + 1, &P[0][0][0], 4, 5, NULL, NULL,
+                                             NULL, &p, &err),
                      COONS_E_INVALID);
     P[2][3][1] = NAN;
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, NULL, &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, NULL, &p, &err),
                      COONS_E_INVALID);
     assert_non_null(strstr(err.message, "[2][3]"));
-    assert_int_equal(coons_patch_bezier(&P[0][0][0], 4, 5, &p, &err), COONS_E_INVALID);
+    assert_int_equal(coons_patch_new_bezier(&P[0][0][0], 4, 5, &p, &err), COONS_E_INVALID);
     net(P);
     W[1][4] = 0.0;
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
                      COONS_E_INVALID);
     assert_non_null(strstr(err.message, "[1][4]"));
     W[1][4] = -2.0;
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
                      COONS_E_INVALID);
     W[1][4] = NAN;
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
                      COONS_E_INVALID);
     W[1][4] = INFINITY;
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 4, 5, NULL, NULL, &W[0][0], &p, &err),
                      COONS_E_INVALID);
     const double dec[7] = {0, 0, 0, 2, 1, 3, 3};
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 4, 5, dec, NULL, NULL, &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 4, 5, dec, NULL, NULL, &p, &err),
                      COONS_E_INVALID);
     const double empty[8] = {0, 0, 0, 0, 0, 1, 1, 1};
-    assert_int_equal(coons_patch_bspline(2, 2, &P[0][0][0], 4, 5, NULL, empty, NULL, &p, &err),
+    assert_int_equal(coons_patch_new_bspline(2, 2, &P[0][0][0], 4, 5, NULL, empty, NULL, &p, &err),
                      COONS_E_INVALID);
     assert_null(p);
 }

@@ -174,7 +174,7 @@ static coons_body *box_body(double lx, double ly, double lz, int mirror)
             }
     coons_body *b = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     return b;
 }
 
@@ -198,7 +198,7 @@ static coons_body *pillow(double bulge, int mirror)
     size_t n[3] = {3, 3, 3};
     coons_body *b = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_bezier(pts, n, &b, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(pts, n, &b, &err), &err);
     return b;
 }
 
@@ -233,7 +233,7 @@ static coons_body *cone(void)
     size_t n[3] = {3, 3, 2};
     coons_body *b = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_bezier(pts, n, &b, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(pts, n, &b, &err), &err);
     return b;
 }
 
@@ -252,7 +252,7 @@ static coons_body *chisel(void)
     size_t n[3] = {3, 3, 3};
     coons_body *b = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_bezier(pts, n, &b, &err), &err);
+    assert_coons_ok(coons_body_new_bezier(pts, n, &b, &err), &err);
     return b;
 }
 
@@ -273,7 +273,7 @@ static coons_body *ring(void)
                 pts[i][1] = rad[j] * oct[i][1];
                 pts[i][2] = hgt[k];
             }
-            assert_coons_ok(coons_curve_coons_cubic(&pts[0][0], 8, 1, &e[2 * j + k], &err), &err);
+            assert_coons_ok(coons_curve_new_coons_cubic(&pts[0][0], 8, 1, &e[2 * j + k], &err), &err);
         }
     /* the closed curves start (and end) at (C0 P7 + C1 P0 + C2 P1 + C3 P2) */
     double a[2][2][3];
@@ -281,13 +281,13 @@ static coons_body *ring(void)
         for (int k = 0; k < 2; k++) coons_curve_eval(e[2 * j + k], 0.0, a[j][k]);
     for (int i = 0; i < 2; i++)
         for (int k = 0; k < 2; k++) /* v edges: C(i, v, k) from outer (j=0) to inner */
-            assert_coons_ok(coons_curve_line(a[0][k], a[1][k], &e[4 + 2 * i + k], &err), &err);
+            assert_coons_ok(coons_curve_new_line(a[0][k], a[1][k], &e[4 + 2 * i + k], &err), &err);
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++) /* w edges: C(i, j, w) */
-            assert_coons_ok(coons_curve_line(a[j][0], a[j][1], &e[8 + 2 * i + j], &err), &err);
+            assert_coons_ok(coons_curve_new_line(a[j][0], a[j][1], &e[8 + 2 * i + j], &err), &err);
     coons_body *b = NULL;
-    assert_coons_ok(coons_body_body1((const coons_curve *const *)e, COONS_BLEND_LINEAR, 0, &b,
-                                     &err),
+    assert_coons_ok(coons_body_new_body1(e, COONS_BLEND_LINEAR, 0, &b,
+                                         &err),
                     &err);
     for (int i = 0; i < 12; i++) coons_curve_free(e[i]);
     return b;
@@ -376,7 +376,7 @@ static void test_pyramid_apex(void **state)
     coons_body *b = NULL;
     coons_mesh *m = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_sample(b, NULL, NULL, &m, &err), &err);
     assert_near(coons_mesh_volume(m), 8.0 / 3.0, 1e-12);
     assert_closed_oriented(m);
@@ -407,7 +407,7 @@ static void test_wedge_face_to_curve(void **state)
     coons_body *b = NULL;
     coons_mesh *m = NULL;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_body_body0((const double(*)[3])c, COONS_BLEND_LINEAR, &b, &err), &err);
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_sample(b, NULL, NULL, &m, &err), &err);
     assert_near(coons_mesh_volume(m), 1.0, 1e-12);
     assert_closed_oriented(m);
@@ -606,7 +606,7 @@ static void test_aspect(void **state)
         worst = fmax(worst, mx / mn);
     }
     /* a cell of side ratio k splits into triangles of edge ratio <= sqrt(1 + k^2) */
-    assert_true(worst <= sqrt(1 + COONS_DEFAULT_MAX_ASPECT * COONS_DEFAULT_MAX_ASPECT) + 1e-9);
+    assert_true(worst <= sqrt(1 + COONS_SAMPLE_DEFAULT_MAX_ASPECT * COONS_SAMPLE_DEFAULT_MAX_ASPECT) + 1e-9);
     size_t n1 = coons_mesh_triangle_count(m);
     coons_mesh_free(m);
     coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
@@ -666,10 +666,10 @@ static void test_alloc_failures(void **state)
         "{\"type\": \"bezier-volume\", \"points\": [[[[0,0,2],[0,0,3]],[[0,1,2],[0,1,3]]],"
         "[[[1,0,2],[1,0,3.5]],[[1,1,2],[1,1,3]]]]}]}";
     coons_model *model = NULL;
-    assert_coons_ok(coons_model_load_buffer(json, strlen(json), NULL, &model, &err), &err);
+    assert_coons_ok(coons_model_load_memory(json, strlen(json), NULL, NULL, &model, &err), &err);
     for (long n = 0;; n++) {
         coons_test_fail_after(n);
-        int rc = coons_model_mesh(model, NULL, &m, &err);
+        int rc = coons_model_sample(model, NULL, &m, &err);
         coons_test_fail_after(-1);
         if (rc == COONS_OK) {
             assert_int_equal(coons_mesh_part_count(m), 2);
@@ -696,8 +696,8 @@ static int mesh_two_boxes(const char *op, double x0, coons_mesh **m, coons_error
     double x1 = x0 + 2;
     snprintf(json, sizeof json, TWO_BOXES, op, x0, x0, x0, x0, x1, x1, x1, x1);
     coons_model *model = NULL;
-    assert_coons_ok(coons_model_load_buffer(json, strlen(json), "two.json", &model, err), err);
-    int rc = coons_model_mesh(model, NULL, m, err);
+    assert_coons_ok(coons_model_load_memory(json, strlen(json), "two.json", NULL, &model, err), err);
+    int rc = coons_model_sample(model, NULL, m, err);
     coons_model_free(model);
     return rc;
 }

@@ -151,7 +151,7 @@ static void test_examples(void **state)
         snprintf(path, sizeof path, "%s/%s", dir, names[f]);
         coons_model *model = NULL;
         coons_error err = COONS_ERROR_INIT;
-        assert_coons_ok(coons_model_load(path, &model, &err), &err);
+        assert_coons_ok(coons_model_load_file(path, NULL, &model, &err), &err);
         double tol = coons_model_tolerance(model);
         for (size_t i = 0; i < coons_model_body_count(model); i++) {
             const coons_body *b = coons_model_body(model, i);

@@ -21,6 +21,8 @@
 
 #include <coons.h>
 
+#include "coons_test_hooks.h" /* coons__csg_inject_failure (coons_static) */
+
 enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_GEOMETRY = 3 };
 
 static const char *const PROG = "coons2stl";
@@ -84,7 +86,7 @@ static void usage(FILE *f)
             "\n"
             "Exit status: 0 success, 1 bad input, 2 bad usage, 3 a geometric operation\n"
             "or writing the output failed.\n",
-            PROG, COONS_DEFAULT_MAX_TRIANGLES, COONS_MODEL_MAX_BYTES, COONS_MODEL_MAX_VALUES,
+            PROG, COONS_MESH_MAX_TRIANGLES, COONS_MODEL_MAX_BYTES, COONS_MODEL_MAX_VALUES,
             COONS_MODEL_MAX_DEPTH, MAX_DEPTH_CEILING, COONS_MODEL_MAX_POINTS);
 }
 
@@ -340,7 +342,7 @@ static void progress_sampling(size_t i, size_t n, const char *name)
     progress_line(text);
 }
 
-/* coons_csg_options.progress. coons_model_solid() reports the stage
+/* coons_csg_options.progress. coons_model_solidify() reports the stage
  * "sample" before each body with the share of bodies done, then the
  * stages of repair and union with their own fraction. */
 static void on_progress(void *userdata, const char *stage, double fraction)
@@ -421,10 +423,10 @@ static int load_model(const options *o, coons_model **m)
             free(buf);
             return EXIT_INPUT;
         }
-        rc = coons_model_load_buffer_opts(buf, len, "<stdin>", &o->load, m, &err);
+        rc = coons_model_load_memory(buf, len, "<stdin>", &o->load, m, &err);
         free(buf);
     } else {
-        rc = coons_model_load_opts(o->input, &o->load, m, &err);
+        rc = coons_model_load_file(o->input, &o->load, m, &err);
     }
     if (rc != COONS_OK) {
         /* The message carries FILE:LINE:COL: /json/path: ... already. */
@@ -614,9 +616,9 @@ static int sampled_box(const coons_body *b, double lo[3], double hi[3], coons_er
 /*
  * The mesh that -o writes (--info reports on the very same one): with
  * `body` < 0, every body sampled with `so` and made into the model's solid
- * by coons_model_solid() (repaired and united as the model's "operation"
+ * by coons_model_solidify() (repaired and united as the model's "operation"
  * says); else that body's shell alone, repaired if it crosses itself. Without
- * CGAL the shells are as sampled (coons_model_solid() refuses a union that
+ * CGAL the shells are as sampled (coons_model_solidify() refuses a union that
  * needs it). The environment variable COONS2STL_INJECT_CSG_FAILURE (testing
  * aid, read here and nowhere in the library) makes the CGAL step fail.
  */
@@ -628,18 +630,18 @@ static coons_status make_solid(const coons_model *m, long body, const coons_samp
     copts.repair = repair;
     copts.progress = ui.on ? on_progress : NULL;
     const char *inject = getenv("COONS2STL_INJECT_CSG_FAILURE");
-    copts.inject_failure = inject && *inject && strcmp(inject, "0") != 0;
-    memset(rep, 0, sizeof *rep);
+    coons__csg_inject_failure(inject && *inject && strcmp(inject, "0") != 0);
+    coons_csg_report_init(rep);
     *out = NULL;
     coons_sample_options sopts = *so;
-    if (body < 0) return coons_model_solid(m, &sopts, &copts, out, rep, err);
+    if (body < 0) return coons_model_solidify(m, &sopts, &copts, out, rep, err);
 
     size_t i = (size_t)body;
     progress_sampling(i, coons_model_body_count(m), coons_model_body_name(m, i));
     coons_mesh *mesh = NULL;
     coons_status rc = coons_body_sample(coons_model_body(m, i), &sopts,
                                         coons_model_body_name(m, i), &mesh, err);
-    if (rc != COONS_OK || !coons_csg_available()) {
+    if (rc != COONS_OK || !coons_csg_is_available()) {
         *out = rc == COONS_OK ? mesh : NULL;
         if (rc != COONS_OK) coons_mesh_free(mesh);
         return rc;
@@ -664,7 +666,7 @@ static int info_mesh(const coons_model *m, size_t i, const coons_sample_options 
     progress_sampling(i, coons_model_body_count(m), coons_model_body_name(m, i));
     if (coons_body_sample(coons_model_body(m, i), so, coons_model_body_name(m, i), &mesh, &err) ||
         coons_mesh_check(mesh, &r, &err) ||
-        (check_crossing && coons_mesh_self_intersections(mesh, &pairs, &err))) {
+        (check_crossing && coons_mesh_count_self_intersections(mesh, &pairs, &err))) {
         message(0, "body %zu (%s): %s", i, coons_model_body_name(m, i), err.message);
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
@@ -717,13 +719,13 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     coons_error err = COONS_ERROR_INIT;
     coons_mesh *solid = NULL;
     coons_csg_report rep;
-    int csg = coons_csg_available();
+    int csg = coons_csg_is_available();
     coons_status rc = make_solid(m, only, so, repair, &solid, &rep, &err);
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
     size_t pairs = 0, pairs32 = 0;
     if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
-    if (rc == COONS_OK && csg) rc = coons_mesh_self_intersections(solid, &pairs, &err);
-    if (rc == COONS_OK && csg) rc = coons_mesh_self_intersections_float(solid, &pairs32, &err);
+    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections(solid, &pairs, &err);
+    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections_float(solid, &pairs32, &err);
     progress_end();
     size_t parts = rc == COONS_OK ? coons_mesh_part_count(solid) : 0;
     coons_mesh_free(solid);
@@ -819,7 +821,7 @@ static int info(const coons_model *m, long only, const coons_sample_options *so,
     double rel = diag > 0 ? tol / diag : 1e-6;
     if (rel > 1e-6) rel = 1e-6;
     if (rel < 1e-12) rel = 1e-12;
-    int checks = !o->no_solid && coons_csg_available();
+    int checks = !o->no_solid && coons_csg_is_available();
     double total = 0.0;
     size_t listed = 0;
     printf("{\n  \"units\": ");

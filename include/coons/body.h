@@ -34,28 +34,31 @@ typedef enum coons_body_type {
 } coons_body_type;
 
 /** Largest number of control points (product of the three counts) of a tensor volume. */
-#define COONS_MAX_BODY_POINTS 16777216
+#define COONS_BODY_MAX_POINTS 16777216
 
-/** Body 1 edge indices. */
-enum {
+/** Edges: body 1 edge indices (coons_body_edge_name(): "u00" is C(u,0,0), ...). */
+typedef enum coons_body_edge {
     COONS_EDGE_U00 = 0, COONS_EDGE_U01, COONS_EDGE_U10, COONS_EDGE_U11,
     COONS_EDGE_V00, COONS_EDGE_V01, COONS_EDGE_V10, COONS_EDGE_V11,
     COONS_EDGE_W00, COONS_EDGE_W01, COONS_EDGE_W10, COONS_EDGE_W11
-};
+} coons_body_edge;
 
-/** Body 2 face indices (also the faces of any body's boundary). */
-enum {
+/** Faces: body 2 face indices, also the faces of any body's boundary
+ * (coons_body_face_name(): "u0" is u = 0, ...). */
+typedef enum coons_body_face {
     COONS_FACE_U0 = 0, COONS_FACE_U1, COONS_FACE_V0, COONS_FACE_V1,
     COONS_FACE_W0, COONS_FACE_W1
-};
+} coons_body_face;
 
 /**
  * Coons body 0: trilinear interpolation T(P_ijk; u,v,w) of 8 points
  * (seed 000 section 2.2); with ::COONS_BLEND_CUBIC the blends 1-x, x are
  * replaced by f(x), 1-f(x).
+ * @param[in] corners 24 doubles: P_ijk (x y z) at index 4i + 2j + k (a
+ *                    `double c[24]`, or `c[0]` of a `double c[8][3]`)
  */
-COONS_EXPORT coons_status coons_body_body0(const double corners[8][3], coons_blend blend,
-                                           coons_body **out, coons_error *err);
+COONS_EXPORT coons_status coons_body_new_body0(const double *corners, coons_blend blend,
+                                               coons_body **out, coons_error *err);
 
 /**
  * Coons body 1 from 12 edge curves (seed 000 section 2.3):
@@ -63,11 +66,13 @@ COONS_EXPORT coons_status coons_body_body0(const double corners[8][3], coons_ble
  * The three edges meeting at each corner must meet within `tol`
  * (::COONS_TOL_DEFAULT: 1e-9 of the control box diagonal); the corner used
  * is their average.
+ * @param[in] edges 12 curves indexed ::COONS_EDGE_U00 .. ::COONS_EDGE_W11 (an
+ *                  array of handles: see "Arrays" in coons/types.h)
  * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (names the corner and the
  *         distance), ::COONS_E_INVALID, ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_body_body1(const coons_curve *const edges[12], coons_blend blend,
-                                           double tol, coons_body **out, coons_error *err);
+COONS_EXPORT coons_status coons_body_new_body1(coons_curve *const *edges, coons_blend blend,
+                                               double tol, coons_body **out, coons_error *err);
 
 /**
  * Coons body 2 from 6 boundary patches (seed 000 section 2.4):
@@ -75,25 +80,29 @@ COONS_EXPORT coons_status coons_body_body1(const coons_curve *const edges[12], c
  * curves (each edge point the average of the two faces that carry it).
  * Faces must agree parametrically along their 12 shared edges within
  * `tol`, checked at sample points along each edge.
+ * @param[in] faces 6 patches indexed ::COONS_FACE_U0 .. ::COONS_FACE_W1 (an
+ *                  array of handles: see "Arrays" in coons/types.h)
  * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (names the edge, the parameter
  *         and the distance), ::COONS_E_INVALID, ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_body_body2(const coons_patch *const faces[6], coons_blend blend,
-                                           double tol, coons_body **out, coons_error *err);
+COONS_EXPORT coons_status coons_body_new_body2(coons_patch *const *faces, coons_blend blend,
+                                               double tol, coons_body **out, coons_error *err);
 
 /** Tensor-product Bezier volume; n[0..2] >= 2 points along u, v, w. */
-COONS_EXPORT coons_status coons_body_bezier(const double *points, const size_t n[3],
-                                            coons_body **out, coons_error *err);
+COONS_EXPORT coons_status coons_body_new_bezier(const double *points, const size_t n[3],
+                                                coons_body **out, coons_error *err);
 
 /**
  * Tensor-product B-spline / NURBS volume of degrees degree[0..2].
- * @param[in] knots   three pointers, each NULL (clamped uniform) or n[d]+degree[d]+1 values
+ * @param[in] knots_u,knots_v,knots_w each NULL (clamped uniform) or
+ *                    n[d]+degree[d]+1 values
  * @param[in] weights NULL or n[0]*n[1]*n[2] values > 0, indexed like the points
  */
-COONS_EXPORT coons_status coons_body_bspline(const int degree[3], const double *points,
-                                             const size_t n[3], const double *const knots[3],
-                                             const double *weights, coons_body **out,
-                                             coons_error *err);
+COONS_EXPORT coons_status coons_body_new_bspline(const int degree[3], const double *points,
+                                                 const size_t n[3], const double *knots_u,
+                                                 const double *knots_v, const double *knots_w,
+                                                 const double *weights, coons_body **out,
+                                                 coons_error *err);
 
 /** Deep copy. */
 COONS_EXPORT coons_status coons_body_copy(const coons_body *b, coons_body **out,

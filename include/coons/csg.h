@@ -53,14 +53,26 @@ typedef struct coons_csg_options {
     const char *name;           /**< name of the united part (NULL: "union") */
     coons_progress_fn progress; /**< NULL: no progress reports */
     void *userdata;             /**< passed to progress */
-    int inject_failure;         /**< testing: nonzero makes the CGAL step throw */
 } coons_csg_options;
 
-#define COONS_CSG_OPTIONS_VERSION 1
-#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 1, 0, 0, 0, 0}
+/** Version 2: the testing field `inject_failure` of version 1 is gone. */
+#define COONS_CSG_OPTIONS_VERSION 2
+#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 1, 0, 0, 0}
 
-/** What coons_mesh_solidify() found and did. */
+/**
+ * Sets `*o` to ::COONS_CSG_OPTIONS_INIT (for language bindings that cannot
+ * use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_csg_options_init(coons_csg_options *o);
+
+#define COONS_CSG_REPORT_VERSION 1
+
+/**
+ * What coons_mesh_solidify() found and did. The caller sets `version` (use
+ * ::COONS_CSG_REPORT_INIT or coons_csg_report_init()); the rest is output.
+ */
 typedef struct coons_csg_report {
+    unsigned version;           /**< in: ::COONS_CSG_REPORT_VERSION */
     size_t triangles_in;        /**< triangles of the input */
     size_t degenerate_dropped;  /**< zero-area triangles dropped */
     size_t intersecting_pairs;  /**< self-intersecting triangle pairs found in the input */
@@ -79,6 +91,14 @@ typedef struct coons_csg_report {
     size_t nonmanifold_edges;   /**< edges with more than two faces in the result */
 } coons_csg_report;
 
+#define COONS_CSG_REPORT_INIT {COONS_CSG_REPORT_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
+                               0, 0, 0}
+
+/**
+ * Sets `*r` to ::COONS_CSG_REPORT_INIT; NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_csg_report_init(coons_csg_report *r);
+
 /**
  * Turns the parts of `in` (closed shells, one per body, possibly crossing
  * themselves or each other) into valid solids: each part repaired on its
@@ -87,8 +107,10 @@ typedef struct coons_csg_report {
  * through unchanged.
  * @param[in]  opts   NULL for ::COONS_CSG_OPTIONS_INIT
  * @param[out] out    the new mesh (caller frees)
- * @param[out] report may be NULL
- * @return ::COONS_OK; ::COONS_E_CSG when CGAL cannot complete (the message
+ * @param[in,out] report may be NULL; else its `version` must be
+ *                ::COONS_CSG_REPORT_VERSION
+ * @return ::COONS_OK; ::COONS_E_INVALID when `opts` or `report` has another
+ *         version; ::COONS_E_CSG when CGAL cannot complete (the message
  *         names the parts and the reason); ::COONS_E_UNSUPPORTED without
  *         CGAL; ::COONS_E_NOMEM; ::COONS_E_INTERNAL.
  */
@@ -102,18 +124,18 @@ COONS_EXPORT coons_status coons_mesh_solidify(const coons_mesh *in, const coons_
  * predicates on the double coordinates).
  * @return ::COONS_OK, ::COONS_E_UNSUPPORTED without CGAL, ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs,
-                                                        coons_error *err);
-
-/**
- * As coons_mesh_self_intersections(), after rounding every coordinate to
- * float32 as binary STL stores it.
- */
-COONS_EXPORT coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
+COONS_EXPORT coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs,
                                                               coons_error *err);
 
 /**
- * Samples every body of a model (see coons_model_mesh()) and makes the
+ * As coons_mesh_count_self_intersections(), after rounding every coordinate to
+ * float32 as binary STL stores it.
+ */
+COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                                    coons_error *err);
+
+/**
+ * Samples every body of a model (see coons_model_sample()) and makes the
  * model's solid: with operation "union" the boundary of the union of all
  * bodies' solids as one part named after `copts->name` (default "union"),
  * with "none" each body's solid as its own part. Bodies that meet nothing
@@ -125,19 +147,22 @@ COONS_EXPORT coons_status coons_mesh_self_intersections_float(const coons_mesh *
  *                   body, with the share of bodies sampled (i / count, then
  *                   1), before the stages of coons_mesh_solidify(), whose
  *                   fraction starts again from 0
- * @param[out] report may be NULL; zeroed when no CGAL work was needed
- * @return as coons_model_mesh() and coons_mesh_solidify(); without CGAL,
+ * @param[in,out] report may be NULL; else its `version` must be
+ *                ::COONS_CSG_REPORT_VERSION; its output fields are zeroed
+ *                when no CGAL work was needed
+ * @return as coons_model_sample() and coons_mesh_solidify() (::COONS_E_INVALID
+ *         for a wrong `copts` or `report` version); without CGAL,
  *         ::COONS_E_UNSUPPORTED when bodies overlap or touch under "union" or
  *         repair is asked for a body that crosses itself cannot be checked
  *         (without CGAL no check is made: shells are written as sampled).
  */
-COONS_EXPORT coons_status coons_model_solid(const coons_model *model,
-                                            const coons_sample_options *sopts,
-                                            const coons_csg_options *copts, coons_mesh **out,
-                                            coons_csg_report *report, coons_error *err);
+COONS_EXPORT coons_status coons_model_solidify(const coons_model *model,
+                                               const coons_sample_options *sopts,
+                                               const coons_csg_options *copts, coons_mesh **out,
+                                               coons_csg_report *report, coons_error *err);
 
 /** 1 when the library was built with CGAL (repair and union available). */
-COONS_EXPORT int coons_csg_available(void);
+COONS_EXPORT int coons_csg_is_available(void);
 
 #ifdef __cplusplus
 }

@@ -35,9 +35,9 @@ typedef enum coons_curve_type {
 } coons_curve_type;
 
 /** Largest number of control points a curve accepts (guards allocation). */
-#define COONS_MAX_CURVE_POINTS 1000000
+#define COONS_CURVE_MAX_POINTS 1000000
 /** Largest B-spline or Bezier degree accepted. */
-#define COONS_MAX_DEGREE 64
+#define COONS_SPLINE_MAX_DEGREE 64
 
 /**
  * Straight segment (1-t) P0 + t P1.
@@ -45,28 +45,28 @@ typedef enum coons_curve_type {
  * @param[out] out   the new curve
  * @return ::COONS_OK, ::COONS_E_INVALID (non-finite input), ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_curve_line(const double p0[3], const double p1[3],
-                                           coons_curve **out, coons_error *err);
+COONS_EXPORT coons_status coons_curve_new_line(const double p0[3], const double p1[3],
+                                               coons_curve **out, coons_error *err);
 
 /**
  * Polyline through `count` >= 2 points; segment i spans t in [i/n, (i+1)/n]
  * with n = count-1.
  * @return ::COONS_OK, ::COONS_E_INVALID, ::COONS_E_LIMIT, ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_curve_polyline(const double *points, size_t count,
-                                               coons_curve **out, coons_error *err);
+COONS_EXPORT coons_status coons_curve_new_polyline(const double *points, size_t count,
+                                                   coons_curve **out, coons_error *err);
 
 /** Bezier curve of degree count-1 (count >= 2), Bernstein basis. */
-COONS_EXPORT coons_status coons_curve_bezier(const double *points, size_t count,
-                                             coons_curve **out, coons_error *err);
+COONS_EXPORT coons_status coons_curve_new_bezier(const double *points, size_t count,
+                                                 coons_curve **out, coons_error *err);
 
 /**
  * Cubic Hermite curve: value p0 and derivative d/dt t0 at t=0, value p1 and
  * derivative t1 at t=1.
  */
-COONS_EXPORT coons_status coons_curve_hermite(const double p0[3], const double t0[3],
-                                              const double p1[3], const double t1[3],
-                                              coons_curve **out, coons_error *err);
+COONS_EXPORT coons_status coons_curve_new_hermite(const double p0[3], const double t0[3],
+                                                  const double p1[3], const double t1[3],
+                                                  coons_curve **out, coons_error *err);
 
 /**
  * Coons cubic B-spline of seed 002.
@@ -77,16 +77,16 @@ COONS_EXPORT coons_status coons_curve_hermite(const double p0[3], const double t
  * (as if P0, P1, P2 were appended), count segments; a list whose last three
  * points repeat its first three is rejected with ::COONS_E_INVALID.
  */
-COONS_EXPORT coons_status coons_curve_coons_cubic(const double *points, size_t count,
-                                                  int closed, coons_curve **out,
-                                                  coons_error *err);
+COONS_EXPORT coons_status coons_curve_new_coons_cubic(const double *points, size_t count,
+                                                      int closed, coons_curve **out,
+                                                      coons_error *err);
 
 /**
  * Uniform clamped cubic B-spline of seed 002 (knots 0,0,0,0,1,...,n-2 x4,
  * normalised); count = n+1 >= 4. Passes through the first and last point.
  */
-COONS_EXPORT coons_status coons_curve_clamped_cubic(const double *points, size_t count,
-                                                    coons_curve **out, coons_error *err);
+COONS_EXPORT coons_status coons_curve_new_clamped_cubic(const double *points, size_t count,
+                                                        coons_curve **out, coons_error *err);
 
 /**
  * General B-spline or NURBS curve of degree p >= 1 with count = n+1 >= p+1
@@ -97,9 +97,9 @@ COONS_EXPORT coons_status coons_curve_clamped_cubic(const double *points, size_t
  * @param[in] weights NULL for a polynomial B-spline, else count values > 0
  *                    (points stay Cartesian, never pre-multiplied).
  */
-COONS_EXPORT coons_status coons_curve_bspline(int degree, const double *points, size_t count,
-                                              const double *knots, const double *weights,
-                                              coons_curve **out, coons_error *err);
+COONS_EXPORT coons_status coons_curve_new_bspline(int degree, const double *points, size_t count,
+                                                  const double *knots, const double *weights,
+                                                  coons_curve **out, coons_error *err);
 
 /** Deep copy. @return ::COONS_OK or ::COONS_E_NOMEM. */
 COONS_EXPORT coons_status coons_curve_copy(const coons_curve *c, coons_curve **out,
@@ -156,8 +156,8 @@ COONS_EXPORT coons_status coons_curve_bezier_segments(const coons_curve *c, doub
  * @param[out] clamped count points
  * @return ::COONS_OK or ::COONS_E_INVALID (count < 4).
  */
-COONS_EXPORT coons_status coons_cubic_open_to_clamped(const double *open, size_t count,
-                                                      double *clamped, coons_error *err);
+COONS_EXPORT coons_status coons_curve_convert_open_to_clamped(const double *open, size_t count,
+                                                              double *clamped, coons_error *err);
 
 /**
  * The model format's name of a curve type ("line", "coons-cubic", ...), or

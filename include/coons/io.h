@@ -106,6 +106,12 @@ typedef struct coons_write_options {
 #define COONS_WRITE_OPTIONS_INIT {COONS_WRITE_OPTIONS_VERSION, NULL, NULL, NULL, NULL, NULL, NULL}
 
 /**
+ * Sets `*o` to ::COONS_WRITE_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_write_options_init(coons_write_options *o);
+
+/**
  * Format implied by a path's extension, compared without regard to case:
  * `.stl` gives ::COONS_FORMAT_STL_BINARY, `.off` ::COONS_FORMAT_OFF,
  * `.scad` ::COONS_FORMAT_SCAD.

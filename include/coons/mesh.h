@@ -23,7 +23,7 @@ extern "C" {
 #endif
 
 /** Default largest number of triangles a sampling may produce. */
-#define COONS_DEFAULT_MAX_TRIANGLES ((size_t)20000000)
+#define COONS_MESH_MAX_TRIANGLES ((size_t)20000000)
 
 /**
  * Creates an empty mesh.
@@ -70,7 +70,7 @@ COONS_EXPORT double coons_mesh_area(const coons_mesh *m);
 /* ------------------------------------------------------------------------ */
 
 /** Default largest side ratio of the cells of the starting lattice. */
-#define COONS_DEFAULT_MAX_ASPECT 4.0
+#define COONS_SAMPLE_DEFAULT_MAX_ASPECT 4.0
 
 /** Version of ::coons_sample_options this header describes. */
 #define COONS_SAMPLE_OPTIONS_VERSION 1
@@ -86,7 +86,7 @@ typedef struct coons_sample_options {
     /**
      * Largest allowed distance between the mesh and the exact boundary, in
      * model units. <= 0: the default, which is the model's tolerance for
-     * coons_model_mesh() and 1/1000 of the body's control box diagonal for
+     * coons_model_sample() and 1/1000 of the body's control box diagonal for
      * coons_body_sample().
      */
     double tolerance;
@@ -95,14 +95,14 @@ typedef struct coons_sample_options {
      * of N intervals along each of u, v, w (the deviation is still measured).
      */
     unsigned int resolution;
-    /** Largest number of triangles; 0: ::COONS_DEFAULT_MAX_TRIANGLES. */
+    /** Largest number of triangles; 0: ::COONS_MESH_MAX_TRIANGLES. */
     size_t max_triangles;
     /**
      * Adaptive sampling starts from a lattice whose cells are at most this
      * many times longer in one direction than in another (judged by the
      * body's extent along u, v, w; refinement for the tolerance may then
      * make cells thinner where it concentrates, e.g. along a kink).
-     * 0: ::COONS_DEFAULT_MAX_ASPECT; values below 1 other than 0 are
+     * 0: ::COONS_SAMPLE_DEFAULT_MAX_ASPECT; values below 1 other than 0 are
      * invalid; INFINITY disables it.
      */
     double max_aspect;
@@ -119,6 +119,12 @@ typedef struct coons_sample_options {
 #define COONS_SAMPLE_UNMEASURED 1u
 
 #define COONS_SAMPLE_OPTIONS_INIT {COONS_SAMPLE_OPTIONS_VERSION, 0.0, 0u, 0u, 0.0, 0u}
+
+/**
+ * Sets `*o` to ::COONS_SAMPLE_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_sample_options_init(coons_sample_options *o);
 
 /**
  * Samples the boundary of a body into a closed, outward-oriented triangle
@@ -170,9 +176,9 @@ COONS_EXPORT coons_status coons_body_sample(const coons_body *b,
  * ::COONS_E_UNSUPPORTED naming the two bodies.
  * @return as coons_body_sample(), plus ::COONS_E_UNSUPPORTED.
  */
-COONS_EXPORT coons_status coons_model_mesh(const coons_model *m,
-                                           const coons_sample_options *opts, coons_mesh **out,
-                                           coons_error *err);
+COONS_EXPORT coons_status coons_model_sample(const coons_model *m,
+                                             const coons_sample_options *opts, coons_mesh **out,
+                                             coons_error *err);
 
 /**
  * What sampling recorded for part i: the tolerance it aimed at, the
@@ -235,6 +241,9 @@ typedef struct coons_mesh_report {
 #define COONS_MESH_REPORT_INIT {COONS_MESH_REPORT_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
                                 0, 0, 0, 0, 0, 0, 0, 0.0, 0.0}
 
+/** Sets `*r` to ::COONS_MESH_REPORT_INIT; NULL is a harmless no-op. */
+COONS_EXPORT void coons_mesh_report_init(coons_mesh_report *r);
+
 /**
  * Checks that a mesh is closed, 2-manifold and consistently oriented and
  * counts what is not. The verdicts and counts come from the index arrays
@@ -254,19 +263,6 @@ typedef struct coons_mesh_report {
  */
 COONS_EXPORT coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_report *report,
                                            coons_error *err);
-
-/**
- * Reads an STL (ASCII or binary) or OFF file through OpenMesh's readers, as
- * one part named after the file. Meant for tests and inspection: OpenMesh
- * reads coordinates in single precision, welds STL vertices by position,
- * and may duplicate vertices of faces it cannot add. Its OFF reader does
- * not detect truncated files (it then reads uninitialised indices): do not
- * use it on untrusted input.
- * @return ::COONS_OK, ::COONS_E_IO (missing file, unknown extension, read
- *         failure, no face read), ::COONS_E_UNSUPPORTED (built without OpenMesh),
- *         ::COONS_E_NOMEM, ::COONS_E_INTERNAL.
- */
-COONS_EXPORT coons_status coons_mesh_read(const char *path, coons_mesh **out, coons_error *err);
 
 #ifdef __cplusplus
 }

@@ -19,48 +19,6 @@ typedef enum coons_operation {
     COONS_OP_NONE = 1   /**< each body's own closed shell */
 } coons_operation;
 
-/**
- * Loads a model file. On error, err carries the file, line, column and JSON
- * path of the offending value and what was expected.
- *
- * The loader is strict (coons-model(5)): unknown or repeated keys, values
- * of the wrong type, non-finite numbers, invalid UTF-8 and text after the
- * top-level object are errors. Every error fills `err->file`, `err->line`
- * and `err->column` (1-based; the column counts UTF-8 code points) of the
- * start of the offending value, `err->path` (its JSON pointer, RFC 6901,
- * "" for the whole document) and `err->message`, which repeats them in the
- * form "FILE:LINE:COL: PATH: what was expected" so that it can be printed
- * alone. Errors about the file as a whole (it cannot be read, it is too
- * large) have line and column 0 and the message "FILE: ...".
- *
- * Agreement checks (patch corners, body 1 corners, body 2 shared edges,
- * Hermite cross tangents) use 1e-9 times the diagonal of the box of all
- * control points of the model (points, not tangents or twists); a
- * disagreement is reported at the first of the two values in the order of
- * the format's description, and the message names both and the distance.
- *
- * Numbers are read independently of the process locale.
- * @param[in] path a file name ("-" is not special here)
- * @param[out] out the model, owned by the caller (coons_model_free())
- * @return ::COONS_OK, ::COONS_E_IO (with strerror's text), ::COONS_E_PARSE
- *         (malformed JSON), ::COONS_E_INVALID (a value the format does not
- *         allow), ::COONS_E_UNSUPPORTED ("coons" is not 1),
- *         ::COONS_E_INCOMPATIBLE (curves or faces that must meet do not),
- *         ::COONS_E_LIMIT (a limit of ::coons_model_load_options),
- *         ::COONS_E_NOMEM.
- */
-COONS_EXPORT coons_status coons_model_load(const char *path, coons_model **out,
-                                           coons_error *err);
-
-/**
- * Loads a model from memory, like coons_model_load(). `name` is used as the
- * file name in messages (NULL: "<buffer>"). The buffer need not be
- * NUL-terminated and is not kept.
- */
-COONS_EXPORT coons_status coons_model_load_buffer(const char *data, size_t size,
-                                                  const char *name, coons_model **out,
-                                                  coons_error *err);
-
 /** Default size limits of the loader (see ::coons_model_load_options). */
 #define COONS_MODEL_MAX_BYTES ((size_t)256 << 20)
 #define COONS_MODEL_MAX_VALUES ((size_t)1 << 23)
@@ -84,16 +42,57 @@ typedef struct coons_model_load_options {
 #define COONS_MODEL_LOAD_OPTIONS_VERSION 1
 #define COONS_MODEL_LOAD_OPTIONS_INIT {COONS_MODEL_LOAD_OPTIONS_VERSION, 0, 0, 0u, 0}
 
-/** coons_model_load() with limits; opts NULL means the defaults. */
-COONS_EXPORT coons_status coons_model_load_opts(const char *path,
+/**
+ * Sets `*o` to ::COONS_MODEL_LOAD_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_model_load_options_init(coons_model_load_options *o);
+
+/**
+ * Loads a model file. On error, err carries the file, line, column and JSON
+ * path of the offending value and what was expected.
+ *
+ * The loader is strict (coons-model(5)): unknown or repeated keys, values
+ * of the wrong type, non-finite numbers, invalid UTF-8 and text after the
+ * top-level object are errors. Every error fills `err->file`, `err->line`
+ * and `err->column` (1-based; the column counts UTF-8 code points) of the
+ * start of the offending value, `err->path` (its JSON pointer, RFC 6901,
+ * "" for the whole document) and `err->message`, which repeats them in the
+ * form "FILE:LINE:COL: PATH: what was expected" so that it can be printed
+ * alone. Errors about the file as a whole (it cannot be read, it is too
+ * large) have line and column 0 and the message "FILE: ...".
+ *
+ * Agreement checks (patch corners, body 1 corners, body 2 shared edges,
+ * Hermite cross tangents) use 1e-9 times the diagonal of the box of all
+ * control points of the model (points, not tangents or twists); a
+ * disagreement is reported at the first of the two values in the order of
+ * the format's description, and the message names both and the distance.
+ *
+ * Numbers are read independently of the process locale.
+ * @param[in] path a file name ("-" is not special here)
+ * @param[in] opts the loader's limits; NULL means the defaults; a `version`
+ *                 other than ::COONS_MODEL_LOAD_OPTIONS_VERSION is ::COONS_E_INVALID
+ * @param[out] out the model, owned by the caller (coons_model_free())
+ * @return ::COONS_OK, ::COONS_E_IO (with strerror's text), ::COONS_E_PARSE
+ *         (malformed JSON), ::COONS_E_INVALID (a value the format does not
+ *         allow), ::COONS_E_UNSUPPORTED ("coons" is not 1),
+ *         ::COONS_E_INCOMPATIBLE (curves or faces that must meet do not),
+ *         ::COONS_E_LIMIT (a limit of ::coons_model_load_options),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_model_load_file(const char *path,
                                                 const coons_model_load_options *opts,
                                                 coons_model **out, coons_error *err);
 
-/** coons_model_load_buffer() with limits; opts NULL means the defaults. */
-COONS_EXPORT coons_status coons_model_load_buffer_opts(const char *data, size_t size,
-                                                       const char *name,
-                                                       const coons_model_load_options *opts,
-                                                       coons_model **out, coons_error *err);
+/**
+ * Loads a model from memory, like coons_model_load_file(). `name` is used as
+ * the file name in messages (NULL: "<buffer>"). The buffer need not be
+ * NUL-terminated and is not kept.
+ */
+COONS_EXPORT coons_status coons_model_load_memory(const char *data, size_t size,
+                                                  const char *name,
+                                                  const coons_model_load_options *opts,
+                                                  coons_model **out, coons_error *err);
 
 /** Releases a model and every body it owns; NULL is a harmless no-op. */
 COONS_EXPORT void coons_model_free(coons_model *m);

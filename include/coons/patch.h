@@ -10,8 +10,8 @@
  * Patches are immutable: concurrent evaluation is safe.
  *
  * Boundary curves are given in the order of the model format:
- * index ::COONS_T0 = x(s,0), ::COONS_T1 = x(s,1), ::COONS_S0 = x(0,t),
- * ::COONS_S1 = x(1,t). Where two curves give the same corner, the patch uses
+ * index ::COONS_SIDE_T0 = x(s,0), ::COONS_SIDE_T1 = x(s,1), ::COONS_SIDE_S0 = x(0,t),
+ * ::COONS_SIDE_S1 = x(1,t). Where two curves give the same corner, the patch uses
  * their average (model format, "Consistency").
  */
 #ifndef COONS_PATCH_H
@@ -32,8 +32,17 @@ typedef enum coons_patch_type {
     COONS_PATCH_BSPLINE
 } coons_patch_type;
 
-/** Indices of the four boundary curves of a Coons patch. */
-enum { COONS_T0 = 0, COONS_T1 = 1, COONS_S0 = 2, COONS_S1 = 3 };
+/**
+ * Sides of a Coons patch: indices of its four boundary curves, in the order of
+ * the model format's keys (coons_patch_side_name()): `t0` = x(s,0),
+ * `t1` = x(s,1), `s0` = x(0,t), `s1` = x(1,t).
+ */
+typedef enum coons_patch_side {
+    COONS_SIDE_T0 = 0,
+    COONS_SIDE_T1 = 1,
+    COONS_SIDE_S0 = 2,
+    COONS_SIDE_S1 = 3
+} coons_patch_side;
 
 /** Twist vectors of a Hermite Coons patch (seed 001 section 1.2.2). */
 typedef enum coons_twist {
@@ -51,36 +60,39 @@ typedef enum coons_twist {
 #define COONS_TOL_DEFAULT 0.0
 
 /** Largest control net (ns*nt points) a B-spline surface accepts (guards allocation). */
-#define COONS_MAX_PATCH_POINTS 1000000
+#define COONS_PATCH_MAX_POINTS 1000000
 
 /**
  * Bilinear patch from corners X00, X10, X01, X11 (Xab = x(s=a, t=b)).
+ * @param[in] corners 12 doubles: X00, X10, X01, X11, each x y z (a
+ *                    `double c[12]`, or `c[0]` of a `double c[4][3]`)
  * @return ::COONS_OK, ::COONS_E_INVALID (NULL or non-finite), ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_patch_bilinear(const double corners[4][3], coons_patch **out,
-                                               coons_error *err);
+COONS_EXPORT coons_status coons_patch_new_bilinear(const double *corners, coons_patch **out,
+                                                   coons_error *err);
 
 /**
  * Ruled surface x(s,t) = (1-t) c0(s) + t c1(s) (seed 001 eq. 1.2).
  * @return ::COONS_OK, ::COONS_E_INVALID (a NULL curve), ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_patch_ruled(const coons_curve *c0, const coons_curve *c1,
-                                            coons_patch **out, coons_error *err);
+COONS_EXPORT coons_status coons_patch_new_ruled(const coons_curve *c0, const coons_curve *c1,
+                                                coons_patch **out, coons_error *err);
 
 /**
  * Coons patch of four boundary curves (seed 001 eq. 1.8/1.11), with
  * linear blending or the cubic blend f(t) = 1 - 3t^2 + 2t^3.
- * @param[in] boundary curves indexed ::COONS_T0 .. ::COONS_S1
+ * @param[in] boundary 4 curves indexed ::COONS_SIDE_T0 .. ::COONS_SIDE_S1 (an
+ *                     array of handles: see "Arrays" in coons/types.h)
  * @param[in] tol      corner tolerance (see ::COONS_TOL_DEFAULT)
  * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (a corner where the two curves
  *         do not meet: the message names the corner and the distance),
  *         ::COONS_E_INVALID, ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_patch_coons(const coons_curve *const boundary[4],
-                                            coons_blend blend, double tol,
-                                            coons_patch **out, coons_error *err);
+COONS_EXPORT coons_status coons_patch_new_coons(coons_curve *const *boundary, coons_blend blend,
+                                                double tol, coons_patch **out,
+                                                coons_error *err);
 
-/** Options of coons_patch_hermite_coons(). Initialise with ::COONS_HERMITE_OPTIONS_INIT. */
+/** Options of coons_patch_new_hermite_coons(). Initialise with ::COONS_HERMITE_OPTIONS_INIT. */
 typedef struct coons_hermite_options {
     unsigned version;                 /**< ::COONS_HERMITE_OPTIONS_VERSION */
     const coons_curve *cross[4];      /**< all NULL, or x_t(s,0), x_t(s,1), x_s(0,t), x_s(1,t) */
@@ -92,6 +104,12 @@ typedef struct coons_hermite_options {
 #define COONS_HERMITE_OPTIONS_VERSION 1
 #define COONS_HERMITE_OPTIONS_INIT \
     {COONS_HERMITE_OPTIONS_VERSION, {0, 0, 0, 0}, COONS_TWIST_ZERO, {{0}}, COONS_TOL_DEFAULT}
+
+/**
+ * Sets `*o` to ::COONS_HERMITE_OPTIONS_INIT (for language bindings that
+ * cannot use the macro); NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_hermite_options_init(coons_hermite_options *o);
 
 /**
  * Bicubically blended (Hermite) Coons patch, seed 001 eq. 1.13-1.15:
@@ -118,18 +136,18 @@ typedef struct coons_hermite_options {
  *         curve against a corner tangent: the message names the corner),
  *         ::COONS_E_INVALID, ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
-                                                    const coons_hermite_options *opts,
-                                                    coons_patch **out, coons_error *err);
+COONS_EXPORT coons_status coons_patch_new_hermite_coons(coons_curve *const *boundary,
+                                                        const coons_hermite_options *opts,
+                                                        coons_patch **out, coons_error *err);
 
 /**
  * Tensor-product Bezier surface; points[(i*nt + j)*3], i along s (ns >= 2
  * points), j along t (nt >= 2).
  * @return ::COONS_OK, ::COONS_E_INVALID, ::COONS_E_LIMIT (a degree above
- *         ::COONS_MAX_DEGREE), ::COONS_E_NOMEM.
+ *         ::COONS_SPLINE_MAX_DEGREE), ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_patch_bezier(const double *points, size_t ns, size_t nt,
-                                             coons_patch **out, coons_error *err);
+COONS_EXPORT coons_status coons_patch_new_bezier(const double *points, size_t ns, size_t nt,
+                                                 coons_patch **out, coons_error *err);
 
 /**
  * Tensor-product B-spline or NURBS surface of degrees (ps, pt).
@@ -137,15 +155,15 @@ COONS_EXPORT coons_status coons_patch_bezier(const double *points, size_t ns, si
  *            NULL independently), else ns+ps+1 and nt+pt+1 values
  * @param[in] weights NULL, or ns*nt values > 0 indexed like the points
  *            (points stay Cartesian, never pre-multiplied)
- * @return ::COONS_OK, ::COONS_E_INVALID (degrees outside 1..::COONS_MAX_DEGREE,
+ * @return ::COONS_OK, ::COONS_E_INVALID (degrees outside 1..::COONS_SPLINE_MAX_DEGREE,
  *         too few points, bad knots or weights, non-finite values),
- *         ::COONS_E_LIMIT (more than ::COONS_MAX_PATCH_POINTS points),
+ *         ::COONS_E_LIMIT (more than ::COONS_PATCH_MAX_POINTS points),
  *         ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_patch_bspline(int ps, int pt, const double *points, size_t ns,
-                                              size_t nt, const double *knots_s,
-                                              const double *knots_t, const double *weights,
-                                              coons_patch **out, coons_error *err);
+COONS_EXPORT coons_status coons_patch_new_bspline(int ps, int pt, const double *points, size_t ns,
+                                                  size_t nt, const double *knots_s,
+                                                  const double *knots_t, const double *weights,
+                                                  coons_patch **out, coons_error *err);
 
 /** Deep copy. */
 COONS_EXPORT coons_status coons_patch_copy(const coons_patch *p, coons_patch **out,
@@ -205,7 +223,7 @@ COONS_EXPORT coons_status coons_patch_type_from_name(const char *name, coons_pat
 
 /**
  * The model format's key of a side of a Coons patch's boundary: "t0", "t1",
- * "s0", "s1" for ::COONS_T0 .. ::COONS_S1; NULL for any other value.
+ * "s0", "s1" for ::COONS_SIDE_T0 .. ::COONS_SIDE_S1; NULL for any other value.
  */
 COONS_EXPORT const char *coons_patch_side_name(int side);
 

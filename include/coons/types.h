@@ -7,6 +7,21 @@
  * ::coons_error pointer as its last parameter; that pointer may be NULL.
  * The library never prints, never exits and never aborts: the status and the
  * message in the error record are the whole report.
+ *
+ * Names: every function is `coons_<object>_<verb>`; constructors are
+ * `coons_<object>_new_<type>` (coons_curve_new_line(), coons_body_new_body2(),
+ * coons_mesh_new()) and each object is released by its own `coons_<object>_free()`.
+ *
+ * Arrays: every public function is called from C (C11 and later) with
+ * ordinary arrays and no cast.
+ * - Points: a point is `double[3]`; a fixed number of points (patch corners,
+ *   body 0 corners) is one flat `const double *` of x y z triples, so that a
+ *   `double c[12]` passes as it is and a `double c[4][3]` as `c[0]`.
+ * - Handles: an array of objects (a patch's boundary curves, a body's edges or
+ *   faces) is `coons_X *const *`: pass an ordinary array `coons_X *a[N]` of the
+ *   handles the constructors returned. The function only reads the objects
+ *   (constructors deep-copy them) and never changes or frees them.
+ * - Outputs (`double out[3]`, `double jac[3][3]`) are caller arrays of that shape.
  */
 #ifndef COONS_TYPES_H
 #define COONS_TYPES_H
@@ -89,7 +104,7 @@ COONS_EXPORT void coons_set_allocator(void *(*malloc_fn)(size_t),
 
 /** Runtime version number (major*10000 + minor*100 + patch). */
 COONS_EXPORT int coons_version(void);
-/** Runtime version string, e.g. "0.1.0". */
+/** Runtime version string, e.g. "0.2.0". */
 COONS_EXPORT const char *coons_version_string(void);
 
 #ifdef __cplusplus

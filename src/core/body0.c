@@ -7,9 +7,10 @@
  */
 #include "body_impl.h"
 
-coons_status coons_body_body0(const double corners[8][3], coons_blend blend, coons_body **out,
-                              coons_error *err)
+coons_status coons_body_new_body0(const double *flat, coons_blend blend, coons_body **out,
+                                  coons_error *err)
 {
+    const double(*corners)[3] = (const double(*)[3])flat; /* 24 doubles, P_ijk at 4i+2j+k */
     *out = NULL;
     if (!corners) return coons__error_set(err, COONS_E_INVALID, "body0: corners are NULL");
     if (blend != COONS_BLEND_LINEAR && blend != COONS_BLEND_CUBIC)

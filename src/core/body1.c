@@ -11,9 +11,12 @@
  */
 #include "body_impl.h"
 
-coons_status coons_body_body1(const coons_curve *const edges[12], coons_blend blend, double tol,
-                              coons_body **out, coons_error *err)
+coons_status coons_body_new_body1(coons_curve *const *edges_in, coons_blend blend, double tol,
+                                  coons_body **out, coons_error *err)
 {
+    /* The public idiom (coons/types.h, "Arrays") passes handles as X *const *;
+     * the code here only reads them. */
+    const coons_curve *const *edges = (const coons_curve *const *)edges_in;
     *out = NULL;
     if (!edges) return coons__error_set(err, COONS_E_INVALID, "body1: edges are NULL");
     if (blend != COONS_BLEND_LINEAR && blend != COONS_BLEND_CUBIC)

@@ -47,9 +47,12 @@ static void source_at(const coons_patch *p, int run, int fixed, double x, double
     if (dx) v3_copy(dx, r[1 + run]);
 }
 
-coons_status coons_body_body2(const coons_patch *const faces[6], coons_blend blend, double tol,
-                              coons_body **out, coons_error *err)
+coons_status coons_body_new_body2(coons_patch *const *faces_in, coons_blend blend, double tol,
+                                  coons_body **out, coons_error *err)
 {
+    /* The public idiom (coons/types.h, "Arrays") passes handles as X *const *;
+     * the code here only reads them. */
+    const coons_patch *const *faces = (const coons_patch *const *)faces_in;
     *out = NULL;
     if (!faces) return coons__error_set(err, COONS_E_INVALID, "body2: faces are NULL");
     if (blend != COONS_BLEND_LINEAR && blend != COONS_BLEND_CUBIC)

@@ -124,8 +124,8 @@ void coons__boolsum_control_bbox(const coons_patch *p, double lo[3], double hi[3
  * x_s(0,t), x_s(1,t) along t (a ruled patch has only T0 = c0, T1 = c1). */
 void coons__boolsum_breaks(const coons_patch *p, int dir, coons__breaks *B)
 {
-    coons__curve_breaks(p->curve[dir == 0 ? COONS_T0 : COONS_S0], B);
-    coons__curve_breaks(p->curve[dir == 0 ? COONS_T1 : COONS_S1], B);
+    coons__curve_breaks(p->curve[dir == 0 ? COONS_SIDE_T0 : COONS_SIDE_S0], B);
+    coons__curve_breaks(p->curve[dir == 0 ? COONS_SIDE_T1 : COONS_SIDE_S1], B);
     coons__curve_breaks(p->cross[dir == 0 ? 0 : 2], B);
     coons__curve_breaks(p->cross[dir == 0 ? 1 : 3], B);
 }

@@ -14,9 +14,9 @@ coons_status coons__knots_make(int p, size_t ncp, const double *given, const cha
                                double **out, coons_error *err)
 {
     *out = NULL;
-    if (p < 1 || p > COONS_MAX_DEGREE)
+    if (p < 1 || p > COONS_SPLINE_MAX_DEGREE)
         return coons__error_set(err, COONS_E_INVALID, "%s: degree %d is outside 1..%d", what, p,
-                                COONS_MAX_DEGREE);
+                                COONS_SPLINE_MAX_DEGREE);
     if (ncp < (size_t)p + 1)
         return coons__error_set(err, COONS_E_INVALID,
                                 "%s: degree %d needs at least %d control points, got %zu", what,
@@ -102,10 +102,10 @@ size_t coons__bspline_span(const double *k, size_t ncp, int p, double x)
 
 void coons__bspline_basis(const double *k, size_t span, int p, double x, int nd, double *ders)
 {
-    /* A2.3 with fixed-size scratch: p <= COONS_MAX_DEGREE. */
-    double ndu[COONS_MAX_DEGREE + 1][COONS_MAX_DEGREE + 1];
-    double left[COONS_MAX_DEGREE + 1], right[COONS_MAX_DEGREE + 1];
-    double a[2][COONS_MAX_DEGREE + 1];
+    /* A2.3 with fixed-size scratch: p <= COONS_SPLINE_MAX_DEGREE. */
+    double ndu[COONS_SPLINE_MAX_DEGREE + 1][COONS_SPLINE_MAX_DEGREE + 1];
+    double left[COONS_SPLINE_MAX_DEGREE + 1], right[COONS_SPLINE_MAX_DEGREE + 1];
+    double a[2][COONS_SPLINE_MAX_DEGREE + 1];
     ndu[0][0] = 1.0;
     for (int j = 1; j <= p; j++) {
         left[j] = x - k[span + 1 - (size_t)j];
@@ -162,7 +162,7 @@ void coons__bernstein(int n, double t, int nd, double *ders)
 {
     /* B_{j,n} by de Casteljau-style recurrence; derivatives from the
      * degree-reduced polynomials: B'_{j,n} = n (B_{j-1,n-1} - B_{j,n-1}). */
-    double b[COONS_MAX_DEGREE + 1][COONS_MAX_DEGREE + 1]; /* b[m][j] = B_{j,m} */
+    double b[COONS_SPLINE_MAX_DEGREE + 1][COONS_SPLINE_MAX_DEGREE + 1]; /* b[m][j] = B_{j,m} */
     double s = 1.0 - t;
     b[0][0] = 1.0;
     for (int m = 1; m <= n; m++) {

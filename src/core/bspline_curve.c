@@ -23,10 +23,10 @@ static coons_status check_points(const double *pts, size_t count, size_t min, co
     if (count < min)
         return coons__error_set(err, COONS_E_INVALID, "%s needs at least %zu points, got %zu",
                                 what, min, count);
-    if (count > COONS_MAX_CURVE_POINTS)
+    if (count > COONS_CURVE_MAX_POINTS)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "%s has %zu points, more than the limit of %d", what, count,
-                                COONS_MAX_CURVE_POINTS);
+                                COONS_CURVE_MAX_POINTS);
     for (size_t i = 0; i < count; i++)
         if (!v3_finite(pts + 3 * i))
             return coons__error_set(err, COONS_E_INVALID, "%s: point %zu is not finite", what,
@@ -67,8 +67,8 @@ static coons_status make_bspline(const coons__curve_kind *kind, int p, const dou
     return COONS_OK;
 }
 
-coons_status coons_curve_line(const double p0[3], const double p1[3], coons_curve **out,
-                              coons_error *err)
+coons_status coons_curve_new_line(const double p0[3], const double p1[3], coons_curve **out,
+                                  coons_error *err)
 {
     double pts[6];
     v3_copy(pts, p0);
@@ -76,26 +76,26 @@ coons_status coons_curve_line(const double p0[3], const double p1[3], coons_curv
     return make_bspline(&coons__line_kind, 1, pts, 2, NULL, NULL, "line", out, err);
 }
 
-coons_status coons_curve_polyline(const double *points, size_t count, coons_curve **out,
-                                  coons_error *err)
+coons_status coons_curve_new_polyline(const double *points, size_t count, coons_curve **out,
+                                      coons_error *err)
 {
     return make_bspline(&coons__polyline_kind, 1, points, count, NULL, NULL, "polyline", out,
                         err);
 }
 
-coons_status coons_curve_bezier(const double *points, size_t count, coons_curve **out,
-                                coons_error *err)
+coons_status coons_curve_new_bezier(const double *points, size_t count, coons_curve **out,
+                                    coons_error *err)
 {
     *out = NULL;
     if (count < 2)
         return coons__error_set(err, COONS_E_INVALID, "bezier needs at least 2 points, got %zu",
                                 count);
-    if (count > COONS_MAX_DEGREE + 1)
+    if (count > COONS_SPLINE_MAX_DEGREE + 1)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "bezier has %zu points; degree %zu is above the limit %d", count,
-                                count - 1, COONS_MAX_DEGREE);
+                                count - 1, COONS_SPLINE_MAX_DEGREE);
     int p = (int)count - 1;
-    double knots[2 * (COONS_MAX_DEGREE + 1)];
+    double knots[2 * (COONS_SPLINE_MAX_DEGREE + 1)];
     for (int i = 0; i <= p; i++) {
         knots[i] = 0.0;
         knots[p + 1 + i] = 1.0;
@@ -103,8 +103,8 @@ coons_status coons_curve_bezier(const double *points, size_t count, coons_curve 
     return make_bspline(&coons__bezier_kind, p, points, count, knots, NULL, "bezier", out, err);
 }
 
-coons_status coons_curve_hermite(const double p0[3], const double t0[3], const double p1[3],
-                                 const double t1[3], coons_curve **out, coons_error *err)
+coons_status coons_curve_new_hermite(const double p0[3], const double t0[3], const double p1[3],
+                                     const double t1[3], coons_curve **out, coons_error *err)
 {
     *out = NULL;
     if (!v3_finite(t0) || !v3_finite(t1))
@@ -120,21 +120,21 @@ coons_status coons_curve_hermite(const double p0[3], const double t0[3], const d
     return make_bspline(&coons__hermite_kind, 3, b, 4, knots, NULL, "hermite", out, err);
 }
 
-coons_status coons_curve_clamped_cubic(const double *points, size_t count, coons_curve **out,
-                                       coons_error *err)
+coons_status coons_curve_new_clamped_cubic(const double *points, size_t count, coons_curve **out,
+                                           coons_error *err)
 {
     return make_bspline(&coons__clamped_cubic_kind, 3, points, count, NULL, NULL,
                         "clamped-cubic", out, err);
 }
 
-coons_status coons_curve_bspline(int degree, const double *points, size_t count,
-                                 const double *knots, const double *weights, coons_curve **out,
-                                 coons_error *err)
+coons_status coons_curve_new_bspline(int degree, const double *points, size_t count,
+                                     const double *knots, const double *weights, coons_curve **out,
+                                     coons_error *err)
 {
     *out = NULL;
-    if (degree < 1 || degree > COONS_MAX_DEGREE)
+    if (degree < 1 || degree > COONS_SPLINE_MAX_DEGREE)
         return coons__error_set(err, COONS_E_INVALID, "bspline: degree %d is outside 1..%d",
-                                degree, COONS_MAX_DEGREE);
+                                degree, COONS_SPLINE_MAX_DEGREE);
     return make_bspline(&coons__bspline_kind, degree, points, count, knots, weights, "bspline",
                         out, err);
 }
@@ -142,7 +142,7 @@ coons_status coons_curve_bspline(int degree, const double *points, size_t count,
 static void eval(const coons_curve *c, double t, int order, double out[][3])
 {
     int p = c->degree;
-    double N[3 * (COONS_MAX_DEGREE + 1)];
+    double N[3 * (COONS_SPLINE_MAX_DEGREE + 1)];
     size_t first = coons__bspline_basis01(c->knots, c->n, p, t, order, N);
     if (!c->w) {
         for (int d = 0; d <= order; d++) {
@@ -178,7 +178,7 @@ static void blossom(const coons_curve *c, size_t span, const double *x, double o
 {
     int p = c->degree;
     const double *k = c->knots;
-    double d[COONS_MAX_DEGREE + 1][3];
+    double d[COONS_SPLINE_MAX_DEGREE + 1][3];
     for (int r = 0; r <= p; r++) v3_copy(d[r], c->pts + 3 * (span - (size_t)p + (size_t)r));
     for (int l = 1; l <= p; l++) {
         for (int r = p; r >= l; r--) {
@@ -209,7 +209,7 @@ static coons_status bezier_segments(const coons_curve *c, double *points, size_t
         return coons__error_set(err, COONS_E_INVALID,
                                 "bezier segments need %zu doubles, capacity is %zu", need,
                                 capacity);
-    double x[COONS_MAX_DEGREE];
+    double x[COONS_SPLINE_MAX_DEGREE];
     size_t s = 0;
     for (size_t i = (size_t)p; i < c->n; i++) {
         double a = c->knots[i], b = c->knots[i + 1];

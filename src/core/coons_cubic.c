@@ -24,8 +24,8 @@ static int repeats_first_three(const double *points, size_t count)
     return 1;
 }
 
-coons_status coons_curve_coons_cubic(const double *points, size_t count, int closed,
-                                     coons_curve **out, coons_error *err)
+coons_status coons_curve_new_coons_cubic(const double *points, size_t count, int closed,
+                                         coons_curve **out, coons_error *err)
 {
     *out = NULL;
     size_t min = closed ? 3 : 4;
@@ -33,10 +33,10 @@ coons_status coons_curve_coons_cubic(const double *points, size_t count, int clo
         return coons__error_set(err, COONS_E_INVALID,
                                 "coons-cubic (%s) needs at least %zu points, got %zu",
                                 closed ? "closed" : "open", min, count);
-    if (count > COONS_MAX_CURVE_POINTS)
+    if (count > COONS_CURVE_MAX_POINTS)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "coons-cubic has %zu points, more than the limit of %d", count,
-                                COONS_MAX_CURVE_POINTS);
+                                COONS_CURVE_MAX_POINTS);
     if (!coons__all_finite(points, 3 * count))
         return coons__error_set(err, COONS_E_INVALID, "coons-cubic: a point is not finite");
     if (closed && count >= 6 && repeats_first_three(points, count))
@@ -119,8 +119,8 @@ const coons__curve_kind coons__coons_cubic_kind = {
     .type = COONS_CURVE_COONS_CUBIC, .eval = eval, .bezier = bezier_segments, .breaks = breaks,
     .copy = copy_data, .free = free_data};
 
-coons_status coons_cubic_open_to_clamped(const double *open, size_t count, double *clamped,
-                                         coons_error *err)
+coons_status coons_curve_convert_open_to_clamped(const double *open, size_t count, double *clamped,
+                                                 coons_error *err)
 {
     if (count < 4)
         return coons__error_set(err, COONS_E_INVALID,

@@ -23,10 +23,10 @@ static const struct {
     int tc, sc;
     double tp, sp;
 } corner_src[4] = {
-    {COONS_T0, COONS_S0, 0.0, 0.0},
-    {COONS_T0, COONS_S1, 1.0, 0.0},
-    {COONS_T1, COONS_S0, 0.0, 1.0},
-    {COONS_T1, COONS_S1, 1.0, 1.0},
+    {COONS_SIDE_T0, COONS_SIDE_S0, 0.0, 0.0},
+    {COONS_SIDE_T0, COONS_SIDE_S1, 1.0, 0.0},
+    {COONS_SIDE_T1, COONS_SIDE_S0, 0.0, 1.0},
+    {COONS_SIDE_T1, COONS_SIDE_S1, 1.0, 1.0},
 };
 
 coons_status coons__patch_corners(const coons_curve *const b[4], double tol, double X[4][3],
@@ -74,9 +74,9 @@ static coons_status check_out(coons_patch **out, const char *what, coons_error *
     return COONS_OK;
 }
 
-coons_status coons_patch_bilinear(const double corners[4][3], coons_patch **out,
-                                  coons_error *err)
+coons_status coons_patch_new_bilinear(const double *flat, coons_patch **out, coons_error *err)
 {
+    const double(*corners)[3] = (const double(*)[3])flat; /* X00, X10, X01, X11 */
     coons_status rc = check_out(out, "bilinear patch", err);
     if (rc) return rc;
     if (!corners) return coons__error_set(err, COONS_E_INVALID, "bilinear patch: corners are NULL");
@@ -91,8 +91,8 @@ coons_status coons_patch_bilinear(const double corners[4][3], coons_patch **out,
     return COONS_OK;
 }
 
-coons_status coons_patch_ruled(const coons_curve *c0, const coons_curve *c1, coons_patch **out,
-                               coons_error *err)
+coons_status coons_patch_new_ruled(const coons_curve *c0, const coons_curve *c1, coons_patch **out,
+                                   coons_error *err)
 {
     coons_status rc = check_out(out, "ruled patch", err);
     if (rc) return rc;
@@ -114,9 +114,12 @@ coons_status coons_patch_ruled(const coons_curve *c0, const coons_curve *c1, coo
     return COONS_OK;
 }
 
-coons_status coons_patch_coons(const coons_curve *const boundary[4], coons_blend blend,
-                               double tol, coons_patch **out, coons_error *err)
+coons_status coons_patch_new_coons(coons_curve *const *boundary_in, coons_blend blend,
+                                   double tol, coons_patch **out, coons_error *err)
 {
+    /* The public idiom (coons/types.h, "Arrays") passes handles as X *const *;
+     * the code here only reads them. */
+    const coons_curve *const *boundary = (const coons_curve *const *)boundary_in;
     coons_status rc = check_out(out, "coons patch", err);
     if (rc) return rc;
     if (blend != COONS_BLEND_LINEAR && blend != COONS_BLEND_CUBIC)
@@ -170,8 +173,8 @@ static void coons_sline(const coons_patch *p, double s, int order, coons__pline 
     coons__pline_clear(L, 2, order);
     double b[6];
     coons__blend(p->blend, s, order, b);
-    coons__pline_curve(L, 0, p->curve[COONS_T0], s, order);
-    coons__pline_curve(L, 1, p->curve[COONS_T1], s, order);
+    coons__pline_curve(L, 0, p->curve[COONS_SIDE_T0], s, order);
+    coons__pline_curve(L, 1, p->curve[COONS_SIDE_T1], s, order);
     for (int d = 0; d <= order; d++) {
         L->b[d][0] = b[2 * d];
         L->b[d][1] = b[2 * d + 1];
@@ -202,8 +205,8 @@ static void linear_tline(const coons_patch *p, double t, int order, coons__pline
 static void coons_tline(const coons_patch *p, double t, int order, coons__pline *L)
 {
     blend_tline(p->blend, t, order, L);
-    coons__pline_curve(L, 0, p->curve[COONS_S0], t, order);
-    coons__pline_curve(L, 1, p->curve[COONS_S1], t, order);
+    coons__pline_curve(L, 0, p->curve[COONS_SIDE_S0], t, order);
+    coons__pline_curve(L, 1, p->curve[COONS_SIDE_S1], t, order);
 }
 
 static void bilinear_bbox(const coons_patch *p, double lo[3], double hi[3])

@@ -55,9 +55,9 @@ static void corner_tangents(const coons_curve *const boundary[4], double xs[4][3
     double r[2][3];
     for (int k = 0; k < 4; k++) {
         int a = k & 1, b = k >> 1;
-        coons_curve_eval_derivs(boundary[b ? COONS_T1 : COONS_T0], (double)a, 1, r);
+        coons_curve_eval_derivs(boundary[b ? COONS_SIDE_T1 : COONS_SIDE_T0], (double)a, 1, r);
         v3_copy(xs[k], r[1]);
-        coons_curve_eval_derivs(boundary[a ? COONS_S1 : COONS_S0], (double)b, 1, r);
+        coons_curve_eval_derivs(boundary[a ? COONS_SIDE_S1 : COONS_SIDE_S0], (double)b, 1, r);
         v3_copy(xt[k], r[1]);
     }
 }
@@ -108,10 +108,13 @@ static void fill_record(coons_patch *p, double X[4][3], double xs[4][3], double 
         for (int j = 0; j < 4; j++) v3_copy(p->M[i][j], rows[i][j]);
 }
 
-coons_status coons_patch_hermite_coons(const coons_curve *const boundary[4],
-                                       const coons_hermite_options *opts, coons_patch **out,
-                                       coons_error *err)
+coons_status coons_patch_new_hermite_coons(coons_curve *const *boundary_in,
+                                           const coons_hermite_options *opts, coons_patch **out,
+                                           coons_error *err)
 {
+    /* The public idiom (coons/types.h, "Arrays") passes handles as X *const *;
+     * the code here only reads them. */
+    const coons_curve *const *boundary = (const coons_curve *const *)boundary_in;
     if (!out) return coons__error_set(err, COONS_E_INVALID, "hermite-coons patch: out is NULL");
     *out = NULL;
     const coons_hermite_options defaults = COONS_HERMITE_OPTIONS_INIT;
@@ -193,7 +196,7 @@ static void hermite_line(double x, int order, const coons_curve *c0, const coons
 static void sline(const coons_patch *p, double s, int order, coons__pline *L)
 {
     double H[12];
-    hermite_line(s, order, p->curve[COONS_T0], p->cross[0], p->cross[1], p->curve[COONS_T1], H,
+    hermite_line(s, order, p->curve[COONS_SIDE_T0], p->cross[0], p->cross[1], p->curve[COONS_SIDE_T1], H,
                  L);
     for (int d = 0; d <= order; d++)
         for (int m = 0; m < 4; m++) {
@@ -206,7 +209,7 @@ static void sline(const coons_patch *p, double s, int order, coons__pline *L)
 static void tline(const coons_patch *p, double t, int order, coons__pline *L)
 {
     double H[12];
-    hermite_line(t, order, p->curve[COONS_S0], p->cross[2], p->cross[3], p->curve[COONS_S1], H,
+    hermite_line(t, order, p->curve[COONS_SIDE_S0], p->cross[2], p->cross[3], p->curve[COONS_SIDE_S1], H,
                  L);
     if (p->cross[2]) return;
     for (int d = 0; d <= order; d++)
@@ -221,3 +224,9 @@ const coons__patch_kind coons__hermite_coons_kind = {
     .grid = coons__boolsum_grid, .sline = sline, .tline = tline,
     .control_bbox = coons__boolsum_control_bbox, .breaks = coons__boolsum_breaks,
     .copy = coons__boolsum_copy, .free = coons__boolsum_free};
+
+void coons_hermite_options_init(coons_hermite_options *o)
+{
+    const coons_hermite_options d = COONS_HERMITE_OPTIONS_INIT;
+    if (o) *o = d;
+}

@@ -17,7 +17,7 @@
 #include "bspline.h"
 #include "patch_impl.h"
 
-#define MAXB (COONS_MAX_DEGREE + 1)
+#define MAXB (COONS_SPLINE_MAX_DEGREE + 1)
 
 /* Basis functions along s (dir 0) or t (dir 1): N[d*(deg+1) + k] for the
  * control indices first..first+deg; returns first. */
@@ -134,7 +134,7 @@ static coons_status grid(const coons_patch *p, const double *s, size_t ns, const
     const size_t q1 = (size_t)pt + 1, nct = p->nt;
     /* Scratch: t-basis per grid column, one s-combined net column per
      * control column, and the first t-index per grid column. */
-    /* nct * 4 doubles is small (the net passed COONS_MAX_PATCH_POINTS);
+    /* nct * 4 doubles is small (the net passed COONS_PATCH_MAX_POINTS);
      * only nt can overflow the byte count. */
     const size_t per_col = q1 * sizeof(double) + sizeof(size_t);
     const size_t fixed = nct * 4 * sizeof(double);
@@ -213,8 +213,8 @@ static coons_status check_net(const double *points, size_t ns, size_t nt, const 
     return COONS_OK;
 }
 
-coons_status coons_patch_bezier(const double *points, size_t ns, size_t nt, coons_patch **out,
-                                coons_error *err)
+coons_status coons_patch_new_bezier(const double *points, size_t ns, size_t nt, coons_patch **out,
+                                    coons_error *err)
 {
     if (!out) return coons__error_set(err, COONS_E_INVALID, "bezier surface: out is NULL");
     *out = NULL;
@@ -222,10 +222,10 @@ coons_status coons_patch_bezier(const double *points, size_t ns, size_t nt, coon
         return coons__error_set(err, COONS_E_INVALID,
                                 "bezier surface needs at least 2 x 2 points, got %zu x %zu", ns,
                                 nt);
-    if (ns > COONS_MAX_DEGREE + 1 || nt > COONS_MAX_DEGREE + 1)
+    if (ns > COONS_SPLINE_MAX_DEGREE + 1 || nt > COONS_SPLINE_MAX_DEGREE + 1)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "bezier surface of %zu x %zu points: degree above the limit %d",
-                                ns, nt, COONS_MAX_DEGREE);
+                                ns, nt, COONS_SPLINE_MAX_DEGREE);
     coons_status rc = check_net(points, ns, nt, "bezier surface", err);
     if (rc) return rc;
     coons_patch *p = NULL;
@@ -242,24 +242,24 @@ coons_status coons_patch_bezier(const double *points, size_t ns, size_t nt, coon
     return COONS_OK;
 }
 
-coons_status coons_patch_bspline(int ps, int pt, const double *points, size_t ns, size_t nt,
-                                 const double *knots_s, const double *knots_t,
-                                 const double *weights, coons_patch **out, coons_error *err)
+coons_status coons_patch_new_bspline(int ps, int pt, const double *points, size_t ns, size_t nt,
+                                     const double *knots_s, const double *knots_t,
+                                     const double *weights, coons_patch **out, coons_error *err)
 {
     static const char what[] = "bspline surface";
     if (!out) return coons__error_set(err, COONS_E_INVALID, "%s: out is NULL", what);
     *out = NULL;
-    if (ps < 1 || ps > COONS_MAX_DEGREE || pt < 1 || pt > COONS_MAX_DEGREE)
+    if (ps < 1 || ps > COONS_SPLINE_MAX_DEGREE || pt < 1 || pt > COONS_SPLINE_MAX_DEGREE)
         return coons__error_set(err, COONS_E_INVALID, "%s: degrees (%d, %d) outside 1..%d", what,
-                                ps, pt, COONS_MAX_DEGREE);
+                                ps, pt, COONS_SPLINE_MAX_DEGREE);
     if (ns < (size_t)ps + 1 || nt < (size_t)pt + 1)
         return coons__error_set(err, COONS_E_INVALID,
                                 "%s: degrees (%d, %d) need at least %d x %d points, got %zu x %zu",
                                 what, ps, pt, ps + 1, pt + 1, ns, nt);
-    if (ns > COONS_MAX_PATCH_POINTS || nt > COONS_MAX_PATCH_POINTS / ns)
+    if (ns > COONS_PATCH_MAX_POINTS || nt > COONS_PATCH_MAX_POINTS / ns)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "%s of %zu x %zu points: more than the limit of %d points", what,
-                                ns, nt, COONS_MAX_PATCH_POINTS);
+                                ns, nt, COONS_PATCH_MAX_POINTS);
     coons_status rc = check_net(points, ns, nt, what, err);
     if (rc) return rc;
     size_t n = ns * nt;

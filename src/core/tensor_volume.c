@@ -24,17 +24,17 @@ static coons_status make_tensor(const coons__body_kind *kind, const int deg[3], 
                                 what);
     size_t np = 1;
     for (int d = 0; d < 3; d++) {
-        if (deg[d] < 1 || deg[d] > COONS_MAX_DEGREE)
+        if (deg[d] < 1 || deg[d] > COONS_SPLINE_MAX_DEGREE)
             return coons__error_set(err, COONS_E_INVALID, "%s: degree %d along %c is outside 1..%d",
-                                    what, deg[d], "uvw"[d], COONS_MAX_DEGREE);
+                                    what, deg[d], "uvw"[d], COONS_SPLINE_MAX_DEGREE);
         if (n[d] < (size_t)deg[d] + 1)
             return coons__error_set(err, COONS_E_INVALID,
                                     "%s: degree %d along %c needs at least %d points, got %zu",
                                     what, deg[d], "uvw"[d], deg[d] + 1, n[d]);
-        if (n[d] > COONS_MAX_BODY_POINTS / np)
+        if (n[d] > COONS_BODY_MAX_POINTS / np)
             return coons__error_set(err, COONS_E_LIMIT,
                                     "%s: more than %d control points", what,
-                                    COONS_MAX_BODY_POINTS);
+                                    COONS_BODY_MAX_POINTS);
         np *= n[d];
     }
     for (size_t i = 0; i < np; i++)
@@ -72,19 +72,19 @@ static coons_status make_tensor(const coons__body_kind *kind, const int deg[3], 
     return COONS_OK;
 }
 
-coons_status coons_body_bezier(const double *points, const size_t n[3], coons_body **out,
-                               coons_error *err)
+coons_status coons_body_new_bezier(const double *points, const size_t n[3], coons_body **out,
+                                   coons_error *err)
 {
     *out = NULL;
     if (!n) return coons__error_set(err, COONS_E_INVALID, "bezier-volume: counts are NULL");
     int deg[3];
-    double kn[3][2 * (COONS_MAX_DEGREE + 1)];
+    double kn[3][2 * (COONS_SPLINE_MAX_DEGREE + 1)];
     const double *k[3];
     for (int d = 0; d < 3; d++) {
-        if (n[d] < 2 || n[d] > COONS_MAX_DEGREE + 1)
+        if (n[d] < 2 || n[d] > COONS_SPLINE_MAX_DEGREE + 1)
             return coons__error_set(err, n[d] < 2 ? COONS_E_INVALID : COONS_E_LIMIT,
                                     "bezier-volume: %zu points along %c, need 2..%d", n[d],
-                                    "uvw"[d], COONS_MAX_DEGREE + 1);
+                                    "uvw"[d], COONS_SPLINE_MAX_DEGREE + 1);
         deg[d] = (int)n[d] - 1;
         for (int i = 0; i <= deg[d]; i++) {
             kn[d][i] = 0.0;
@@ -95,10 +95,12 @@ coons_status coons_body_bezier(const double *points, const size_t n[3], coons_bo
     return make_tensor(&coons__bezier_volume_kind, deg, points, n, k, NULL, "bezier-volume", out, err);
 }
 
-coons_status coons_body_bspline(const int degree[3], const double *points, const size_t n[3],
-                                const double *const knots[3], const double *weights,
-                                coons_body **out, coons_error *err)
+coons_status coons_body_new_bspline(const int degree[3], const double *points, const size_t n[3],
+                                    const double *knots_u, const double *knots_v,
+                                    const double *knots_w, const double *weights,
+                                    coons_body **out, coons_error *err)
 {
+    const double *const knots[3] = {knots_u, knots_v, knots_w};
     return make_tensor(&coons__bspline_volume_kind, degree, points, n, knots, weights, "bspline-volume",
                        out, err);
 }
@@ -107,8 +109,8 @@ static void eval(const coons_body *b, double u, double v, double w, double out[3
                  double d[3][3])
 {
     int p = b->deg[0], q = b->deg[1], r = b->deg[2], nd = d ? 1 : 0;
-    double Nu[2 * (COONS_MAX_DEGREE + 1)], Nv[2 * (COONS_MAX_DEGREE + 1)],
-        Nw[2 * (COONS_MAX_DEGREE + 1)];
+    double Nu[2 * (COONS_SPLINE_MAX_DEGREE + 1)], Nv[2 * (COONS_SPLINE_MAX_DEGREE + 1)],
+        Nw[2 * (COONS_SPLINE_MAX_DEGREE + 1)];
     size_t fu = coons__bspline_basis01(b->knots[0], b->n[0], p, u, nd, Nu);
     size_t fv = coons__bspline_basis01(b->knots[1], b->n[1], q, v, nd, Nv);
     size_t fw = coons__bspline_basis01(b->knots[2], b->n[2], r, w, nd, Nw);

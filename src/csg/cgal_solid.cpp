@@ -2,11 +2,13 @@
 //
 // Repair and union of body shells with CGAL (Surface_mesh, Polygon Mesh
 // Processing, AABB tree; Debian's CGAL 5.5). The only translation unit that
-// includes CGAL: it costs ~40 s and 1.6 GB to compile.
+// includes CGAL: it costs ~40 s and 1.6 GB to compile. Every extern "C"
+// entry runs through coons::guard (cxx_guard.hpp); describe_failure() is the
+// part of the boundary that knows CGAL's exception.
 //
 // The solid of a shell is where its winding number is non-zero (model
 // format, "Solids and outputs"); the solid of a model is the union of its
-// bodies' solids. Per group of parts whose boxes meet (solidify_group):
+// bodies' solids. Per group of parts whose boxes meet (GroupSolidifier):
 //  0. a part that meets nothing and does not cross itself (exact check of
 //     the double mesh, count_self_intersections) passes through unchanged;
 //     the others are first snapped to a power-of-two grid near 1e-12 of the
@@ -55,17 +57,23 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "cxx_guard.hpp"
+
 extern "C" {
 #include "coons_internal.h"
+#include "coons_test_hooks.h"
+#include "csg/csg_records.h"
 }
 
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -572,15 +580,24 @@ bool boxes_meet(const Part &a, const Part &b)
     return true;
 }
 
-std::string names_of(const std::vector<Part> &parts, const std::vector<size_t> &ids)
+// "'a', 'b', ..." (the first 8 names of the parts ids) into buf, cut to
+// its size; allocates nothing (it runs in the guard's catch path).
+void names_into(char *buf, size_t size, const std::vector<Part> &parts,
+                const std::vector<size_t> &ids) noexcept
 {
-    std::string s;
-    for (size_t k = 0; k < ids.size() && k < 8; k++) {
-        if (k) s += ", ";
-        s += "'" + parts[ids[k]].name + "'";
+    size_t len = 0;
+    buf[0] = '\0';
+    for (size_t k = 0; k <= ids.size() && k <= 8 && len + 1 < size; k++) {
+        int w;
+        if (k == ids.size()) break;
+        if (k == 8)
+            w = std::snprintf(buf + len, size - len, ", ...");
+        else
+            w = std::snprintf(buf + len, size - len, "%s'%s'", k ? ", " : "",
+                              parts[ids[k]].name.c_str());
+        if (w < 0) break;
+        len += (size_t)w;
     }
-    if (ids.size() > 8) s += ", ...";
-    return s;
 }
 
 void edge_stats(const Soup &s, coons_csg_report &rep)
@@ -846,84 +863,145 @@ bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part>
     }
 }
 
-// One group of parts whose boxes meet. Returns true when the result was
-// passed through unchanged (no rounding, no check needed).
+// The triangles of part p, with vertex indices local to the part.
+std::vector<uint32_t> local_triangles(const uint32_t *tri, const Part &p)
+{
+    std::vector<uint32_t> local(3 * p.tri_count);
+    for (size_t t = 0; t < local.size(); t++)
+        local[t] = tri[3 * p.tri_first + t] - (uint32_t)p.vert_first;
+    return local;
+}
+
+// One group of parts whose boxes meet (run() returns true when the result
+// was passed through unchanged: no rounding, no check needed):
 //  - a part that meets nothing and does not cross itself passes through;
 //  - otherwise each part becomes an exact closed 2-manifold solid (as it
 //    is, or repaired by the soup pass), and the solids are united by
 //    chained corefinement on the exact kernel, rounded once at the end;
 //  - a repaired part that is not 2-manifold (a pinch) cannot enter a
 //    corefinement: then the whole group goes through the soup pass at once.
-bool solidify_group(const double *xyz, const double *sxyz, const uint32_t *tri,
-                    const std::vector<Part> &parts,
-                    const std::vector<size_t> &ids, const coons_csg_options &o,
-                    coons_csg_report &rep, Progress prog, double p0, double p1, Soup &s)
-{
-    std::vector<EMesh> solids(ids.size());
-    ExactSoup result;
-    bool manifold_all = true;
-    std::vector<size_t> crossing(ids.size());
-    bool clean = true;
-    for (size_t k = 0; k < ids.size(); k++) {
-        const Part &p = parts[ids[k]];
-        std::vector<uint32_t> local(3 * p.tri_count);
-        for (size_t t = 0; t < local.size(); t++)
-            local[t] = tri[3 * p.tri_first + t] - (uint32_t)p.vert_first;
-        crossing[k] = o.repair || ids.size() > 1
-                          ? count_self_intersections(xyz + 3 * p.vert_first, p.vert_count,
-                                                     local.data(), p.tri_count)
-                          : 0;
-        rep.intersecting_pairs += crossing[k];
-        if (crossing[k]) clean = false;
+class GroupSolidifier {
+  public:
+    GroupSolidifier(const double *xyz, const double *sxyz, const uint32_t *tri,
+                    const std::vector<Part> &parts, const std::vector<size_t> &ids,
+                    const coons_csg_options &o, coons_csg_report &rep, Progress prog, double p0,
+                    double p1)
+        : xyz_(xyz), sxyz_(sxyz), tri_(tri), parts_(parts), ids_(ids), o_(o), rep_(rep),
+          prog_(prog), p0_(p0), p1_(p1), solids_(ids.size()), crossing_(ids.size())
+    {
     }
-    if (clean && ids.size() > 1 && fast_union(sxyz, tri, parts, ids, rep, prog, p0, p1, s))
-        return true;
-    for (size_t k = 0; k < ids.size(); k++) {
-        const Part &p = parts[ids[k]];
-        std::vector<uint32_t> local(3 * p.tri_count);
-        for (size_t t = 0; t < local.size(); t++)
-            local[t] = tri[3 * p.tri_first + t] - (uint32_t)p.vert_first;
-        size_t pairs = crossing[k];
-        if (pairs == 0 && ids.size() == 1) {
-            rep.passed_through++;
-            s.xyz.assign(xyz + 3 * p.vert_first, xyz + 3 * (p.vert_first + p.vert_count));
-            s.tri = local;
+
+    bool run(Soup &s)
+    {
+        bool clean = count_crossings();
+        if (clean && ids_.size() > 1 &&
+            fast_union(sxyz_, tri_, parts_, ids_, rep_, prog_, p0_, p1_, s))
             return true;
+        ExactSoup result;
+        bool manifold_all = true;
+        if (make_solids(s, result, manifold_all)) return true;
+        if (ids_.size() == 1 && !manifold_all) {
+            // a pinched solid of one body: as it is
+        } else if (!manifold_all) {
+            soup_pass(result);
+        } else {
+            unite(result);
         }
-        ExactSoup es;
-        if (pairs == 0) {
-            for (size_t v = 0; v < p.vert_count; v++) {
-                const double *q = sxyz + 3 * (p.vert_first + v);
-                es.pts.emplace_back(q[0], q[1], q[2]);
-            }
-            for (size_t t = 0; t < p.tri_count; t++)
-                es.tri.push_back({local[3 * t], local[3 * t + 1], local[3 * t + 2]});
-            if (exact_mesh(es, solids[k])) continue;
-            es = ExactSoup();
-        }
-        std::vector<size_t> one{ids[k]};
-        double q0 = p0 + (p1 - p0) * k / (2.0 * ids.size());
-        Solidifier sol(sxyz, tri, parts, one, rep, prog, q0, q0 + (p1 - p0) / (2.0 * ids.size()));
-        if (!sol.run(solids[k], es)) {
-            manifold_all = false;
-            if (ids.size() == 1) result = es;
-            break;
-        }
+        round_soup(result, s, rep_);
+        return false;
     }
-    if (ids.size() == 1 && !manifold_all) {
-        // a pinched solid of one body: as it is
-    } else if (!manifold_all) {
-        Solidifier sol(sxyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
+
+  private:
+    const double *xyz_, *sxyz_;
+    const uint32_t *tri_;
+    const std::vector<Part> &parts_;
+    const std::vector<size_t> &ids_;
+    const coons_csg_options &o_;
+    coons_csg_report &rep_;
+    Progress prog_;
+    double p0_, p1_;
+    std::vector<EMesh> solids_;    // per part of the group
+    std::vector<size_t> crossing_; // its self-intersecting pairs
+
+    // Counts each part's self-intersections (a lone part without repair is
+    // not looked at); true when none crosses itself.
+    bool count_crossings()
+    {
+        bool clean = true;
+        for (size_t k = 0; k < ids_.size(); k++) {
+            const Part &p = parts_[ids_[k]];
+            std::vector<uint32_t> local = local_triangles(tri_, p);
+            crossing_[k] = o_.repair || ids_.size() > 1
+                               ? count_self_intersections(xyz_ + 3 * p.vert_first, p.vert_count,
+                                                          local.data(), p.tri_count)
+                               : 0;
+            rep_.intersecting_pairs += crossing_[k];
+            if (crossing_[k]) clean = false;
+        }
+        return clean;
+    }
+
+    // Each part as an exact closed 2-manifold in solids_, repaired when it
+    // crosses itself. Returns true when a lone clean part passed through
+    // (into s); clears manifold_all when a repaired part is pinched (for a
+    // lone part, `result` then holds its repaired soup).
+    bool make_solids(Soup &s, ExactSoup &result, bool &manifold_all)
+    {
+        for (size_t k = 0; k < ids_.size(); k++) {
+            const Part &p = parts_[ids_[k]];
+            std::vector<uint32_t> local = local_triangles(tri_, p);
+            size_t pairs = crossing_[k];
+            if (pairs == 0 && ids_.size() == 1) {
+                rep_.passed_through++;
+                s.xyz.assign(xyz_ + 3 * p.vert_first, xyz_ + 3 * (p.vert_first + p.vert_count));
+                s.tri = local;
+                return true;
+            }
+            ExactSoup es;
+            if (pairs == 0) {
+                for (size_t v = 0; v < p.vert_count; v++) {
+                    const double *q = sxyz_ + 3 * (p.vert_first + v);
+                    es.pts.emplace_back(q[0], q[1], q[2]);
+                }
+                for (size_t t = 0; t < p.tri_count; t++)
+                    es.tri.push_back({local[3 * t], local[3 * t + 1], local[3 * t + 2]});
+                if (exact_mesh(es, solids_[k])) continue;
+                es = ExactSoup();
+            }
+            std::vector<size_t> one{ids_[k]};
+            double q0 = p0_ + (p1_ - p0_) * k / (2.0 * ids_.size());
+            Solidifier sol(sxyz_, tri_, parts_, one, rep_, prog_, q0,
+                           q0 + (p1_ - p0_) / (2.0 * ids_.size()));
+            if (!sol.run(solids_[k], es)) {
+                manifold_all = false;
+                if (ids_.size() == 1) result = es;
+                break;
+            }
+        }
+        return false;
+    }
+
+    // The whole group at once through the soup pass, into result.
+    void soup_pass(ExactSoup &result)
+    {
+        Solidifier sol(sxyz_, tri_, parts_, ids_, rep_, prog_, p0_ + 0.5 * (p1_ - p0_), p1_);
         EMesh m;
+        result = ExactSoup();
         sol.run(m, result);
-    } else {
+    }
+
+    // The solids united by chained exact corefinement; the soup pass when
+    // corefinement refuses.
+    void unite(ExactSoup &result)
+    {
         std::string why;
         try {
-            EMesh acc = std::move(solids[0]);
-            for (size_t k = 1; k < ids.size(); k++) {
-                prog("union", p0 + (p1 - p0) * (0.5 + 0.5 * k / ids.size()));
-                if (!PMP::corefine_and_compute_union(acc, solids[k], acc))
-                    throw Failure(COONS_E_CSG, "corefinement refused '" + parts[ids[k]].name + "'");
+            EMesh acc = std::move(solids_[0]);
+            for (size_t k = 1; k < ids_.size(); k++) {
+                prog_("union", p0_ + (p1_ - p0_) * (0.5 + 0.5 * k / ids_.size()));
+                if (!PMP::corefine_and_compute_union(acc, solids_[k], acc))
+                    throw Failure(COONS_E_CSG,
+                                  "corefinement refused '" + parts_[ids_[k]].name + "'");
             }
             soup_of(acc, result);
         } catch (const std::bad_alloc &) {
@@ -934,20 +1012,210 @@ bool solidify_group(const double *xyz, const double *sxyz, const uint32_t *tri,
             why = e.what();
         }
         if (!why.empty()) {
-            rep.fallbacks++;
-            Solidifier sol(sxyz, tri, parts, ids, rep, prog, p0 + 0.5 * (p1 - p0), p1);
-            EMesh m;
-            result = ExactSoup();
-            sol.run(m, result);
+            rep_.fallbacks++;
+            soup_pass(result);
         }
     }
-    round_soup(result, s, rep);
-    return false;
+};
+
+// The input snapped to a grid of a power of two near 1e-12 of its size, for
+// the parts that need exact work: sampling noise (a NURBS plane at
+// z = 10.000000000000002 next to one at z = 10) otherwise makes
+// near-coplanar contacts whose exact intersections are narrower than
+// doubles, and the final rounding turns them into crossings. The snap
+// moves no point by more than 1e-12 of the size.
+std::vector<double> snapped(const double *xyz, size_t nv)
+{
+    std::vector<double> sxyz(xyz, xyz + 3 * nv);
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    for (size_t v = 0; v < nv; v++) bbox_add(lo, hi, &sxyz[3 * v]);
+    double diag = bbox_diag(lo, hi), mag = 0;
+    for (int c = 0; c < 3; c++) mag = std::max(mag, std::max(std::fabs(lo[c]), std::fabs(hi[c])));
+    if (diag > 0) {
+        int e;
+        std::frexp(std::max(diag, mag) * 1e-12, &e);
+        double g = std::ldexp(1.0, e);
+        for (double &x : sxyz) x = std::nearbyint(x / g) * g;
+    }
+    return sxyz;
 }
 
-coons_status fail(coons_error *err, coons_status code, const std::string &msg)
+// Groups of parts whose boxes meet, transitively (unite), or each part alone.
+std::vector<std::vector<size_t>> group_parts(const std::vector<Part> &parts, bool unite)
 {
-    return coons__error_set(err, code, "%s", msg.c_str());
+    std::vector<int> group(parts.size(), -1);
+    std::vector<std::vector<size_t>> groups;
+    for (size_t i = 0; i < parts.size(); i++) {
+        if (group[i] >= 0) continue;
+        group[i] = (int)groups.size();
+        groups.push_back({i});
+        if (!unite) continue;
+        for (size_t q = 0; q < groups.back().size(); q++)
+            for (size_t j = 0; j < parts.size(); j++)
+                if (group[j] < 0 && boxes_meet(parts[groups.back()[q]], parts[j])) {
+                    group[j] = group[i];
+                    groups.back().push_back(j);
+                }
+    }
+    return groups;
+}
+
+// The exact check of a rounded result: a crossing or a flat triangle that
+// the rounding made is an error, never a silent result.
+void check_rounding(const Soup &s)
+{
+    size_t degenerate = 0;
+    size_t pairs = count_self_intersections(s.xyz.data(), s.xyz.size() / 3, s.tri.data(),
+                                            s.tri.size() / 3, &degenerate);
+    if (pairs || degenerate)
+        throw Failure(COONS_E_CSG, "rounding the exact result to doubles made " +
+                                       std::to_string(pairs) + " triangle pairs intersect and " +
+                                       std::to_string(degenerate) + " triangles flat");
+}
+
+struct MeshFree {
+    void operator()(coons_mesh *m) const { coons_mesh_free(m); }
+};
+typedef std::unique_ptr<coons_mesh, MeshFree> MeshPtr;
+
+// The work of coons_mesh_solidify() (see the file comment). `parts` and
+// `current` (the parts being worked on) stay with the caller, whose error
+// message names them.
+coons_status solidify(const coons_mesh *in, const coons_csg_options &o, std::vector<Part> &parts,
+                      std::vector<size_t> &current, coons_mesh **out, coons_csg_report *report,
+                      coons_error *err)
+{
+    coons_csg_report rep = COONS_CSG_REPORT_INIT;
+    Progress prog{&o};
+    const double *xyz = coons_mesh_vertices(in);
+    const uint32_t *tri = coons_mesh_triangles(in);
+    collect_parts(in, parts);
+    // Until the groups are known, a failure concerns every part.
+    for (size_t i = 0; i < parts.size(); i++) current.push_back(i);
+    rep.parts_in = parts.size();
+    rep.triangles_in = coons_mesh_triangle_count(in);
+    if (coons__csg_failure_injected())
+        throw CGAL::Failure_exception("libcoons", "injected", __FILE__, __LINE__,
+                                      "injected failure (testing)");
+    std::vector<double> sxyz = snapped(xyz, coons_mesh_vertex_count(in));
+    std::vector<std::vector<size_t>> groups = group_parts(parts, o.unite != 0);
+    rep.groups = groups.size();
+
+    coons_mesh *made = nullptr;
+    coons_status rc = coons_mesh_new(&made, err);
+    if (rc) return rc;
+    MeshPtr res(made);
+    Soup all;
+    for (size_t gi = 0; gi < groups.size(); gi++) {
+        current = groups[gi];
+        double p0 = (double)gi / groups.size(), p1 = (double)(gi + 1) / groups.size();
+        prog("check", p0);
+        Soup s;
+        GroupSolidifier g(xyz, sxyz.data(), tri, parts, current, o, rep, prog, p0, p1);
+        if (!g.run(s)) check_rounding(s);
+        edge_stats(s, rep);
+        if (o.unite) {
+            uint32_t base = (uint32_t)(all.xyz.size() / 3);
+            all.xyz.insert(all.xyz.end(), s.xyz.begin(), s.xyz.end());
+            for (uint32_t v : s.tri) all.tri.push_back(v + base);
+        } else {
+            rc = coons_mesh_add_part(res.get(), parts[current[0]].name.c_str(), s.xyz.data(),
+                                     s.xyz.size() / 3, s.tri.data(), s.tri.size() / 3, err);
+            if (rc) return rc;
+        }
+    }
+    if (o.unite) {
+        rc = coons_mesh_add_part(res.get(), o.name ? o.name : "union", all.xyz.data(),
+                                 all.xyz.size() / 3, all.tri.data(), all.tri.size() / 3, err);
+        if (rc) return rc;
+    }
+    rep.triangles_out = coons_mesh_triangle_count(res.get());
+    prog("done", 1.0);
+    if (report) *report = rep;
+    *out = res.release();
+    return COONS_OK;
+}
+
+// Where a CGAL::Failure_exception's what() ("LIB ERROR: KIND!\nExpr: E\n
+// File: F\nLine: N\nExplanation: M", Expr and Explanation optional) holds
+// its message M, or else its expression E: read in place, since the
+// accessors return std::string copies and this runs in the catch path.
+void cgal_reason(const char *what, const char **text, int *len) noexcept
+{
+    static const char line_tag[] = "\nLine: ", expl_tag[] = "\nExplanation: ";
+    static const char expr_tag[] = "\nExpr: ", file_tag[] = "\nFile: ";
+    const char *line = nullptr;
+    for (const char *p = std::strstr(what, line_tag); p; p = std::strstr(p + 1, line_tag)) {
+        const char *q = p + sizeof line_tag - 1;
+        while (*q >= '0' && *q <= '9') q++;
+        if (*q == '\0' || std::strncmp(q, expl_tag, sizeof expl_tag - 1) == 0) {
+            line = p;
+            if (*q) {
+                *text = q + sizeof expl_tag - 1;
+                *len = (int)std::strlen(*text);
+                return;
+            }
+            break;
+        }
+    }
+    *text = "";
+    *len = 0;
+    const char *expr = std::strstr(what, expr_tag);
+    if (!expr || !line || expr > line) return;
+    expr += sizeof expr_tag - 1;
+    const char *end = nullptr;
+    for (const char *p = std::strstr(expr, file_tag); p && p < line; p = std::strstr(p + 1, file_tag))
+        end = p;
+    if (!end) return;
+    *text = expr;
+    *len = (int)(end - expr);
+}
+
+// The guard's describe() for coons_mesh_solidify(): names the bodies being
+// worked on; a Failure carries its own status.
+coons_status describe_failure(coons_error *err, const std::exception &e,
+                              const std::vector<Part> &parts,
+                              const std::vector<size_t> &current) noexcept
+{
+    char names[COONS_ERROR_MESSAGE_MAX];
+    names_into(names, sizeof names, parts, current);
+    if (const Failure *f = dynamic_cast<const Failure *>(&e)) {
+        if (current.empty()) return coons__error_set(err, f->code, "%s", f->what());
+        return coons__error_set(err, f->code, "bodies %s: %s", names, f->what());
+    }
+    if (const CGAL::Failure_exception *c = dynamic_cast<const CGAL::Failure_exception *>(&e)) {
+        const char *text;
+        int len;
+        cgal_reason(c->what(), &text, &len);
+        return coons__error_set(err, COONS_E_CSG,
+                                "CGAL could not complete the operation on bodies %s: %.*s", names,
+                                len, text);
+    }
+    return coons__error_set(err, COONS_E_CSG, "bodies %s: %s", names, e.what());
+}
+
+const char unknown_text[] = "unknown exception in the CGAL layer";
+const coons::guard_text self_int_text = {COONS_E_CSG, "self-intersection test failed: ",
+                                         unknown_text};
+
+coons_status self_int(const char *entry, const coons_mesh *m, size_t *pairs, bool to_float,
+                      coons_error *err) noexcept
+{
+    *pairs = 0;
+    return coons::guard(entry, err, self_int_text, [&]() -> coons_status {
+        size_t nv = coons_mesh_vertex_count(m);
+        const double *xyz = coons_mesh_vertices(m);
+        std::vector<double> f;
+        if (to_float) {
+            f.resize(3 * nv);
+            for (size_t i = 0; i < 3 * nv; i++) f[i] = (double)(float)xyz[i];
+            xyz = f.data();
+        }
+        *pairs = count_self_intersections(xyz, nv, coons_mesh_triangles(m),
+                                          coons_mesh_triangle_count(m));
+        return COONS_OK;
+    });
 }
 
 } // namespace
@@ -957,162 +1225,31 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
                                             coons_error *err)
 {
     *out = nullptr;
-    coons_csg_options defaults = COONS_CSG_OPTIONS_INIT;
-    if (!opts) opts = &defaults;
-    coons_csg_report rep;
-    std::memset(&rep, 0, sizeof rep);
-    coons_mesh *res = nullptr;
-    std::vector<size_t> current;
     std::vector<Part> parts;
-    try {
-        Progress prog{opts};
-        const double *xyz = coons_mesh_vertices(in);
-        const uint32_t *tri = coons_mesh_triangles(in);
-        collect_parts(in, parts);
-        // Until the groups are known, a failure concerns every part.
-        for (size_t i = 0; i < parts.size(); i++) current.push_back(i);
-        rep.parts_in = parts.size();
-        rep.triangles_in = coons_mesh_triangle_count(in);
-        if (opts->inject_failure) throw CGAL::Failure_exception("libcoons", "injected", __FILE__, __LINE__, "injected failure (testing)");
-
-        // Parts that need exact work are first snapped to a grid of a power
-        // of two near 1e-12 of the input's size: sampling noise (a NURBS
-        // plane at z = 10.000000000000002 next to one at z = 10) otherwise
-        // makes near-coplanar contacts whose exact intersections are
-        // narrower than doubles, and the final rounding turns them into
-        // crossings. The snap moves no point by more than 1e-12 of the size.
-        std::vector<double> sxyz(xyz, xyz + 3 * coons_mesh_vertex_count(in));
-        {
-            double lo[3], hi[3];
-            bbox_empty(lo, hi);
-            for (size_t v = 0; v < sxyz.size() / 3; v++) bbox_add(lo, hi, &sxyz[3 * v]);
-            double diag = bbox_diag(lo, hi), mag = 0;
-            for (int c = 0; c < 3; c++) mag = std::max(mag, std::max(std::fabs(lo[c]), std::fabs(hi[c])));
-            if (diag > 0) {
-                int e;
-                std::frexp(std::max(diag, mag) * 1e-12, &e);
-                double g = std::ldexp(1.0, e);
-                for (double &x : sxyz) x = std::nearbyint(x / g) * g;
-            }
-        }
-
-        // Groups: parts whose boxes meet, transitively (unite), or each part.
-        std::vector<int> group(parts.size(), -1);
-        std::vector<std::vector<size_t>> groups;
-        for (size_t i = 0; i < parts.size(); i++) {
-            if (group[i] >= 0) continue;
-            group[i] = (int)groups.size();
-            groups.push_back({i});
-            if (!opts->unite) continue;
-            for (size_t q = 0; q < groups.back().size(); q++)
-                for (size_t j = 0; j < parts.size(); j++)
-                    if (group[j] < 0 && boxes_meet(parts[groups.back()[q]], parts[j])) {
-                        group[j] = group[i];
-                        groups.back().push_back(j);
-                    }
-        }
-        rep.groups = groups.size();
-
-        coons_status rc = coons_mesh_new(&res, err);
-        if (rc) return rc;
-        Soup all;
-        for (size_t gi = 0; gi < groups.size(); gi++) {
-            current = groups[gi];
-            double p0 = (double)gi / groups.size(), p1 = (double)(gi + 1) / groups.size();
-            prog("check", p0);
-            Soup s;
-            if (!solidify_group(xyz, sxyz.data(), tri, parts, current, *opts, rep, prog, p0, p1, s)) {
-                size_t degenerate = 0;
-                size_t pairs = count_self_intersections(s.xyz.data(), s.xyz.size() / 3,
-                                                        s.tri.data(), s.tri.size() / 3,
-                                                        &degenerate);
-                if (pairs || degenerate)
-                    throw Failure(COONS_E_CSG,
-                                  "rounding the exact result to doubles made " +
-                                      std::to_string(pairs) + " triangle pairs intersect and " +
-                                      std::to_string(degenerate) + " triangles flat");
-            }
-            edge_stats(s, rep);
-            if (opts->unite) {
-                uint32_t base = (uint32_t)(all.xyz.size() / 3);
-                all.xyz.insert(all.xyz.end(), s.xyz.begin(), s.xyz.end());
-                for (uint32_t v : s.tri) all.tri.push_back(v + base);
-            } else {
-                rc = coons_mesh_add_part(res, parts[current[0]].name.c_str(), s.xyz.data(),
-                                         s.xyz.size() / 3, s.tri.data(), s.tri.size() / 3, err);
-                if (rc) {
-                    coons_mesh_free(res);
-                    return rc;
-                }
-            }
-        }
-        if (opts->unite) {
-            rc = coons_mesh_add_part(res, opts->name ? opts->name : "union", all.xyz.data(),
-                                     all.xyz.size() / 3, all.tri.data(), all.tri.size() / 3, err);
-            if (rc) {
-                coons_mesh_free(res);
-                return rc;
-            }
-        }
-        rep.triangles_out = coons_mesh_triangle_count(res);
-        prog("done", 1.0);
-        if (report) *report = rep;
-        *out = res;
-        return COONS_OK;
-    } catch (const std::bad_alloc &) {
-        coons_mesh_free(res);
-        return coons__error_nomem(err);
-    } catch (const Failure &e) {
-        coons_mesh_free(res);
-        return fail(err, e.code, (current.empty() ? std::string("") : "bodies " + names_of(parts, current) + ": ") + e.what());
-    } catch (const CGAL::Failure_exception &e) {
-        coons_mesh_free(res);
-        return fail(err, COONS_E_CSG,
-                    "CGAL could not complete the operation on bodies " + names_of(parts, current) +
-                        ": " + (e.message().empty() ? e.expression() : e.message()));
-    } catch (const std::exception &e) {
-        coons_mesh_free(res);
-        return fail(err, COONS_E_CSG, "bodies " + names_of(parts, current) + ": " + e.what());
-    } catch (...) {
-        coons_mesh_free(res);
-        return fail(err, COONS_E_INTERNAL, "unknown exception in the CGAL layer");
-    }
+    std::vector<size_t> current;
+    return coons::guard(
+        __func__, err, unknown_text,
+        [&]() -> coons_status {
+            coons_status st = coons__csg_records_check(opts, report, err);
+            if (st) return st;
+            const coons_csg_options defaults = COONS_CSG_OPTIONS_INIT;
+            return solidify(in, opts ? *opts : defaults, parts, current, out, report, err);
+        },
+        [&](coons_error *e, const std::exception &x) noexcept {
+            return describe_failure(e, x, parts, current);
+        });
 }
 
-namespace {
-coons_status self_int(const coons_mesh *m, size_t *pairs, bool to_float, coons_error *err)
-{
-    *pairs = 0;
-    try {
-        size_t nv = coons_mesh_vertex_count(m);
-        const double *xyz = coons_mesh_vertices(m);
-        std::vector<double> f;
-        if (to_float) {
-            f.resize(3 * nv);
-            for (size_t i = 0; i < 3 * nv; i++) f[i] = (double)(float)xyz[i];
-            xyz = f.data();
-        }
-        *pairs = count_self_intersections(xyz, nv, coons_mesh_triangles(m), coons_mesh_triangle_count(m));
-        return COONS_OK;
-    } catch (const std::bad_alloc &) {
-        return coons__error_nomem(err);
-    } catch (const std::exception &e) {
-        return fail(err, COONS_E_CSG, std::string("self-intersection test failed: ") + e.what());
-    } catch (...) {
-        return fail(err, COONS_E_INTERNAL, "unknown exception in the CGAL layer");
-    }
-}
-} // namespace
-
-extern "C" coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
-{
-    return self_int(m, pairs, false, err);
-}
-
-extern "C" coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
+extern "C" coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs,
                                                             coons_error *err)
 {
-    return self_int(m, pairs, true, err);
+    return self_int(__func__, m, pairs, false, err);
 }
 
-extern "C" int coons_csg_available(void) { return 1; }
+extern "C" coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                                  coons_error *err)
+{
+    return self_int(__func__, m, pairs, true, err);
+}
+
+extern "C" int coons_csg_is_available(void) { return 1; }

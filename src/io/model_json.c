@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 
 #include "io/json.h"
+#include "io/load_options.h"
 #include "model_impl.h"
 
 /* Samples per shared body 2 edge for the agreement check (ends included). */
@@ -278,7 +279,7 @@ static coons_status number(ld *L, size_t tok, double *v)
                 len > 40 ? 40 : (int)len, s);
 }
 
-/* An integer in [1, COONS_MAX_DEGREE]; 3.0 counts as 3 (JSON has one number type). */
+/* An integer in [1, COONS_SPLINE_MAX_DEGREE]; 3.0 counts as 3 (JSON has one number type). */
 static coons_status degree(ld *L, size_t tok, int *p)
 {
     double v;
@@ -288,9 +289,9 @@ static coons_status degree(ld *L, size_t tok, int *p)
         return fail(L, tok, COONS_E_INVALID, "a degree must be an integer, found %.17g", v);
     if (v < 1)
         return fail(L, tok, COONS_E_INVALID, "a degree must be >= 1, found %.17g", v);
-    if (v > COONS_MAX_DEGREE)
+    if (v > COONS_SPLINE_MAX_DEGREE)
         return fail(L, tok, COONS_E_LIMIT, "degree %.17g is above the limit of %d", v,
-                    COONS_MAX_DEGREE);
+                    COONS_SPLINE_MAX_DEGREE);
     *p = (int)v;
     return COONS_OK;
 }
@@ -405,7 +406,7 @@ static coons_status net(ld *L, size_t tok, const netspec *ns, size_t shape[3], d
         else if (ns->maxdir && n > ns->maxdir)
             rc = fail(L, t, COONS_E_LIMIT,
                       "%s has %zu %s%s: its degree %zu is above the limit of %d", ns->what, n,
-                      ns->noun, along, n - 1, COONS_MAX_DEGREE);
+                      ns->noun, along, n - 1, COONS_SPLINE_MAX_DEGREE);
         if (rc) break;
         total *= n;
         if (d + 1 < ns->dims) {
@@ -566,7 +567,7 @@ static coons_status curve(ld *L, size_t obj, coons_curve **out)
     switch (type) {
     case C_LINE: ns.exact = 1; break;
     case C_HERMITE: ns.exact = 1; break;
-    case C_BEZIER: ns.maxdir = COONS_MAX_DEGREE + 1; break;
+    case C_BEZIER: ns.maxdir = COONS_SPLINE_MAX_DEGREE + 1; break;
     case C_COONS_CUBIC:
         ns.min = closed ? 3 : 4;
         snprintf(what, sizeof what, "%s coons-cubic curve", closed ? "a closed" : "an open");
@@ -614,13 +615,13 @@ static coons_status curve(ld *L, size_t obj, coons_curve **out)
         coons_error e = COONS_ERROR_INIT;
         coons_status r = COONS_OK;
         switch (type) {
-        case C_LINE: r = coons_curve_line(pts, pts + 3, out, &e); break;
-        case C_POLYLINE: r = coons_curve_polyline(pts, n, out, &e); break;
-        case C_BEZIER: r = coons_curve_bezier(pts, n, out, &e); break;
-        case C_HERMITE: r = coons_curve_hermite(pts, tan, pts + 3, tan + 3, out, &e); break;
-        case C_COONS_CUBIC: r = coons_curve_coons_cubic(pts, n, closed, out, &e); break;
-        case C_CLAMPED: r = coons_curve_clamped_cubic(pts, n, out, &e); break;
-        default: r = coons_curve_bspline(p, pts, n, kn, w, out, &e); break;
+        case C_LINE: r = coons_curve_new_line(pts, pts + 3, out, &e); break;
+        case C_POLYLINE: r = coons_curve_new_polyline(pts, n, out, &e); break;
+        case C_BEZIER: r = coons_curve_new_bezier(pts, n, out, &e); break;
+        case C_HERMITE: r = coons_curve_new_hermite(pts, tan, pts + 3, tan + 3, out, &e); break;
+        case C_COONS_CUBIC: r = coons_curve_new_coons_cubic(pts, n, closed, out, &e); break;
+        case C_CLAMPED: r = coons_curve_new_clamped_cubic(pts, n, out, &e); break;
+        default: r = coons_curve_new_bspline(p, pts, n, kn, w, out, &e); break;
         }
         rc = built(L, obj, r, what, &e);
     }
@@ -803,7 +804,7 @@ static coons_status tensor(ld *L, size_t obj, int dims, int is_bspline, const ch
         if (rc) return rc;
     }
     if ((rc = need(L, obj, vpoints, "points", need_msg))) return rc;
-    netspec ns = {dims, LEAF_POINT, NULL, 2, 0, is_bspline ? 0 : COONS_MAX_DEGREE + 1, what,
+    netspec ns = {dims, LEAF_POINT, NULL, 2, 0, is_bspline ? 0 : COONS_SPLINE_MAX_DEGREE + 1, what,
                   "points"};
     old = push_key(L, "points");
     rc = net(L, vpoints, &ns, n, pts);
@@ -879,7 +880,7 @@ static coons_status patch(ld *L, size_t obj, coons_patch **out)
         rc = net(L, v[1], &ns, shape, &pts);
         pop(L, old);
         if (!rc && L->build) {
-            r = coons_patch_bilinear((const double(*)[3])pts, out, &e);
+            r = coons_patch_new_bilinear(pts, out, &e);
             rc = built(L, obj, r, what, &e);
         }
         break;
@@ -899,7 +900,7 @@ static coons_status patch(ld *L, size_t obj, coons_patch **out)
         }
         pop(L, old);
         if (!rc && L->build) {
-            r = coons_patch_ruled(bd[0], bd[1], out, &e);
+            r = coons_patch_new_ruled(bd[0], bd[1], out, &e);
             rc = built(L, obj, r, what, &e);
         }
         break;
@@ -930,14 +931,13 @@ static coons_status patch(ld *L, size_t obj, coons_patch **out)
         if (!L->build) break;
         if ((rc = patch_corners(L, bd, btok))) break;
         if (type == P_HERMITE && v[2] && (rc = cross_check(L, bd, cr, btok))) break;
-        const coons_curve *cb[4] = {bd[0], bd[1], bd[2], bd[3]};
         if (type == P_COONS)
-            r = coons_patch_coons(cb, bl, L->ctol, out, &e);
+            r = coons_patch_new_coons(bd, bl, L->ctol, out, &e);
         else {
             if (v[2])
                 for (int k = 0; k < 4; k++) ho.cross[k] = cr[k];
             ho.tol = L->ctol;
-            r = coons_patch_hermite_coons(cb, &ho, out, &e);
+            r = coons_patch_new_hermite_coons(bd, &ho, out, &e);
         }
         rc = built(L, obj, r, what, &e);
         break;
@@ -950,9 +950,9 @@ static coons_status patch(ld *L, size_t obj, coons_patch **out)
                     n, &pts, kn, &w, need_msg);
         if (!rc && L->build) {
             if (bs)
-                r = coons_patch_bspline(deg[0], deg[1], pts, n[0], n[1], kn[0], kn[1], w, out, &e);
+                r = coons_patch_new_bspline(deg[0], deg[1], pts, n[0], n[1], kn[0], kn[1], w, out, &e);
             else
-                r = coons_patch_bezier(pts, n[0], n[1], out, &e);
+                r = coons_patch_new_bezier(pts, n[0], n[1], out, &e);
             rc = built(L, obj, r, what, &e);
         }
         break;
@@ -1131,7 +1131,7 @@ static coons_status body(ld *L, size_t obj, size_t index, coons_body **out)
         rc = net(L, v[3], &ns, shape, &pts);
         pop(L, old);
         if (!rc && L->build) {
-            r = coons_body_body0((const double(*)[3])pts, bl, out, &e);
+            r = coons_body_new_body0(pts, bl, out, &e);
             rc = built(L, obj, r, what, &e);
         }
         break;
@@ -1169,14 +1169,10 @@ static coons_status body(ld *L, size_t obj, size_t index, coons_body **out)
         if (rc || !L->build) break;
         if (is1) {
             if ((rc = body1_corners(L, c, sub))) break;
-            const coons_curve *cc[12];
-            for (int k = 0; k < 12; k++) cc[k] = c[k];
-            r = coons_body_body1(cc, bl, L->ctol, out, &e);
+            r = coons_body_new_body1(c, bl, L->ctol, out, &e);
         } else {
             if ((rc = body2_edges(L, f, sub))) break;
-            const coons_patch *ff[6];
-            for (int k = 0; k < 6; k++) ff[k] = f[k];
-            r = coons_body_body2(ff, bl, L->ctol, out, &e);
+            r = coons_body_new_body2(f, bl, L->ctol, out, &e);
         }
         if (r == COONS_E_INCOMPATIBLE) {
             /* The constructor saw a disagreement that the checks above did not
@@ -1196,10 +1192,9 @@ static coons_status body(ld *L, size_t obj, size_t index, coons_body **out)
                     n, &pts, kn, &w, need_msg);
         if (!rc && L->build) {
             if (bs) {
-                const double *const kk[3] = {kn[0], kn[1], kn[2]};
-                r = coons_body_bspline(deg, pts, n, kk, w, out, &e);
+                r = coons_body_new_bspline(deg, pts, n, kn[0], kn[1], kn[2], w, out, &e);
             } else
-                r = coons_body_bezier(pts, n, out, &e);
+                r = coons_body_new_bezier(pts, n, out, &e);
             rc = built(L, obj, r, what, &e);
         }
         break;
@@ -1460,14 +1455,16 @@ static coons_status file_error(coons_error *err, coons_status code, const char *
     return code;
 }
 
-coons_status coons_model_load_buffer_opts(const char *data, size_t size, const char *name,
-                                          const coons_model_load_options *opts,
-                                          coons_model **out, coons_error *err)
+coons_status coons_model_load_memory(const char *data, size_t size, const char *name,
+                                     const coons_model_load_options *opts,
+                                     coons_model **out, coons_error *err)
 {
     if (out) *out = NULL;
     const char *file = name ? name : "<buffer>";
     if (!out || (!data && size))
         return file_error(err, COONS_E_INVALID, file, "no data or no place for the model");
+    coons_status vrc = coons__model_load_options_check(opts, err);
+    if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     if (size > o.max_bytes)
@@ -1505,12 +1502,6 @@ coons_status coons_model_load_buffer_opts(const char *data, size_t size, const c
     return rc;
 }
 
-coons_status coons_model_load_buffer(const char *data, size_t size, const char *name,
-                                     coons_model **out, coons_error *err)
-{
-    return coons_model_load_buffer_opts(data, size, name, NULL, out, err);
-}
-
 static coons_status io_error(coons_error *err, const char *path, const char *what, int errnum)
 {
     char buf[256] = "unknown error";
@@ -1518,11 +1509,13 @@ static coons_status io_error(coons_error *err, const char *path, const char *wha
     return file_error(err, COONS_E_IO, path, "cannot %s: %s", what, buf);
 }
 
-coons_status coons_model_load_opts(const char *path, const coons_model_load_options *opts,
+coons_status coons_model_load_file(const char *path, const coons_model_load_options *opts,
                                    coons_model **out, coons_error *err)
 {
     if (out) *out = NULL;
     if (!path || !out) return file_error(err, COONS_E_INVALID, "?", "no file name");
+    coons_status vrc = coons__model_load_options_check(opts, err);
+    if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     errno = 0;
@@ -1577,12 +1570,7 @@ coons_status coons_model_load_opts(const char *path, const coons_model_load_opti
                           "coons2stl --max-bytes N)",
                           o.max_bytes);
     }
-    coons_status rc = coons_model_load_buffer_opts(buf, len, path, &o, out, err);
+    coons_status rc = coons_model_load_memory(buf, len, path, &o, out, err);
     coons__free(buf);
     return rc;
-}
-
-coons_status coons_model_load(const char *path, coons_model **out, coons_error *err)
-{
-    return coons_model_load_opts(path, NULL, out, err);
 }

@@ -408,3 +408,9 @@ coons_status coons_mesh_write(const coons_mesh *m, const char *path, coons_forma
     sync_dir(target);
     return COONS_OK;
 }
+
+void coons_write_options_init(coons_write_options *o)
+{
+    const coons_write_options d = COONS_WRITE_OPTIONS_INIT;
+    if (o) *o = d;
+}

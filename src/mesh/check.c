@@ -226,3 +226,9 @@ done:
     coons__free(scratch);
     return st;
 }
+
+void coons_mesh_report_init(coons_mesh_report *r)
+{
+    const coons_mesh_report d = COONS_MESH_REPORT_INIT;
+    if (r) *r = d;
+}

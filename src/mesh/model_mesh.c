@@ -73,8 +73,8 @@ coons_status coons__union_unavailable(const coons_mesh *m, size_t i, size_t j, c
                             m->parts[i].name, m->parts[j].name);
 }
 
-coons_status coons_model_mesh(const coons_model *model, const coons_sample_options *opts,
-                              coons_mesh **out, coons_error *err)
+coons_status coons_model_sample(const coons_model *model, const coons_sample_options *opts,
+                                coons_mesh **out, coons_error *err)
 {
     double tol = 0;
     coons_status st = coons__model_sample(model, opts, NULL, NULL, out, &tol, err);

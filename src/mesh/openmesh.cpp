@@ -7,7 +7,8 @@
  * and stores float points by default; the library must stay silent and keep
  * doubles, hence Vec3d traits and the streams disabled before any call.
  * add_face() reports a refused face only by an invalid handle: every handle
- * is checked and counted. No exception crosses into C. */
+ * is checked and counted. Every extern "C" entry runs through the guard
+ * of cxx_guard.hpp: no exception crosses into C. */
 
 /* gcc 12 warns falsely (-Wmaybe-uninitialized) inside OpenMesh's headers at
  * -O2; silenced for this file only. */
@@ -20,14 +21,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <exception>
-#include <new>
 #include <string>
 #include <vector>
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
+
+#include "cxx_guard.hpp"
 
 extern "C" {
 #include "coons_internal.h"
@@ -73,18 +74,42 @@ size_t build(const coons_mesh *m, OMesh &om)
     return rejected;
 }
 
-template <typename F> coons_status guarded(coons_error *err, F &&body)
+/* What the guard says of an exception of this layer (cxx_guard.hpp). */
+const coons::guard_text om_text = {COONS_E_INTERNAL, "OpenMesh: ", "OpenMesh: unknown exception"};
+
+/* om's points and triangles as a new one-part mesh named `name`. */
+coons_status mesh_of(const OMesh &om, const char *name, coons_mesh **out, coons_error *err)
 {
-    try {
-        silence();
-        return body();
-    } catch (const std::bad_alloc &) {
-        return coons__error_nomem(err);
-    } catch (const std::exception &e) {
-        return coons__error_set(err, COONS_E_INTERNAL, "OpenMesh: %s", e.what());
-    } catch (...) {
-        return coons__error_set(err, COONS_E_INTERNAL, "OpenMesh: unknown exception");
+    std::vector<double> xyz;
+    xyz.reserve(3 * om.n_vertices());
+    for (OMesh::VertexHandle v : om.vertices()) {
+        const OMesh::Point &p = om.point(v);
+        xyz.push_back(p[0]);
+        xyz.push_back(p[1]);
+        xyz.push_back(p[2]);
     }
+    std::vector<uint32_t> tri;
+    tri.reserve(3 * om.n_faces());
+    for (OMesh::FaceHandle fh : om.faces()) {
+        size_t k = 0;
+        for (OMesh::VertexHandle v : om.fv_range(fh)) {
+            tri.push_back(static_cast<uint32_t>(v.idx()));
+            k++;
+        }
+        if (k != 3)
+            return coons__error_set(err, COONS_E_INTERNAL,
+                                    "OpenMesh returned a face with %zu vertices", k);
+    }
+    coons_mesh *m;
+    coons_status st = coons_mesh_new(&m, err);
+    if (st) return st;
+    st = coons_mesh_add_part(m, name, xyz.data(), om.n_vertices(), tri.data(), tri.size() / 3, err);
+    if (st) {
+        coons_mesh_free(m);
+        return st;
+    }
+    *out = m;
+    return COONS_OK;
 }
 
 } // namespace
@@ -92,9 +117,10 @@ template <typename F> coons_status guarded(coons_error *err, F &&body)
 extern "C" coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_report *report,
                                          coons_error *err)
 {
-    coons_status st = coons__mesh_check_c(m, report, err);
-    if (st) return st;
-    return guarded(err, [&]() -> coons_status {
+    return coons::guard(__func__, err, om_text, [&]() -> coons_status {
+        coons_status st = coons__mesh_check_c(m, report, err);
+        if (st) return st;
+        silence();
         OMesh om;
         report->openmesh_rejected = build(m, om);
         size_t boundary = 0;
@@ -106,10 +132,11 @@ extern "C" coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_report 
     });
 }
 
-extern "C" coons_status coons_mesh_read(const char *path, coons_mesh **out, coons_error *err)
+extern "C" coons_status coons__mesh_read(const char *path, coons_mesh **out, coons_error *err)
 {
     *out = NULL;
-    return guarded(err, [&]() -> coons_status {
+    return coons::guard(__func__, err, om_text, [&]() -> coons_status {
+        silence();
         FILE *f = fopen(path, "rb");
         if (!f) return coons__error_set(err, COONS_E_IO, "cannot open '%s'", path);
         fclose(f);
@@ -122,38 +149,7 @@ extern "C" coons_status coons_mesh_read(const char *path, coons_mesh **out, coon
                                     path);
         if (om.n_faces() == 0)
             return coons__error_set(err, COONS_E_IO, "OpenMesh read no face from '%s'", path);
-        std::vector<double> xyz;
-        xyz.reserve(3 * om.n_vertices());
-        for (OMesh::VertexHandle v : om.vertices()) {
-            const OMesh::Point &p = om.point(v);
-            xyz.push_back(p[0]);
-            xyz.push_back(p[1]);
-            xyz.push_back(p[2]);
-        }
-        std::vector<uint32_t> tri;
-        tri.reserve(3 * om.n_faces());
-        for (OMesh::FaceHandle fh : om.faces()) {
-            size_t k = 0;
-            for (OMesh::VertexHandle v : om.fv_range(fh)) {
-                tri.push_back(static_cast<uint32_t>(v.idx()));
-                k++;
-            }
-            if (k != 3)
-                return coons__error_set(err, COONS_E_INTERNAL,
-                                        "OpenMesh returned a face with %zu vertices", k);
-        }
         const char *base = std::strrchr(path, '/');
-        base = base ? base + 1 : path;
-        coons_mesh *m;
-        coons_status st = coons_mesh_new(&m, err);
-        if (st) return st;
-        st = coons_mesh_add_part(m, base, xyz.data(), om.n_vertices(), tri.data(), tri.size() / 3,
-                                 err);
-        if (st) {
-            coons_mesh_free(m);
-            return st;
-        }
-        *out = m;
-        return COONS_OK;
+        return mesh_of(om, base ? base + 1 : path, out, err);
     });
 }

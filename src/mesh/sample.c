@@ -817,8 +817,8 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
                                 1u << 20);
     out->tolerance = in->tolerance;
     out->resolution = in->resolution;
-    out->max_triangles = in->max_triangles ? in->max_triangles : COONS_DEFAULT_MAX_TRIANGLES;
-    out->max_aspect = in->max_aspect != 0.0 ? in->max_aspect : COONS_DEFAULT_MAX_ASPECT;
+    out->max_triangles = in->max_triangles ? in->max_triangles : COONS_MESH_MAX_TRIANGLES;
+    out->max_aspect = in->max_aspect != 0.0 ? in->max_aspect : COONS_SAMPLE_DEFAULT_MAX_ASPECT;
     if (in->flags & ~COONS_SAMPLE_UNMEASURED)
         return coons__error_set(err, COONS_E_INVALID, "unknown sample option flags 0x%x",
                                 in->flags & ~COONS_SAMPLE_UNMEASURED);
@@ -847,4 +847,10 @@ coons_status coons_body_sample(const coons_body *b, const coons_sample_options *
     }
     *out = m;
     return COONS_OK;
+}
+
+void coons_sample_options_init(coons_sample_options *o)
+{
+    const coons_sample_options d = COONS_SAMPLE_OPTIONS_INIT;
+    if (o) *o = d;
 }

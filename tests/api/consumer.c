@@ -56,8 +56,8 @@ static void test_curve(void)
     const double pts[9] = {0, 0, 0, 1, 2, 0, 3, 3, 1};
     coons_curve *c = NULL;
     coons_error err = COONS_ERROR_INIT;
-    coons_status st = coons_curve_bezier(pts, 3, &c, &err);
-    check("coons_curve_bezier succeeds", st == COONS_OK && c != NULL);
+    coons_status st = coons_curve_new_bezier(pts, 3, &c, &err);
+    check("coons_curve_new_bezier succeeds", st == COONS_OK && c != NULL);
     if (c) {
         double p[3], d[2][3];
         const double want[3] = {1.25, 1.75, 0.25}, want_d[3] = {3, 3, 1};
@@ -77,14 +77,14 @@ static void test_error(void)
     const double one[3] = {1, 2, 3};
     coons_curve *c = NULL;
     coons_error err = COONS_ERROR_INIT;
-    coons_status st = coons_curve_polyline(one, 1, &c, &err);
+    coons_status st = coons_curve_new_polyline(one, 1, &c, &err);
     check("polyline of 1 point is COONS_E_INVALID", st == COONS_E_INVALID);
     check("err.code is the status", err.code == (int)st);
     check("err.message is set", err.message[0] != '\0');
     check("no object on failure", c == NULL);
     check("coons_strerror", coons_strerror(st) != NULL && coons_strerror(st)[0] != '\0');
     /* err may be NULL. */
-    check("NULL err accepted", coons_curve_polyline(one, 1, &c, NULL) == COONS_E_INVALID);
+    check("NULL err accepted", coons_curve_new_polyline(one, 1, &c, NULL) == COONS_E_INVALID);
 }
 
 /* A hexahedron with no parallel faces: P_ijk, index 4i + 2j + k. */
@@ -142,8 +142,8 @@ static void test_body0(void)
     for (int n = 0; n < 8; n++)
         corner(n >> 2, (n >> 1) & 1, n & 1, c[n]);
     /* ISO C before C23 needs the cast from double (*)[3]; see libcoons(3). */
-    coons_status st = coons_body_body0((const double (*)[3])c, COONS_BLEND_LINEAR, &b, &err);
-    check("coons_body_body0 succeeds", st == COONS_OK && b != NULL);
+    coons_status st = coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err);
+    check("coons_body_new_body0 succeeds", st == COONS_OK && b != NULL);
     if (b) {
         check("coons_body_get_type", coons_body_get_type(b) == COONS_BODY_BODY0);
         check_body("body0", b);
@@ -171,23 +171,23 @@ static void test_body2(void)
         coons_curve *edge[4] = {0};
         for (int n = 0; n < 4; n++)
             corner(face[f][n] >> 2, (face[f][n] >> 1) & 1, face[f][n] & 1, x[n]);
-        st = coons_curve_line(x[0], x[1], &edge[COONS_T0], &err); /* x(s,0) */
-        if (st == COONS_OK) st = coons_curve_line(x[2], x[3], &edge[COONS_T1], &err);
-        if (st == COONS_OK) st = coons_curve_line(x[0], x[2], &edge[COONS_S0], &err);
-        if (st == COONS_OK) st = coons_curve_line(x[1], x[3], &edge[COONS_S1], &err);
+        st = coons_curve_new_line(x[0], x[1], &edge[COONS_SIDE_T0], &err); /* x(s,0) */
+        if (st == COONS_OK) st = coons_curve_new_line(x[2], x[3], &edge[COONS_SIDE_T1], &err);
+        if (st == COONS_OK) st = coons_curve_new_line(x[0], x[2], &edge[COONS_SIDE_S0], &err);
+        if (st == COONS_OK) st = coons_curve_new_line(x[1], x[3], &edge[COONS_SIDE_S1], &err);
         if (st == COONS_OK)
-            st = coons_patch_coons((const coons_curve *const *)edge, COONS_BLEND_LINEAR,
-                                   COONS_TOL_DEFAULT, &faces[f], &err);
+            st = coons_patch_new_coons(edge, COONS_BLEND_LINEAR,
+                                       COONS_TOL_DEFAULT, &faces[f], &err);
         for (int n = 0; n < 4; n++)
             coons_curve_free(edge[n]); /* the patch holds copies */
     }
     check("six Coons faces", st == COONS_OK);
     if (st == COONS_OK)
-        st = coons_body_body2((const coons_patch *const *)faces, COONS_BLEND_LINEAR,
-                              COONS_TOL_DEFAULT, &b, &err);
+        st = coons_body_new_body2(faces, COONS_BLEND_LINEAR,
+                                  COONS_TOL_DEFAULT, &b, &err);
     for (int f = 0; f < 6; f++)
         coons_patch_free(faces[f]); /* the body holds copies */
-    check("coons_body_body2 succeeds", st == COONS_OK && b != NULL);
+    check("coons_body_new_body2 succeeds", st == COONS_OK && b != NULL);
     if (st != COONS_OK)
         printf("  %s: %s\n", coons_strerror(st), err.message);
     if (b)
@@ -206,7 +206,7 @@ static coons_status box(const double lo[3], const double hi[3], coons_body **out
         for (int d = 0; d < 3; d++)
             c[n][d] = ijk[d] ? hi[d] : lo[d];
     }
-    return coons_body_body0((const double (*)[3])c, COONS_BLEND_LINEAR, out, err);
+    return coons_body_new_body0(c[0], COONS_BLEND_LINEAR, out, err);
 }
 
 /* Appends the single part of `from` to `to`. */
@@ -254,9 +254,9 @@ static void test_mesh(void)
     check("two-part mesh", st == COONS_OK && coons_mesh_part_count(both) == 2);
     if (st != COONS_OK)
         goto done;
-    coons_csg_report cr;
+    coons_csg_report cr = COONS_CSG_REPORT_INIT;
     st = coons_mesh_solidify(both, NULL, &u, &cr, &err);
-    if (!coons_csg_available()) {
+    if (!coons_csg_is_available()) {
         check("without CGAL, solidify is COONS_E_UNSUPPORTED", st == COONS_E_UNSUPPORTED);
         goto done;
     }

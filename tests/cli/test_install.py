@@ -127,9 +127,11 @@ def main():
             prefix, mandir, os.path.basename(os.path.dirname(p)), os.path.basename(p)))]
         check(f"{len(pages)} man pages installed", not missing, f"missing: {missing}")
 
-        # Soname: the major version (STYLE item 13).
+        # Soname: the major version (STYLE item 13); before 1.0 every minor
+        # version may change the ABI, so it is major.minor there.
+        soname = f"libcoons.so.{major}" if major else f"libcoons.so.0.{minor}"
         rc, out = run(["readelf", "-d", libs[0]])
-        check(f"soname is libcoons.so.{major}", f"[libcoons.so.{major}]" in out, out)
+        check(f"soname is {soname}", f"[{soname}]" in out, out)
 
         # Only coons_* is exported (STYLE item 14), from the build and the install.
         for lib in (os.path.join(build, "src", "libcoons.so"), libs[0]):
@@ -153,7 +155,7 @@ def main():
         exe = os.path.join(tmp, "consumer_shared")
         rc, out = run([cc] + cflags + [consumer, "-o", exe] + flags.split())
         if check("(a) build with pkg-config --cflags --libs", rc == 0, flags + out):
-            check("(a) executable needs libcoons.so", f"libcoons.so.{major}" in needed(exe))
+            check("(a) executable needs libcoons.so", soname in needed(exe))
             renv = dict(os.environ, LD_LIBRARY_PATH=libdir)
             rc, out = run([exe], env=renv)
             check("(a) run", rc == 0, out)
@@ -198,10 +200,17 @@ def main():
         with open(os.path.join(proj, "CMakeLists.txt"), "w") as f:
             f.write(f"""cmake_minimum_required(VERSION 3.18)
 project(consumer C)
-# SameMajorVersion: the next major must not be accepted.
+# SameMajorVersion (before 1.0 SameMinorVersion): the next major, and
+# before 1.0 an earlier minor, must not be accepted.
 find_package(coons {major + 1} CONFIG QUIET)
 if(coons_FOUND)
   message(FATAL_ERROR "find_package(coons {major + 1}) accepted version ${{coons_VERSION}}")
+endif()
+if({major} EQUAL 0 AND {minor} GREATER 0)
+  find_package(coons 0.{max(minor - 1, 0)} CONFIG QUIET)
+  if(coons_FOUND)
+    message(FATAL_ERROR "find_package(coons 0.{max(minor - 1, 0)}) accepted version ${{coons_VERSION}}")
+  endif()
 endif()
 find_package(coons {major}.{minor} CONFIG REQUIRED)
 if(NOT coons_VERSION STREQUAL "{major}.{minor}.{patch}")

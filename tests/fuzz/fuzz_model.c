@@ -277,7 +277,7 @@ static void exercise_model(const coons_model *m, uint64_t h)
     so.max_triangles = 4000 * n;
     coons_mesh *mesh = NULL;
     coons_error err = COONS_ERROR_INIT;
-    coons_status rc = coons_model_mesh(m, &so, &mesh, &err);
+    coons_status rc = coons_model_sample(m, &so, &mesh, &err);
     CHECK(rc == COONS_OK || rc == COONS_E_LIMIT || rc == COONS_E_INVALID ||
               rc == COONS_E_UNSUPPORTED,
           "model mesh: %d %s", rc, err.message);
@@ -307,7 +307,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     coons_model *m = NULL;
     coons_error err = COONS_ERROR_INIT;
     alloc_reset(-1);
-    coons_status rc = coons_model_load_buffer_opts((const char *)data, size, "fuzz", &o, &m, &err);
+    coons_status rc = coons_model_load_memory((const char *)data, size, "fuzz", &o, &m, &err);
     if (getenv("FUZZ_MODEL_VERBOSE"))
         fprintf(stderr, "load: %d %s\n", rc, rc ? err.message : "");
     if (rc != COONS_OK) {
@@ -331,7 +331,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
      * one of them. */
     alloc_reset(LONG_MAX);
     m = NULL;
-    coons_status rc2 = coons_model_load_buffer_opts((const char *)data, size, "fuzz", &o, &m, &err);
+    coons_status rc2 = coons_model_load_memory((const char *)data, size, "fuzz", &o, &m, &err);
     CHECK(rc2 == rc, "second load gave %d, first %d", rc2, rc);
     coons_model_free(m);
     long total = g_count;
@@ -340,8 +340,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         coons_error e3 = COONS_ERROR_INIT;
         alloc_reset(k);
         m = NULL;
-        coons_status rc3 = coons_model_load_buffer_opts((const char *)data, size, "fuzz", &o, &m,
-                                                        &e3);
+        coons_status rc3 = coons_model_load_memory((const char *)data, size, "fuzz", &o, &m,
+                                                   &e3);
         CHECK(rc3 == COONS_E_NOMEM, "allocation %ld of %ld failed, load returned %d: %s", k, total,
               rc3, e3.message);
         CHECK(m == NULL, "a model despite a failed allocation");

@@ -58,7 +58,7 @@ int main(int argc, char **argv)
     for (int r = 0; r < repeat; r++) {
         double t0 = now();
         coons_model *m = NULL;
-        check(coons_model_load(model, &m, &err), "load", &err);
+        check(coons_model_load_file(model, NULL, &m, &err), "load", &err);
         double t1 = now();
         coons_mesh *all = NULL;
         check(coons_mesh_new(&all, &err), "mesh", &err);
@@ -82,7 +82,7 @@ int main(int argc, char **argv)
         }
         double t2 = now();
         coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-        coons_csg_report rep;
+        coons_csg_report rep = COONS_CSG_REPORT_INIT;
         coons_mesh *u = NULL;
         check(coons_mesh_solidify(all, &co, &u, &rep, &err), "union", &err);
         double t3 = now();

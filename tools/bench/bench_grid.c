@@ -124,14 +124,13 @@ int main(int argc, char **argv)
     double pts[M * M * 3];
     for (int f = 0; f < 6; f++) {
         face_net(f, pts);
-        if (coons_patch_bspline(3, 3, pts, M, M, NULL, NULL, NULL, &faces[f], &err)) {
+        if (coons_patch_new_bspline(3, 3, pts, M, M, NULL, NULL, NULL, &faces[f], &err)) {
             fprintf(stderr, "bench_grid: face %d: %s\n", f, err.message);
             return 1;
         }
     }
     coons_body *body;
-    if (coons_body_body2((const coons_patch *const *)faces, COONS_BLEND_LINEAR, COONS_TOL_DEFAULT,
-                         &body, &err)) {
+    if (coons_body_new_body2(faces, COONS_BLEND_LINEAR, COONS_TOL_DEFAULT, &body, &err)) {
         fprintf(stderr, "bench_grid: body2: %s\n", err.message);
         return 1;
     }

@@ -168,7 +168,7 @@ int main(int argc, char **argv)
     coons_error e = COONS_ERROR_INIT;
     coons_body *body;
     const size_t dims[3] = {4, 4, 4};
-    if (coons_body_bezier(&P[0][0][0][0], dims, &body, &e) != COONS_OK) die("body", &e);
+    if (coons_body_new_bezier(&P[0][0][0][0], dims, &body, &e) != COONS_OK) die("body", &e);
     coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
     so.resolution = n;
     /* As coons2stl --resolution: a fixed lattice, deviation not measured. */

@@ -2,6 +2,7 @@
 /* Built when libcoons is configured without CGAL: repair and union are not
  * available, and say so. */
 #include "coons_internal.h"
+#include "csg/csg_records.h"
 
 static coons_status unavailable(coons_error *err)
 {
@@ -14,25 +15,25 @@ coons_status coons_mesh_solidify(const coons_mesh *in, const coons_csg_options *
                                  coons_mesh **out, coons_csg_report *report, coons_error *err)
 {
     (void)in;
-    (void)opts;
-    (void)report;
     *out = NULL;
+    coons_status st = coons__csg_records_check(opts, report, err);
+    if (st) return st;
     return unavailable(err);
 }
 
-coons_status coons_mesh_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
+coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs, coons_error *err)
 {
     (void)m;
     *pairs = 0;
     return unavailable(err);
 }
 
-coons_status coons_mesh_self_intersections_float(const coons_mesh *m, size_t *pairs,
-                                                 coons_error *err)
+coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
+                                                       coons_error *err)
 {
     (void)m;
     *pairs = 0;
     return unavailable(err);
 }
 
-int coons_csg_available(void) { return 0; }
+int coons_csg_is_available(void) { return 0; }

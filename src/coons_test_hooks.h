@@ -1,0 +1,40 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Test hooks: internal functions for the tests and for the CLI's testing
+ * aid, never exported from the shared library (hidden visibility; link
+ * coons_static to reach them). Not thread-safe: set them before any other
+ * call, as coons_set_allocator(). Plain C. */
+#ifndef COONS_TEST_HOOKS_H
+#define COONS_TEST_HOOKS_H
+
+#include "coons.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Makes the C++ guard (src/cxx_guard.hpp) of the extern "C" entry named
+ * `entry` (e.g. "coons_mesh_check") throw std::bad_alloc before any work,
+ * at every call until cleared; NULL clears. The string is not copied. */
+void coons__cxx_inject_bad_alloc(const char *entry);
+/* Number of times an injected std::bad_alloc was thrown so far. */
+unsigned long coons__cxx_injected_count(void);
+/* Nonzero when the guard of `entry` is to throw (called by the guard). */
+int coons__cxx_injected(const char *entry);
+
+/* Nonzero: coons_mesh_solidify() throws a CGAL failure ("injected failure
+ * (testing)") once the parts are known, as if CGAL could not complete; its
+ * message names the bodies. Read by coons2stl for
+ * COONS2STL_INJECT_CSG_FAILURE. */
+void coons__csg_inject_failure(int on);
+int coons__csg_failure_injected(void);
+
+/* Reads an STL, OFF, OBJ, PLY or OM file with OpenMesh's readers (chosen by
+ * extension) into a new mesh of one part named after the file: for tests
+ * that read back what the writers wrote. ::COONS_E_IO when the file cannot
+ * be read or holds no face; ::COONS_E_UNSUPPORTED without OpenMesh. */
+coons_status coons__mesh_read(const char *path, coons_mesh **out, coons_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

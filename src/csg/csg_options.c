@@ -1,0 +1,39 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* The records of the repair/union layer (coons/csg.h): options and report,
+ * their _init() functions and the version checks shared by every function
+ * that takes them, with CGAL and without (csg/nocgal) alike. */
+#include <string.h>
+
+#include "coons_internal.h"
+#include "csg/csg_records.h"
+
+void coons_csg_options_init(coons_csg_options *o)
+{
+    const coons_csg_options d = COONS_CSG_OPTIONS_INIT;
+    if (o) *o = d;
+}
+
+void coons_csg_report_init(coons_csg_report *r)
+{
+    const coons_csg_report d = COONS_CSG_REPORT_INIT;
+    if (r) *r = d;
+}
+
+coons_status coons__csg_records_check(const coons_csg_options *opts, const coons_csg_report *report,
+                                      coons_error *err)
+{
+    if (opts && opts->version != COONS_CSG_OPTIONS_VERSION)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "csg options version %u, expected %u (use COONS_CSG_OPTIONS_INIT)",
+                                opts->version, (unsigned)COONS_CSG_OPTIONS_VERSION);
+    if (report && report->version != COONS_CSG_REPORT_VERSION)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "csg report version %u, expected %u (use COONS_CSG_REPORT_INIT)",
+                                report->version, (unsigned)COONS_CSG_REPORT_VERSION);
+    return COONS_OK;
+}
+
+void coons__csg_report_clear(coons_csg_report *report)
+{
+    if (report) coons_csg_report_init(report);
+}

@@ -1,0 +1,23 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Internal checks of the records of coons/csg.h (csg_options.c), shared by
+ * the CGAL layer, its stand-in (csg/nocgal) and coons_model_solidify(). */
+#ifndef COONS_CSG_RECORDS_H
+#define COONS_CSG_RECORDS_H
+
+#include "coons.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* COONS_E_INVALID unless opts (may be NULL) and report (may be NULL) carry
+ * the versions this library knows. */
+coons_status coons__csg_records_check(const coons_csg_options *opts, const coons_csg_report *report,
+                                      coons_error *err);
+/* Every output field of a report (may be NULL) zeroed, its version kept. */
+void coons__csg_report_clear(coons_csg_report *report);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
