@@ -21,7 +21,7 @@ coons_status coons_body_new_body0(const double *flat, coons_blend blend, coons_b
                                     "body0: corner P%d%d%d (index %d) is not finite", c >> 2,
                                     (c >> 1) & 1, c & 1, c);
     coons_body *b;
-    coons_status rc = coons__body_alloc(COONS_BODY_BODY0, blend, &b, err);
+    coons_status rc = coons__body_alloc(&coons__body0_kind, blend, &b, err);
     if (rc) return rc;
     for (int c = 0; c < 8; c++) {
         v3_copy(b->corner[c], corners[c]);
@@ -53,21 +53,18 @@ void coons__trilinear(const double c[8][3], const double bu[4], const double bv[
             }
 }
 
-void coons__body0_eval(const coons_body *b, double u, double v, double w, double out[3],
-                       double d[3][3])
+static void eval(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3])
 {
-    double bu[4], bv[4], bw[4];
-    coons__blend(b->blend, u, 1, bu);
-    coons__blend(b->blend, v, 1, bv);
-    coons__blend(b->blend, w, 1, bw);
+    double bu[5], bv[5], bw[5];
+    coons__blends_at(b->blend, u, v, w, bu, bv, bw);
     coons__trilinear(b->corner, bu, bv, bw, out, d);
 }
 
 /* Per (u,v) the body is the blend of two points Q_k along w; the w-line
  * then costs two scaled adds per point. */
-coons_status coons__body0_grid(const coons_body *b, const double *u, size_t nu,
-                               const double *v, size_t nv, const double *w, size_t nw,
-                               double *out, coons_error *err)
+static coons_status grid(const coons_body *b, const double *u, size_t nu, const double *v,
+                         size_t nv, const double *w, size_t nw, double *out, coons_error *err)
 {
     double *bw = coons__malloc_array(nw, 2 * sizeof(double));
     if (!bw) return coons__error_nomem(err);
@@ -104,3 +101,7 @@ coons_status coons__body0_grid(const coons_body *b, const double *u, size_t nu,
     coons__free(bw);
     return COONS_OK;
 }
+
+/* The eight corners are all its data: no breakpoints, nothing owned. */
+const coons__body_kind coons__body0_kind = {
+    .type = COONS_BODY_BODY0, .eval = eval, .grid = grid};

@@ -56,7 +56,7 @@ coons_status coons_body_new_body1(coons_curve *const *edges_in, coons_blend blen
                 for (int r = 0; r < 3; r++) c[r] = (p[0][r] + p[1][r] + p[2][r]) / 3.0;
             }
     coons_body *b;
-    coons_status rc = coons__body_alloc(COONS_BODY_BODY1, blend, &b, err);
+    coons_status rc = coons__body_alloc(&coons__body1_kind, blend, &b, err);
     if (rc) return rc;
     for (int e = 0; e < 12; e++) {
         if ((rc = coons_curve_copy(edges[e], &b->edge[e], err))) {
@@ -115,16 +115,11 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
         }
 }
 
-void coons__body1_eval(const coons_body *b, double u, double v, double w, double out[3],
-                       double d[3][3])
+static void eval(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3])
 {
     double bu[5], bv[5], bw[5];
-    coons__blend(b->blend, u, 1, bu);
-    coons__blend(b->blend, v, 1, bv);
-    coons__blend(b->blend, w, 1, bw);
-    bu[4] = u;
-    bv[4] = v;
-    bw[4] = w;
+    coons__blends_at(b->blend, u, v, w, bu, bv, bw);
     double t[3], dt[3][3];
     coons__trilinear(b->corner, bu, bv, bw, t, d ? dt : NULL);
     v3_scale(out, t, -2.0);
@@ -139,9 +134,8 @@ void coons__body1_eval(const coons_body *b, double u, double v, double w, double
  * (per (u,v)), every point of a w-line is
  *   C1 = a_0(v) H_0(w) + a_1(v) H_1(w) + a_0(w) P_0 + a_1(w) P_1.
  */
-coons_status coons__body1_grid(const coons_body *b, const double *u, size_t nu,
-                               const double *v, size_t nv, const double *w, size_t nw,
-                               double *out, coons_error *err)
+static coons_status grid(const coons_body *b, const double *u, size_t nu, const double *v,
+                         size_t nv, const double *w, size_t nw, double *out, coons_error *err)
 {
     size_t total = 0;
     /* bw (2), Cw (12), H (6) per w; Cv (12) per v; Cu (12) and bu (2) per u */
@@ -210,3 +204,27 @@ coons_status coons__body1_grid(const coons_body *b, const double *u, size_t nu,
     coons__free(s);
     return COONS_OK;
 }
+
+/* The four edges along direction d. */
+static void breaks(const coons_body *b, int d, coons__breaks *B)
+{
+    for (int e = 0; e < 4; e++) coons__curve_breaks(b->edge[4 * d + e], B);
+}
+
+static coons_status copy_data(const coons_body *b, coons_body *d, coons_error *err)
+{
+    for (int e = 0; e < 12; e++) d->edge[e] = NULL;
+    coons_status rc = COONS_OK;
+    for (int e = 0; e < 12 && !rc; e++)
+        if (b->edge[e]) rc = coons_curve_copy(b->edge[e], &d->edge[e], err);
+    return rc;
+}
+
+static void free_data(coons_body *b)
+{
+    for (int e = 0; e < 12; e++) coons_curve_free(b->edge[e]);
+}
+
+const coons__body_kind coons__body1_kind = {
+    .type = COONS_BODY_BODY1, .eval = eval, .grid = grid, .breaks = breaks,
+    .copy = copy_data, .free = free_data};

@@ -47,21 +47,6 @@ static void source_at(const coons_patch *p, int run, int fixed, double x, double
     if (dx) v3_copy(dx, r[1 + run]);
 }
 
-void coons__body2_free_faces(coons_body *b)
-{
-    for (int f = 0; f < 6; f++) coons_patch_free(b->face[f]);
-}
-
-coons_status coons__body2_copy_faces(const coons_body *b, coons_body *d, coons_error *err)
-{
-    for (int f = 0; f < 6; f++) {
-        if (!b->face[f]) continue;
-        coons_status rc = coons_patch_copy(b->face[f], &d->face[f], err);
-        if (rc) return rc;
-    }
-    return COONS_OK;
-}
-
 coons_status coons_body_new_body2(coons_patch *const *faces_in, coons_blend blend, double tol,
                                   coons_body **out, coons_error *err)
 {
@@ -118,7 +103,7 @@ coons_status coons_body_new_body2(coons_patch *const *faces_in, coons_blend blen
         }
     }
     coons_body *b;
-    coons_status rc = coons__body_alloc(COONS_BODY_BODY2, blend, &b, err);
+    coons_status rc = coons__body_alloc(&coons__body2_kind, blend, &b, err);
     if (rc) return rc;
     for (int f = 0; f < 6; f++) {
         if ((rc = coons_patch_copy(faces[f], &b->face[f], err))) {
@@ -156,16 +141,11 @@ static void edge_at(const coons_body *b, int e, double x, double p[3], double *d
         for (int r = 0; r < 3; r++) dp[r] = 0.5 * (da[r] + db[r]);
 }
 
-void coons__body2_eval(const coons_body *b, double u, double v, double w, double out[3],
-                       double d[3][3])
+static void eval(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3])
 {
     double bu[5], bv[5], bw[5];
-    coons__blend(b->blend, u, 1, bu);
-    coons__blend(b->blend, v, 1, bv);
-    coons__blend(b->blend, w, 1, bw);
-    bu[4] = u;
-    bv[4] = v;
-    bw[4] = w;
+    coons__blends_at(b->blend, u, v, w, bu, bv, bw);
     coons__trilinear(b->corner, bu, bv, bw, out, d);
     int nd = d ? 1 : 0;
     for (int x = 0; x < 2; x++) {
@@ -222,11 +202,20 @@ static void w_line(size_t n3, double a1, double b1, const double *restrict x0,
  * P_k = Z_k - sum_i a_i(u) C(i,v,k) - sum_j a_j(v) C(u,j,k) + sum_ij a_i(u) a_j(v) C_ijk,
  * so the inner loop along w reads two rows of X, two of G and six constants.
  */
-coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
-                               const double *v, size_t nv, const double *w, size_t nw,
-                               double *out, coons_error *err)
+/* The scratch of grid: clamped parameters and blend pairs per direction,
+ * the face grids X (v,w), Y/G (u,w), Z/P (u,v), two of each, the edges
+ * along each direction, and one face's boundary row. */
+typedef struct grid2 {
+    const coons_body *b;
+    size_t nu, nv, nw, nX, nG, nZ;
+    double *uc, *vc, *wc, *au, *av, *aw;
+    double *X, *G, *Z;
+    double *Cw, *Cv, *Cu, *row;
+} grid2;
+
+static coons_status grid2_alloc(grid2 *g, double **s, coons_error *err)
 {
-    size_t total = 0;
+    size_t nu = g->nu, nv = g->nv, nw = g->nw, total = 0;
     size_t nmax = nu > nv ? (nu > nw ? nu : nw) : (nv > nw ? nv : nw);
     /* clamped parameters and blends (3 per sample), faces X (2 nv nw 3),
      * Y/G (2 nu nw 3), Z/P (2 nu nv 3), edges (12 per sample), one face's
@@ -235,68 +224,97 @@ coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
         !coons__size_addmul(&total, nv, 6 * nw) || !coons__size_addmul(&total, nu, 6 * nw) ||
         !coons__size_addmul(&total, nu, 6 * nv) || !coons__size_addmul(&total, nmax, 6))
         return coons__error_set(err, COONS_E_LIMIT, "body2 grid: scratch size overflows");
-    double *s = coons__malloc_array(total, sizeof(double));
-    if (!s) return coons__error_nomem(err);
-    double *uc = s, *vc = uc + nu, *wc = vc + nv, *au = wc + nw, *av = au + 2 * nu,
-           *aw = av + 2 * nv;
-    double *X = aw + 2 * nw, *G = X + 6 * nv * nw, *Z = G + 6 * nu * nw;
-    double *Cw = Z + 6 * nu * nv, *Cv = Cw + 12 * nw, *Cu = Cv + 12 * nv, *row = Cu + 12 * nu;
-    size_t nX = 3 * nv * nw, nG = 3 * nu * nw, nZ = 3 * nu * nv;
-    const double *par[3] = {uc, vc, wc};
-    const size_t np[3] = {nu, nv, nw};
-    double *bl[3] = {au, av, aw};
-    for (int d = 0; d < 3; d++) {
-        const double *src = d == 0 ? u : d == 1 ? v : w;
-        double *dst = (double *)par[d];
+    *s = coons__malloc_array(total, sizeof(double));
+    if (!*s) return coons__error_nomem(err);
+    g->uc = *s, g->vc = g->uc + nu, g->wc = g->vc + nv, g->au = g->wc + nw,
+    g->av = g->au + 2 * nu, g->aw = g->av + 2 * nv;
+    g->X = g->aw + 2 * nw, g->G = g->X + 6 * nv * nw, g->Z = g->G + 6 * nu * nw;
+    g->Cw = g->Z + 6 * nu * nv, g->Cv = g->Cw + 12 * nw, g->Cu = g->Cv + 12 * nv,
+    g->row = g->Cu + 12 * nu;
+    g->nX = 3 * nv * nw, g->nG = 3 * nu * nw, g->nZ = 3 * nu * nv;
+    return COONS_OK;
+}
+
+/* Clamped parameters and their blend pairs. */
+static void grid2_params(grid2 *g, const double *u, const double *v, const double *w)
+{
+    double *par[3] = {g->uc, g->vc, g->wc}, *bl[3] = {g->au, g->av, g->aw};
+    const double *src[3] = {u, v, w};
+    const size_t np[3] = {g->nu, g->nv, g->nw};
+    for (int d = 0; d < 3; d++)
         for (size_t m = 0; m < np[d]; m++) {
             double t[4];
-            dst[m] = clamp01(src[m]);
-            coons__blend(b->blend, dst[m], 0, t);
+            par[d][m] = clamp01(src[d][m]);
+            coons__blend(g->b->blend, par[d][m], 0, t);
             bl[d][2 * m] = t[0];
             bl[d][2 * m + 1] = t[1];
         }
-    }
-    static const double ends[2] = {0.0, 1.0};
+}
+
+/* Face grids. Face f's parameters (s,t): X (v,w), Y (u,w), Z (u,v). */
+static coons_status grid2_faces(grid2 *g, coons_error *err)
+{
+    const coons_body *b = g->b;
     coons_status rc = COONS_OK;
-    /* Face grids. Face f's parameters (s,t): X (v,w), Y (u,w), Z (u,v). */
     for (int x = 0; x < 2 && !rc; x++) {
-        rc = coons_patch_eval_grid(b->face[x], vc, nv, wc, nw, X + x * nX, err);
-        if (!rc) rc = coons_patch_eval_grid(b->face[2 + x], uc, nu, wc, nw, G + x * nG, err);
-        if (!rc) rc = coons_patch_eval_grid(b->face[4 + x], uc, nu, vc, nv, Z + x * nZ, err);
+        rc = coons_patch_eval_grid(b->face[x], g->vc, g->nv, g->wc, g->nw, g->X + x * g->nX, err);
+        if (!rc)
+            rc = coons_patch_eval_grid(b->face[2 + x], g->uc, g->nu, g->wc, g->nw,
+                                       g->G + x * g->nG, err);
+        if (!rc)
+            rc = coons_patch_eval_grid(b->face[4 + x], g->uc, g->nu, g->vc, g->nv,
+                                       g->Z + x * g->nZ, err);
     }
-    /* Edges: Cw[(2i+j) 3nw + 3k] = C(i,j,w_k), Cv[(2i+k) 3nv + 3j] = C(i,v_j,k),
-     * Cu[(2j+k) 3nu + 3i] = C(u_i,j,k); each the average of its two faces,
-     * whose boundary rows are sampled first into Cx (first face) and `row`. */
+    return rc;
+}
+
+/* Edges: Cw[(2i+j) 3nw + 3k] = C(i,j,w_k), Cv[(2i+k) 3nv + 3j] = C(i,v_j,k),
+ * Cu[(2j+k) 3nu + 3i] = C(u_i,j,k); each the average of its two faces,
+ * whose boundary rows are sampled first into Cx (first face) and `row`. */
+static coons_status grid2_edges(grid2 *g, coons_error *err)
+{
+    static const double ends[2] = {0.0, 1.0};
+    const double *par[3] = {g->uc, g->vc, g->wc};
+    const size_t np[3] = {g->nu, g->nv, g->nw};
+    coons_status rc = COONS_OK;
     for (int e = 0; e < 12 && !rc; e++) {
         int dir = e / 4;
         size_t n = np[dir];
-        double *C = (dir == 0 ? Cu : dir == 1 ? Cv : Cw) + (size_t)(e % 4) * 3 * n;
+        double *C = (dir == 0 ? g->Cu : dir == 1 ? g->Cv : g->Cw) + (size_t)(e % 4) * 3 * n;
         for (int m = 0; m < 2 && !rc; m++) {
             int f, run, fixed;
             edge_source(e, m, &f, &run, &fixed);
-            double *dst = m == 0 ? C : row;
+            double *dst = m == 0 ? C : g->row;
+            const coons_patch *face = g->b->face[f];
             if (run == 0)
-                rc = coons_patch_eval_grid(b->face[f], par[dir], n, ends + fixed, 1, dst, err);
+                rc = coons_patch_eval_grid(face, par[dir], n, ends + fixed, 1, dst, err);
             else
-                rc = coons_patch_eval_grid(b->face[f], ends + fixed, 1, par[dir], n, dst, err);
+                rc = coons_patch_eval_grid(face, ends + fixed, 1, par[dir], n, dst, err);
         }
         if (!rc)
-            for (size_t m = 0; m < 3 * n; m++) C[m] = 0.5 * (C[m] + row[m]);
+            for (size_t m = 0; m < 3 * n; m++) C[m] = 0.5 * (C[m] + g->row[m]);
     }
-    if (rc) {
-        coons__free(s);
-        return rc;
-    }
-    /* G_j(u_i, w_k) = Y_j - sum_i' a_i'(u_i) C(i',j,w_k), in place. */
+    return rc;
+}
+
+/* G_j and P_k in place of Y_j and Z_k; then, since both blends sum to one
+ * (a_0 = 1 - a_1), each pair becomes a base and a difference:
+ * X_0 + a_1(u) (X_1 - X_0), and so on. */
+static void grid2_regroup(grid2 *g)
+{
+    const size_t nu = g->nu, nv = g->nv, nw = g->nw, nX = g->nX, nG = g->nG, nZ = g->nZ;
+    const double *au = g->au, *av = g->av, *Cw = g->Cw, *Cv = g->Cv, *Cu = g->Cu;
+    double *X = g->X, *G = g->G, *Z = g->Z;
+    /* G_j(u_i, w_k) = Y_j - sum_i' a_i'(u_i) C(i',j,w_k). */
     for (int j = 0; j < 2; j++)
         for (size_t i = 0; i < nu; i++) {
             double a0 = au[2 * i], a1 = au[2 * i + 1];
-            double *g = G + j * nG + i * 3 * nw;
+            double *gj = G + j * nG + i * 3 * nw;
             const double *c0 = Cw + (size_t)j * 3 * nw, *c1 = Cw + (size_t)(2 + j) * 3 * nw;
-            for (size_t m = 0; m < 3 * nw; m++) g[m] -= a0 * c0[m] + a1 * c1[m];
+            for (size_t m = 0; m < 3 * nw; m++) gj[m] -= a0 * c0[m] + a1 * c1[m];
         }
     /* P_k(u_i, v_j) in place of Z_k. */
-    const double(*c)[3] = b->corner;
+    const double(*c)[3] = g->b->corner;
     for (size_t i = 0; i < nu; i++) {
         double a0 = au[2 * i], a1 = au[2 * i + 1], tu[4][3], cu[4][3];
         for (int jk = 0; jk < 4; jk++)
@@ -315,21 +333,26 @@ coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
             }
         }
     }
-    /* Both blends sum to one (a_0 = 1 - a_1), so each pair becomes a base
-     * and a difference: X_0 + a_1(u) (X_1 - X_0), and so on. */
     for (size_t m = 0; m < nX; m++) X[nX + m] -= X[m];
     for (size_t m = 0; m < nG; m++) G[nG + m] -= G[m];
     for (size_t m = 0; m < nZ; m++) Z[nZ + m] -= Z[m];
+}
+
+/* Every w-line of the output from the regrouped terms. */
+static void grid2_lines(grid2 *g, double *out)
+{
+    const size_t nu = g->nu, nv = g->nv, nw = g->nw, nX = g->nX, nG = g->nG, nZ = g->nZ;
     /* a_1(w) repeated for the three coordinates (reuses the Cw rows). */
-    double *w1 = Cw;
-    for (size_t k = 0; k < nw; k++) w1[3 * k] = w1[3 * k + 1] = w1[3 * k + 2] = aw[2 * k + 1];
+    double *w1 = g->Cw;
+    for (size_t k = 0; k < nw; k++)
+        w1[3 * k] = w1[3 * k + 1] = w1[3 * k + 2] = g->aw[2 * k + 1];
     for (size_t i = 0; i < nu; i++) {
-        double a1 = au[2 * i + 1];
-        const double *g0 = G + i * 3 * nw, *gd = g0 + nG;
+        double a1 = g->au[2 * i + 1];
+        const double *g0 = g->G + i * 3 * nw, *gd = g0 + nG;
         for (size_t j = 0; j < nv; j++) {
-            double b1 = av[2 * j + 1];
-            const double *x0 = X + j * 3 * nw, *xd = x0 + nX;
-            const double *p0 = Z + (i * nv + j) * 3, *pd = p0 + nZ;
+            double b1 = g->av[2 * j + 1];
+            const double *x0 = g->X + j * 3 * nw, *xd = x0 + nX;
+            const double *p0 = g->Z + (i * nv + j) * 3, *pd = p0 + nZ;
             /* the (u,v) terms repeated over two points: the loop below then
              * runs over whole vectors of doubles */
             double q0[6], qd[6];
@@ -340,8 +363,24 @@ coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
             w_line(3 * nw, a1, b1, x0, xd, g0, gd, w1, q0, qd, out + (i * nv + j) * nw * 3);
         }
     }
+}
+
+static coons_status grid(const coons_body *b, const double *u, size_t nu, const double *v,
+                         size_t nv, const double *w, size_t nw, double *out, coons_error *err)
+{
+    grid2 g = {.b = b, .nu = nu, .nv = nv, .nw = nw};
+    double *s = NULL;
+    coons_status rc = grid2_alloc(&g, &s, err);
+    if (rc) return rc;
+    grid2_params(&g, u, v, w);
+    rc = grid2_faces(&g, err);
+    if (!rc) rc = grid2_edges(&g, err);
+    if (!rc) {
+        grid2_regroup(&g);
+        grid2_lines(&g, out);
+    }
     coons__free(s);
-    return COONS_OK;
+    return rc;
 }
 
 /*
@@ -353,36 +392,58 @@ coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
  *   F_w = sum a_i X_i,w + sum b_j G_j,w + sum c_k' P_k,
  * each of X, G, P with its two partials tabulated once per grid.
  */
-coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t nu,
-                                   const double *v, size_t nv, const double *w, size_t nw,
-                                   double *det, coons_error *err)
+/* The scratch of det_grid: per direction the blend pairs with
+ * derivatives A[d] and the four edges with derivatives E[d]; X_i, G_j,
+ * P_k (below) with their two partials. */
+typedef struct jgrid {
+    const coons_body *b;
+    const double *par[3];
+    size_t np[3];
+    double *A[3], *E[3], *X, *G, *P;
+} jgrid;
+
+/* Edge e' (0..3) of direction d, value (q = 0) or derivative (q = 1), at
+ * sample m. */
+#define EDGE(d, e, q, m) (J->E[d] + (size_t)(2 * (e) + (q)) * 3 * J->np[d] + 3 * (m))
+
+static coons_status jgrid_alloc(jgrid *J, double **s, coons_error *err)
 {
+    const size_t nu = J->np[0], nv = J->np[1], nw = J->np[2];
     size_t total = 0;
     /* blends 4 per sample, edges 24 per sample, X 18 nv nw, G 18 nu nw, P 18 nu nv */
     if (!coons__size_addmul(&total, nu + nv + nw, 28) ||
         !coons__size_addmul(&total, nv, 18 * nw) || !coons__size_addmul(&total, nu, 18 * nw) ||
         !coons__size_addmul(&total, nu, 18 * nv))
         return coons__error_set(err, COONS_E_LIMIT, "body2 Jacobian grid: scratch overflows");
-    double *s = coons__malloc_array(total, sizeof(double));
-    if (!s) return coons__error_nomem(err);
-    double *A[3], *E[3], *X = s, *G = X + 18 * nv * nw, *P = G + 18 * nu * nw;
-    const double *par[3] = {u, v, w};
-    const size_t np[3] = {nu, nv, nw};
-    A[0] = P + 18 * nu * nv;
+    *s = coons__malloc_array(total, sizeof(double));
+    if (!*s) return coons__error_nomem(err);
+    J->X = *s, J->G = J->X + 18 * nv * nw, J->P = J->G + 18 * nu * nw;
+    J->A[0] = J->P + 18 * nu * nv;
     for (int d = 0; d < 3; d++) {
-        if (d) A[d] = E[d - 1] + 24 * np[d - 1];
-        E[d] = A[d] + 4 * np[d];
-        /* A[d][4m..]: a_0, a_1, a_0', a_1'; E[d][(2e'+q) 3n + 3m]: edge e' of
-         * this direction (value q = 0, derivative q = 1) at sample m */
-        for (size_t m = 0; m < np[d]; m++) {
-            double x = clamp01(par[d][m]);
-            coons__blend(b->blend, x, 1, A[d] + 4 * m);
-            for (int e = 0; e < 4; e++)
-                edge_at(b, 4 * d + e, x, E[d] + (size_t)(2 * e) * 3 * np[d] + 3 * m,
-                        E[d] + (size_t)(2 * e + 1) * 3 * np[d] + 3 * m);
-        }
+        if (d) J->A[d] = J->E[d - 1] + 24 * J->np[d - 1];
+        J->E[d] = J->A[d] + 4 * J->np[d];
     }
-#define EDGE(d, e, q, m) (E[d] + (size_t)(2 * (e) + (q)) * 3 * np[d] + 3 * (m))
+    return COONS_OK;
+}
+
+/* A[d][4m..]: a_0, a_1, a_0', a_1'; E[d][(2e'+q) 3n + 3m]: edge e' of
+ * direction d (value q = 0, derivative q = 1) at sample m. */
+static void jgrid_edges(jgrid *J)
+{
+    for (int d = 0; d < 3; d++)
+        for (size_t m = 0; m < J->np[d]; m++) {
+            double x = clamp01(J->par[d][m]);
+            coons__blend(J->b->blend, x, 1, J->A[d] + 4 * m);
+            for (int e = 0; e < 4; e++) edge_at(J->b, 4 * d + e, x, EDGE(d, e, 0, m), EDGE(d, e, 1, m));
+        }
+}
+
+static void jgrid_x(jgrid *J)
+{
+    const coons_body *b = J->b;
+    const double *v = J->par[1], *w = J->par[2];
+    const size_t nv = J->np[1], nw = J->np[2];
+    double *X = J->X;
     /* X_i and partials: X[((3i+q) nv nw + j nw + k) 3], q = value, d/dv, d/dw */
     for (int i = 0; i < 2; i++)
         for (size_t j = 0; j < nv; j++)
@@ -392,6 +453,14 @@ coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t 
                 for (int q = 0; q < 3; q++)
                     v3_copy(X + (((size_t)(3 * i + q) * nv + j) * nw + k) * 3, r[q]);
             }
+}
+
+static void jgrid_g(jgrid *J)
+{
+    const coons_body *b = J->b;
+    const double *u = J->par[0], *w = J->par[2];
+    const size_t nu = J->np[0], nw = J->np[2];
+    double *const *A = J->A, *G = J->G;
     /* G_j = Y_j - sum_i a_i C(i,j,w): value, d/du, d/dw */
     for (int jj = 0; jj < 2; jj++)
         for (size_t i = 0; i < nu; i++) {
@@ -410,6 +479,14 @@ coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t 
                 }
             }
         }
+}
+
+static void jgrid_p(jgrid *J)
+{
+    const coons_body *b = J->b;
+    const double *u = J->par[0], *v = J->par[1];
+    const size_t nu = J->np[0], nv = J->np[1];
+    double *const *A = J->A, *P = J->P;
     /* P_k = Z_k - sum_i a_i C(i,v,k) - sum_j b_j (C(u,j,k) - sum_i a_i C_ijk):
      * value, d/du, d/dv */
     const double(*cn)[3] = b->corner;
@@ -443,7 +520,13 @@ coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t 
                 }
             }
         }
-#undef EDGE
+}
+
+/* det [F_u F_v F_w] at every point from the tabulated terms. */
+static void jgrid_det(const jgrid *J, double *det)
+{
+    const size_t nu = J->np[0], nv = J->np[1], nw = J->np[2];
+    double *const *A = J->A, *X = J->X, *G = J->G, *P = J->P;
     size_t sX = nv * nw * 3, sG = nu * nw * 3, sP = nu * nv * 3;
     for (size_t i = 0; i < nu; i++) {
         const double *a = A[0] + 4 * i;
@@ -470,6 +553,51 @@ coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t 
             }
         }
     }
+}
+
+#undef EDGE
+
+static coons_status det_grid(const coons_body *b, const double *u, size_t nu,
+                             const double *v, size_t nv, const double *w, size_t nw,
+                             double *det, coons_error *err)
+{
+    jgrid J = {.b = b, .par = {u, v, w}, .np = {nu, nv, nw}};
+    double *s = NULL;
+    coons_status rc = jgrid_alloc(&J, &s, err);
+    if (rc) return rc;
+    jgrid_edges(&J);
+    jgrid_x(&J);
+    jgrid_g(&J);
+    jgrid_p(&J);
+    jgrid_det(&J, det);
     coons__free(s);
     return COONS_OK;
 }
+
+/* The faces whose s or t runs along direction d (body.h). */
+static void breaks(const coons_body *b, int d, coons__breaks *B)
+{
+    static const int face[3][4] = {{2, 3, 4, 5}, {0, 1, 4, 5}, {0, 1, 2, 3}};
+    static const int sdir[3][4] = {{0, 0, 0, 0}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+    for (int m = 0; m < 4; m++) coons__patch_breaks(b->face[face[d][m]], sdir[d][m], B);
+}
+
+static coons_status copy_data(const coons_body *b, coons_body *d, coons_error *err)
+{
+    for (int f = 0; f < 6; f++) d->face[f] = NULL;
+    for (int f = 0; f < 6; f++) {
+        if (!b->face[f]) continue;
+        coons_status rc = coons_patch_copy(b->face[f], &d->face[f], err);
+        if (rc) return rc;
+    }
+    return COONS_OK;
+}
+
+static void free_data(coons_body *b)
+{
+    for (int f = 0; f < 6; f++) coons_patch_free(b->face[f]);
+}
+
+const coons__body_kind coons__body2_kind = {
+    .type = COONS_BODY_BODY2, .eval = eval, .grid = grid, .det_grid = det_grid,
+    .breaks = breaks, .copy = copy_data, .free = free_data};

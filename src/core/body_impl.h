@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The body record and the per-type entry points, shared by the body*.c
- * files only (seed 000 section 2). Internal. */
+/* The body record (seed 000 section 2), shared by body.c, the body types'
+ * files (body0.c, body1.c, body2.c, tensor_volume.c), body_volume.c and
+ * the boundary sampler. Internal. */
 #ifndef COONS_BODY_IMPL_H
 #define COONS_BODY_IMPL_H
 
 #include "basis.h"
+#include "kinds.h"
 
 /* Marks a hot loop to be compiled also for AVX2 and picked at load time
  * (GCC function multiversioning, needs ifunc: x86-64 ELF). */
@@ -13,16 +15,10 @@
 #define COONS__SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define COONS__SIMD_CLONES
-/* det J at every grid point into det[(i*nv + j)*nw + k] (body 2's fast path;
- * other types go point by point in body_volume.c). */
-coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t nu,
-                                   const double *v, size_t nv, const double *w, size_t nw,
-                                   double *det, coons_error *err);
-
 #endif
 
 struct coons_body {
-    coons_body_type type;
+    const coons__body_kind *kind; /* the type's row (kinds.h) */
     coons_blend blend;
     /* Corners C_ijk of T, index 4i+2j+k: body 0 the given points, body 1
      * and body 2 the average of the sources that meet there. */
@@ -38,9 +34,9 @@ struct coons_body {
     double lo[3], hi[3]; /* control box */
 };
 
-/* Allocates a zeroed record of the given type. */
-coons_status coons__body_alloc(coons_body_type type, coons_blend blend, coons_body **out,
-                               coons_error *err);
+/* Allocates a zeroed record of the given kind, with an empty control box. */
+coons_status coons__body_alloc(const coons__body_kind *kind, coons_blend blend,
+                               coons_body **out, coons_error *err);
 
 /* T(c; u,v,w) from blend pairs bu, bv, bw (coons__blend(kind, t, 1, b)
  * layout: b[0], b[1] the weights of the 0 and 1 sides, b[2], b[3] their
@@ -48,6 +44,19 @@ coons_status coons__body_alloc(coons_body_type type, coons_blend blend, coons_bo
  * if d is not NULL, its three partials d[0] = d/du, d[1] = d/dv, d[2] = d/dw. */
 void coons__trilinear(const double c[8][3], const double bu[4], const double bv[4],
                       const double bw[4], double out[3], double d[3][3]);
+
+/* The blend pairs of u, v and w with their first derivatives (the
+ * coons__trilinear layout), each followed by the parameter at index 4. */
+static inline void coons__blends_at(coons_blend blend, double u, double v, double w,
+                                    double bu[5], double bv[5], double bw[5])
+{
+    coons__blend(blend, u, 1, bu);
+    coons__blend(blend, v, 1, bv);
+    coons__blend(blend, w, 1, bw);
+    bu[4] = u;
+    bv[4] = v;
+    bw[4] = w;
+}
 
 /* *acc += n*k unless that overflows (then returns 0 and leaves *acc). */
 static inline int coons__size_addmul(size_t *acc, size_t n, size_t k)
@@ -80,37 +89,5 @@ typedef void (*coons__edge_fn)(const coons_body *b, int e, double x, double p[3]
  * parameter itself at index 4. */
 void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
                      const double bv[5], const double bw[5], double out[3], double d[3][3]);
-
-/* Per-type point (+ partials if d is not NULL: d[q] = dF/dq). Parameters
- * are already clamped. */
-void coons__body0_eval(const coons_body *b, double u, double v, double w, double out[3],
-                       double d[3][3]);
-void coons__body1_eval(const coons_body *b, double u, double v, double w, double out[3],
-                       double d[3][3]);
-void coons__body2_eval(const coons_body *b, double u, double v, double w, double out[3],
-                       double d[3][3]);
-void coons__tensor_eval(const coons_body *b, double u, double v, double w, double out[3],
-                        double d[3][3]);
-
-/* Per-type grids: parameters are given as given (the callee clamps),
- * sizes are non-zero and nu*nv*nw*3 does not overflow. */
-coons_status coons__body0_grid(const coons_body *b, const double *u, size_t nu,
-                               const double *v, size_t nv, const double *w, size_t nw,
-                               double *out, coons_error *err);
-coons_status coons__body1_grid(const coons_body *b, const double *u, size_t nu,
-                               const double *v, size_t nv, const double *w, size_t nw,
-                               double *out, coons_error *err);
-coons_status coons__body2_grid(const coons_body *b, const double *u, size_t nu,
-                               const double *v, size_t nv, const double *w, size_t nw,
-                               double *out, coons_error *err);
-coons_status coons__tensor_grid(const coons_body *b, const double *u, size_t nu,
-                                const double *v, size_t nv, const double *w, size_t nw,
-                                double *out, coons_error *err);
-
-/* det J at every grid point into det[(i*nv + j)*nw + k] (body 2's fast path;
- * other types go point by point in body_volume.c). */
-coons_status coons__body2_det_grid(const coons_body *b, const double *u, size_t nu,
-                                   const double *v, size_t nv, const double *w, size_t nw,
-                                   double *det, coons_error *err);
 
 #endif

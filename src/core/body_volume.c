@@ -16,89 +16,12 @@
 #include <string.h>
 
 #include "body_impl.h"
-#include "curve_impl.h"
-#include "patch_impl.h"
 
 /* Gauss-Legendre points per direction and cell: exact for degree 9. */
 #define NG 5
 /* Quadrature work is capped: a level is not started if it would need more
  * Jacobian evaluations than this (the last estimate is returned). */
 #define MAX_NODES (1u << 21)
-/* More breakpoints than this in a direction: uniform cells instead. */
-#define MAX_BREAKS 64
-
-/* Breakpoints of the body's data in one direction, in (0,1): where the
- * map may lose smoothness (knots of B-spline curves, surfaces and volumes,
- * segment ends of Coons cubics). Base cells start there, so that
- * Gauss-Legendre integrates piecewise polynomials span by span. */
-typedef struct breaks {
-    double *v;
-    size_t n, cap;
-    int nomem;
-} breaks;
-
-static void brk_add(breaks *B, double x)
-{
-    if (B->nomem || !(x > 0.0 && x < 1.0)) return;
-    if (B->n == B->cap) {
-        size_t cap = B->cap ? 2 * B->cap : 16;
-        double *v = coons__realloc(B->v, cap * sizeof *v);
-        if (!v) {
-            B->nomem = 1;
-            return;
-        }
-        B->v = v;
-        B->cap = cap;
-    }
-    B->v[B->n++] = x;
-}
-
-static void brk_knots(breaks *B, const double *k, size_t ncp, int p)
-{
-    if (!k) return;
-    double lo = k[p], len = k[ncp] - k[p];
-    for (size_t i = (size_t)p + 1; i < ncp && B->n <= MAX_BREAKS; i++)
-        brk_add(B, (k[i] - lo) / len);
-}
-
-static void brk_curve(breaks *B, const coons_curve *c)
-{
-    if (!c) return;
-    if (c->type == COONS_CURVE_COONS_CUBIC) {
-        size_t nseg = c->n - 3; /* closed curves carry P0, P1, P2 again */
-        for (size_t s = 1; s < nseg && B->n <= MAX_BREAKS; s++) brk_add(B, (double)s / nseg);
-        return;
-    }
-    brk_knots(B, c->knots, c->n, c->degree);
-}
-
-/* dir 0: along the patch's s, 1: along t. */
-static void brk_patch(breaks *B, const coons_patch *p, int dir)
-{
-    switch (p->type) {
-    case COONS_PATCH_RULED:
-        if (dir == 0) {
-            brk_curve(B, p->curve[0]);
-            brk_curve(B, p->curve[1]);
-        }
-        break;
-    case COONS_PATCH_COONS:
-    case COONS_PATCH_HERMITE_COONS:
-        /* T0, T1 and the cross curves x_t(s,0), x_t(s,1) run along s */
-        brk_curve(B, p->curve[dir == 0 ? COONS_SIDE_T0 : COONS_SIDE_S0]);
-        brk_curve(B, p->curve[dir == 0 ? COONS_SIDE_T1 : COONS_SIDE_S1]);
-        brk_curve(B, p->cross[dir == 0 ? 0 : 2]);
-        brk_curve(B, p->cross[dir == 0 ? 1 : 3]);
-        break;
-    case COONS_PATCH_BSPLINE:
-        if (dir == 0)
-            brk_knots(B, p->ks, p->ns, p->ps);
-        else
-            brk_knots(B, p->kt, p->nt, p->pt);
-        break;
-    default: break; /* bilinear, Bezier: polynomial */
-    }
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -107,32 +30,20 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* Cell boundaries 0 = x_0 < ... < x_m = 1 of direction d into B (B->n = m+1). */
-static void cell_bounds(const coons_body *b, int d, breaks *B)
+static void cell_bounds(const coons_body *b, int d, coons__breaks *B)
 {
-    switch (b->type) {
-    case COONS_BODY_BODY1:
-        for (int e = 0; e < 4; e++) brk_curve(B, b->edge[4 * d + e]);
-        break;
-    case COONS_BODY_BODY2: {
-        /* faces whose s or t runs along direction d (body.h) */
-        static const int face[3][4] = {{2, 3, 4, 5}, {0, 1, 4, 5}, {0, 1, 2, 3}};
-        static const int sdir[3][4] = {{0, 0, 0, 0}, {0, 0, 1, 1}, {1, 1, 1, 1}};
-        for (int m = 0; m < 4; m++) brk_patch(B, b->face[face[d][m]], sdir[d][m]);
-        break;
-    }
-    case COONS_BODY_BEZIER:
-    case COONS_BODY_BSPLINE: brk_knots(B, b->knots[d], b->n[d], b->deg[d]); break;
-    default: break;
-    }
-    if (B->n > MAX_BREAKS) B->n = 0;
+    /* Base cells start at the breakpoints of the body's data, so that
+     * Gauss-Legendre integrates piecewise polynomials span by span. */
+    if (b->kind->breaks) b->kind->breaks(b, d, B);
+    if (B->n > COONS__MAX_BREAKS) B->n = 0;
     if (B->n) qsort(B->v, B->n, sizeof(double), cmp_double);
     size_t m = 0;
     for (size_t i = 0; i < B->n; i++)
         if (m == 0 || B->v[i] - B->v[m - 1] > 1e-12) B->v[m++] = B->v[i];
     B->n = m;
     /* add the ends: [0, breaks..., 1] */
-    brk_add(B, 0.5); /* reserve room for two more values */
-    brk_add(B, 0.5);
+    coons__breaks_add(B, 0.5); /* reserve room for two more values */
+    coons__breaks_add(B, 0.5);
     if (B->nomem) return;
     memmove(B->v + 1, B->v, m * sizeof(double));
     B->v[0] = 0.0;
@@ -145,8 +56,7 @@ static coons_status det_grid(const coons_body *b, const double *u, size_t nu, co
                              size_t nv, const double *w, size_t nw, double *det,
                              coons_error *err)
 {
-    if (b->type == COONS_BODY_BODY2)
-        return coons__body2_det_grid(b, u, nu, v, nv, w, nw, det, err);
+    if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, det, err);
     for (size_t i = 0; i < nu; i++)
         for (size_t j = 0; j < nv; j++)
             for (size_t k = 0; k < nw; k++) {
@@ -161,7 +71,7 @@ static coons_status det_grid(const coons_body *b, const double *u, size_t nu, co
 
 /* Estimate with every base cell split into c^3 sub-cells, NG^3 nodes each:
  * the nodes form a tensor grid, with weights wt_u(i) wt_v(j) wt_w(k). */
-static coons_status volume_level(const coons_body *b, breaks X[3], unsigned c, double *sum,
+static coons_status volume_level(const coons_body *b, coons__breaks X[3], unsigned c, double *sum,
                                  coons_error *err)
 {
     static const double x[NG] = {-0.90617984593866399280, -0.53846931010568309104, 0.0,
@@ -224,7 +134,7 @@ coons_status coons_body_volume(const coons_body *b, double rel_tol, double *volu
 {
     if (!b || !volume) return coons__error_set(err, COONS_E_INVALID, "body volume: NULL argument");
     if (!(rel_tol > 0.0)) rel_tol = 1e-9;
-    breaks X[3] = {{0}};
+    coons__breaks X[3] = {{0}};
     coons_status rc = COONS_OK;
     for (int d = 0; d < 3 && !rc; d++) {
         cell_bounds(b, d, &X[d]);
@@ -297,7 +207,7 @@ coons_status coons_body_min_jacobian(const coons_body *b, unsigned n, double *mi
 coons_status coons__body_breaks(const coons_body *b, int d, double **out, size_t *n,
                                 coons_error *err)
 {
-    breaks B = {0};
+    coons__breaks B = {0};
     cell_bounds(b, d, &B);
     if (B.nomem) {
         coons__free(B.v);

@@ -44,9 +44,9 @@ coons_status coons_curve_new_coons_cubic(const double *points, size_t count, int
                                 "closed coons-cubic: the last three points repeat the first "
                                 "three; give the %zu distinct points only",
                                 count - 3);
-    coons_curve *c = coons__calloc(1, sizeof *c);
-    if (!c) return coons__error_nomem(err);
-    c->type = COONS_CURVE_COONS_CUBIC;
+    coons_curve *c = NULL;
+    coons_status rc = coons__curve_alloc(&coons__coons_cubic_kind, &c, err);
+    if (rc) return rc;
     c->degree = 3;
     c->closed = closed ? 1 : 0;
     c->n = count + (closed ? 3 : 0);
@@ -61,7 +61,7 @@ coons_status coons_curve_new_coons_cubic(const double *points, size_t count, int
     return COONS_OK;
 }
 
-void coons__coons_cubic_eval(const coons_curve *c, double t, int order, double out[][3])
+static void eval(const coons_curve *c, double t, int order, double out[][3])
 {
     size_t nseg = c->n - 3;
     double x = t * (double)nseg;
@@ -79,8 +79,8 @@ void coons__coons_cubic_eval(const coons_curve *c, double t, int order, double o
     }
 }
 
-coons_status coons__coons_cubic_bezier(const coons_curve *c, double *points, size_t capacity,
-                                       size_t *segments, int *degree, coons_error *err)
+static coons_status bezier_segments(const coons_curve *c, double *points, size_t capacity,
+                                    size_t *segments, int *degree, coons_error *err)
 {
     size_t nseg = c->n - 3;
     *segments = nseg;
@@ -103,6 +103,21 @@ coons_status coons__coons_cubic_bezier(const coons_curve *c, double *points, siz
     }
     return COONS_OK;
 }
+
+/* The segment ends; closed curves carry P0, P1, P2 again. */
+static void breaks(const coons_curve *c, coons__breaks *B) { coons__breaks_uniform(B, c->n - 3); }
+
+static coons_status copy_data(const coons_curve *c, coons_curve *d, coons_error *err)
+{
+    d->pts = coons__memdup(c->pts, 3 * c->n, sizeof(double));
+    return d->pts ? COONS_OK : coons__error_nomem(err);
+}
+
+static void free_data(coons_curve *c) { coons__free(c->pts); }
+
+const coons__curve_kind coons__coons_cubic_kind = {
+    .type = COONS_CURVE_COONS_CUBIC, .eval = eval, .bezier = bezier_segments, .breaks = breaks,
+    .copy = copy_data, .free = free_data};
 
 coons_status coons_curve_convert_open_to_clamped(const double *open, size_t count, double *clamped,
                                                  coons_error *err)

@@ -85,7 +85,7 @@ coons_status coons_patch_new_bilinear(const double *flat, coons_patch **out, coo
             return coons__error_set(err, COONS_E_INVALID,
                                     "bilinear patch: corner X%d%d is not finite", k & 1, k >> 1);
     coons_patch *p = NULL;
-    if ((rc = coons__patch_alloc(COONS_PATCH_BILINEAR, &p, err))) return rc;
+    if ((rc = coons__patch_alloc(&coons__bilinear_kind, &p, err))) return rc;
     memcpy(p->corner, corners, sizeof p->corner);
     *out = p;
     return COONS_OK;
@@ -100,7 +100,7 @@ coons_status coons_patch_new_ruled(const coons_curve *c0, const coons_curve *c1,
         return coons__error_set(err, COONS_E_INVALID, "ruled patch: curve c%d is NULL",
                                 c0 ? 1 : 0);
     coons_patch *p = NULL;
-    if ((rc = coons__patch_alloc(COONS_PATCH_RULED, &p, err))) return rc;
+    if ((rc = coons__patch_alloc(&coons__ruled_kind, &p, err))) return rc;
     if ((rc = coons_curve_copy(c0, &p->curve[0], err)) ||
         (rc = coons_curve_copy(c1, &p->curve[1], err))) {
         coons_patch_free(p);
@@ -128,7 +128,7 @@ coons_status coons_patch_new_coons(coons_curve *const *boundary_in, coons_blend 
     double X[4][3];
     if ((rc = coons__patch_corners(boundary, tol, X, NULL, err))) return rc;
     coons_patch *p = NULL;
-    if ((rc = coons__patch_alloc(COONS_PATCH_COONS, &p, err))) return rc;
+    if ((rc = coons__patch_alloc(&coons__coons_patch_kind, &p, err))) return rc;
     p->blend = blend;
     for (int k = 0; k < 4; k++) {
         if ((rc = coons_curve_copy(boundary[k], &p->curve[k], err))) {
@@ -146,45 +146,35 @@ coons_status coons_patch_new_coons(coons_curve *const *boundary_in, coons_blend 
     return COONS_OK;
 }
 
-static void line_clear(coons__pline *L, int n, int order)
+/* Bilinear: Tv = the lines X00-X10 and X01-X11; bs unused (no S terms). */
+static void bilinear_sline(const coons_patch *p, double s, int order, coons__pline *L)
 {
-    memset(L, 0, sizeof *L);
-    L->n = n;
-    L->order = order;
+    coons__pline_clear(L, 2, order);
+    /* (1-s) a + s b rather than a + s (b - a): exact at both ends */
+    for (int m = 0; m < 2; m++)
+        for (int k = 0; k < 3; k++)
+            coons__lv(L, 0, m)[k] = (1.0 - s) * p->corner[2 * m][k] + s * p->corner[2 * m + 1][k];
+    if (order >= 1) {
+        v3_sub(coons__lv(L, 1, 0), p->corner[1], p->corner[0]);
+        v3_sub(coons__lv(L, 1, 1), p->corner[3], p->corner[2]);
+    }
 }
 
-/* Curve value and derivatives into v[d][m]. */
-static void line_curve(coons__pline *L, int m, const coons_curve *c, double x, int order)
+/* Ruled: Tv = c0(s), c1(s); no S terms. */
+static void ruled_sline(const coons_patch *p, double s, int order, coons__pline *L)
 {
-    double r[3][3];
-    coons_curve_eval_derivs(c, x, order, r);
-    for (int d = 0; d <= order; d++) v3_copy(coons__lv(L, d, m), r[d]);
+    coons__pline_clear(L, 2, order);
+    coons__pline_curve(L, 0, p->curve[0], s, order);
+    coons__pline_curve(L, 1, p->curve[1], s, order);
 }
 
-void coons__coons_sline(const coons_patch *p, double s, int order, coons__pline *L)
+static void coons_sline(const coons_patch *p, double s, int order, coons__pline *L)
 {
-    line_clear(L, 2, order);
-    if (p->type == COONS_PATCH_BILINEAR) {
-        /* Tv = the lines X00-X10 and X01-X11; bs unused (no S terms). */
-        /* (1-s) a + s b rather than a + s (b - a): exact at both ends */
-        for (int m = 0; m < 2; m++)
-            for (int k = 0; k < 3; k++)
-                coons__lv(L, 0, m)[k] = (1.0 - s) * p->corner[2 * m][k] + s * p->corner[2 * m + 1][k];
-        if (order >= 1) {
-            v3_sub(coons__lv(L, 1, 0), p->corner[1], p->corner[0]);
-            v3_sub(coons__lv(L, 1, 1), p->corner[3], p->corner[2]);
-        }
-        return;
-    }
-    if (p->type == COONS_PATCH_RULED) {
-        line_curve(L, 0, p->curve[0], s, order);
-        line_curve(L, 1, p->curve[1], s, order);
-        return;
-    }
+    coons__pline_clear(L, 2, order);
     double b[6];
     coons__blend(p->blend, s, order, b);
-    line_curve(L, 0, p->curve[COONS_SIDE_T0], s, order);
-    line_curve(L, 1, p->curve[COONS_SIDE_T1], s, order);
+    coons__pline_curve(L, 0, p->curve[COONS_SIDE_T0], s, order);
+    coons__pline_curve(L, 1, p->curve[COONS_SIDE_T1], s, order);
     for (int d = 0; d <= order; d++) {
         L->b[d][0] = b[2 * d];
         L->b[d][1] = b[2 * d + 1];
@@ -194,17 +184,47 @@ void coons__coons_sline(const coons_patch *p, double s, int order, coons__pline 
     }
 }
 
-void coons__coons_tline(const coons_patch *p, double t, int order, coons__pline *L)
+/* The blends along t, and no curves: the t-line of bilinear and ruled. */
+static void blend_tline(coons_blend blend, double t, int order, coons__pline *L)
 {
-    line_clear(L, 2, order);
+    coons__pline_clear(L, 2, order);
     double b[6];
-    coons__blend(p->type == COONS_PATCH_COONS ? p->blend : COONS_BLEND_LINEAR, t, order, b);
+    coons__blend(blend, t, order, b);
     for (int d = 0; d <= order; d++) {
         L->b[d][0] = b[2 * d];
         L->b[d][1] = b[2 * d + 1];
     }
-    if (p->type == COONS_PATCH_COONS) {
-        line_curve(L, 0, p->curve[COONS_SIDE_S0], t, order);
-        line_curve(L, 1, p->curve[COONS_SIDE_S1], t, order);
-    }
 }
+
+static void linear_tline(const coons_patch *p, double t, int order, coons__pline *L)
+{
+    (void)p;
+    blend_tline(COONS_BLEND_LINEAR, t, order, L);
+}
+
+static void coons_tline(const coons_patch *p, double t, int order, coons__pline *L)
+{
+    blend_tline(p->blend, t, order, L);
+    coons__pline_curve(L, 0, p->curve[COONS_SIDE_S0], t, order);
+    coons__pline_curve(L, 1, p->curve[COONS_SIDE_S1], t, order);
+}
+
+static void bilinear_bbox(const coons_patch *p, double lo[3], double hi[3])
+{
+    for (int k = 0; k < 4; k++) bbox_add(lo, hi, p->corner[k]);
+}
+
+/* The Boolean-sum rows: eval, grid and the record parts of boolean_sum.c
+ * with this file's lines. */
+#define BOOLSUM_ROW(type_, sline_, tline_, bbox_, breaks_)                               \
+    {.type = type_, .eval = coons__boolsum_eval, .grid = coons__boolsum_grid,             \
+     .sline = sline_, .tline = tline_, .control_bbox = bbox_, .breaks = breaks_,          \
+     .copy = coons__boolsum_copy, .free = coons__boolsum_free}
+const coons__patch_kind coons__bilinear_kind =
+    BOOLSUM_ROW(COONS_PATCH_BILINEAR, bilinear_sline, linear_tline, bilinear_bbox, NULL);
+const coons__patch_kind coons__ruled_kind =
+    BOOLSUM_ROW(COONS_PATCH_RULED, ruled_sline, linear_tline, coons__boolsum_control_bbox,
+                coons__boolsum_breaks);
+const coons__patch_kind coons__coons_patch_kind =
+    BOOLSUM_ROW(COONS_PATCH_COONS, coons_sline, coons_tline, coons__boolsum_control_bbox,
+                coons__boolsum_breaks);

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
- * The patch record, shared by patch.c, coons_patch.c, hermite_coons.c and
- * tensor_surface.c (and readable by the body layer). Internal.
+ * The patch record, shared by patch.c, boolean_sum.c and the patch types'
+ * files coons_patch.c, hermite_coons.c and tensor_surface.c. Internal.
  *
  * Bilinear, ruled, Coons and Hermite Coons patches are all Boolean sums of
  * two "line" families (seed 001 eq. 1.8 and 1.13-1.15):
@@ -19,17 +19,17 @@
 #ifndef COONS_PATCH_IMPL_H
 #define COONS_PATCH_IMPL_H
 
-#include "coons_internal.h"
+#include "kinds.h"
 
-typedef struct coons__pline {
+struct coons__pline {
     int n;            /* 2 or 4 terms */
     int order;        /* derivatives filled: 0..2 */
     double b[3][4];   /* blend / basis values, b[d][m] = d^d/dx^d */
     double v[3][12];  /* v[d] + 3m: s-line W_m = Tv_m - r_m; t-line Sv_m */
-} coons__pline;
+};
 
 struct coons_patch {
-    coons_patch_type type;
+    const coons__patch_kind *kind; /* the type's row (kinds.h) */
     coons_blend blend;       /* COONS_PATCH_COONS */
     int n;                   /* terms of the Boolean sum (2 or 4) */
     coons_curve *curve[4];   /* boundary T0, T1, S0, S1; ruled: c0, c1 */
@@ -50,8 +50,9 @@ struct coons_patch {
 /* Vector m of derivative order d of a line. */
 static inline double *coons__lv(coons__pline *L, int d, int m) { return L->v[d] + 3 * m; }
 
-/* Allocates a zeroed record of the given type. */
-coons_status coons__patch_alloc(coons_patch_type type, coons_patch **out, coons_error *err);
+/* Allocates a zeroed record of the given kind (n = 2). */
+coons_status coons__patch_alloc(const coons__patch_kind *kind, coons_patch **out,
+                                coons_error *err);
 
 /* Checks that the four boundary curves (none NULL) meet at the corners
  * within tol (> 0 absolute, else 1e-9 of the control box diagonal of the
@@ -60,21 +61,20 @@ coons_status coons__patch_alloc(coons_patch_type type, coons_patch **out, coons_
 coons_status coons__patch_corners(const coons_curve *const b[4], double tol, double X[4][3],
                                   double *tol_used, coons_error *err);
 
-/* Lines of the Boolean-sum types (coons_patch.c and hermite_coons.c). */
-void coons__patch_sline(const coons_patch *p, double s, int order, coons__pline *L);
-void coons__patch_tline(const coons_patch *p, double t, int order, coons__pline *L);
-void coons__coons_sline(const coons_patch *p, double s, int order, coons__pline *L);
-void coons__coons_tline(const coons_patch *p, double t, int order, coons__pline *L);
-void coons__hermite_sline(const coons_patch *p, double s, int order, coons__pline *L);
-void coons__hermite_tline(const coons_patch *p, double t, int order, coons__pline *L);
+/* The Boolean sum (boolean_sum.c): the eval and grid of the types whose
+ * rows give an s-line and a t-line, and the parts of such a record that
+ * are the same for all of them (its curves and cross curves). */
+void coons__boolsum_eval(const coons_patch *p, double s, double t, int order, double out[][3]);
+coons_status coons__boolsum_grid(const coons_patch *p, const double *s, size_t ns,
+                                 const double *t, size_t nt, double *out, coons_error *err);
+void coons__boolsum_control_bbox(const coons_patch *p, double lo[3], double hi[3]);
+void coons__boolsum_breaks(const coons_patch *p, int dir, coons__breaks *B);
+coons_status coons__boolsum_copy(const coons_patch *p, coons_patch *d, coons_error *err);
+void coons__boolsum_free(coons_patch *p);
 
-/* Tensor-product surfaces (tensor_surface.c). */
-void coons__surface_eval(const coons_patch *p, double s, double t, int order, double out[][3]);
-coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t ns,
-                                const double *t, size_t nt, double *out, coons_error *err);
-coons_status coons__surface_copy(const coons_patch *p, coons_patch *d, coons_error *err);
-
-/* Parameter clamped to [0,1]; NaN gives 0 (evaluators cannot fail). */
-static inline double coons__param01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
+/* Clears L for n terms and derivatives up to order. */
+void coons__pline_clear(coons__pline *L, int n, int order);
+/* Curve value and derivatives up to order at x into vector m of L. */
+void coons__pline_curve(coons__pline *L, int m, const coons_curve *c, double x, int order);
 
 #endif

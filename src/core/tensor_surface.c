@@ -24,7 +24,7 @@
 static size_t basis(const coons_patch *p, int dir, double x, int nd, double *N)
 {
     int deg = dir ? p->pt : p->ps;
-    if (p->type == COONS_PATCH_BEZIER) {
+    if (!p->ks) { /* Bezier: no knots */
         coons__bernstein(deg, x, nd, N);
         return 0;
     }
@@ -43,7 +43,7 @@ static inline void sum_rows(int dim, int deg, const double *N, const double *P, 
     for (int c = 0; c < dim; c++) R[c] = acc[c];
 }
 
-void coons__surface_eval(const coons_patch *p, double s, double t, int order, double out[][3])
+static void eval(const coons_patch *p, double s, double t, int order, double out[][3])
 {
     const int ps = p->ps, pt = p->pt, dim = p->pw ? 4 : 3;
     const double *P = p->pw ? p->pw : p->pts;
@@ -97,7 +97,7 @@ void coons__surface_eval(const coons_patch *p, double s, double t, int order, do
 _Static_assert(_Alignof(size_t) <= _Alignof(double), "size_t packed after doubles");
 
 /* The grid for a constant dim (3: polynomial, 4: homogeneous), so that
- * sum_rows unrolls; same sums in the same order as coons__surface_eval. */
+ * sum_rows unrolls; same sums in the same order as eval. */
 static inline void grid_lines(int dim, const coons_patch *p, const double *P, const double *s,
                               size_t ns, size_t nt, const double *Nt, const size_t *ft,
                               double *R, double *out)
@@ -106,7 +106,7 @@ static inline void grid_lines(int dim, const coons_patch *p, const double *P, co
     const size_t q1 = (size_t)pt + 1, nct = p->nt, stride = nct * (size_t)dim;
     double Ns[MAXB];
     for (size_t i = 0; i < ns; i++) {
-        size_t fs = basis(p, 0, coons__param01(s[i]), 0, Ns);
+        size_t fs = basis(p, 0, clamp01(s[i]), 0, Ns);
         const double *row = P + fs * stride;
         for (size_t jj = 0; jj < nct; jj++)
             sum_rows(dim, ps, Ns, row + jj * (size_t)dim, stride, R + jj * (size_t)dim);
@@ -126,8 +126,8 @@ static inline void grid_lines(int dim, const coons_patch *p, const double *P, co
 }
 
 
-coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t ns,
-                                const double *t, size_t nt, double *out, coons_error *err)
+static coons_status grid(const coons_patch *p, const double *s, size_t ns, const double *t,
+                         size_t nt, double *out, coons_error *err)
 {
     const int pt = p->pt, dim = p->pw ? 4 : 3;
     const double *P = p->pw ? p->pw : p->pts;
@@ -145,7 +145,7 @@ coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t n
     double *Nt = scratch, *R = scratch + nt * q1;
     size_t *ft = (size_t *)(void *)(scratch + nd);
 
-    for (size_t j = 0; j < nt; j++) ft[j] = basis(p, 1, coons__param01(t[j]), 0, Nt + j * q1);
+    for (size_t j = 0; j < nt; j++) ft[j] = basis(p, 1, clamp01(t[j]), 0, Nt + j * q1);
     if (dim == 3)
         grid_lines(3, p, P, s, ns, nt, Nt, ft, R, out);
     else
@@ -154,9 +154,10 @@ coons_status coons__surface_grid(const coons_patch *p, const double *s, size_t n
     return COONS_OK;
 }
 
-coons_status coons__surface_copy(const coons_patch *p, coons_patch *d, coons_error *err)
+static coons_status copy_data(const coons_patch *p, coons_patch *d, coons_error *err)
 {
     size_t n = p->ns * p->nt;
+    d->pts = d->w = d->pw = d->ks = d->kt = NULL;
     d->pts = coons__memdup(p->pts, 3 * n, sizeof(double));
     if (!d->pts) return coons__error_nomem(err);
     if (p->w && !(d->w = coons__memdup(p->w, n, sizeof(double)))) return coons__error_nomem(err);
@@ -170,6 +171,35 @@ coons_status coons__surface_copy(const coons_patch *p, coons_patch *d, coons_err
         return coons__error_nomem(err);
     return COONS_OK;
 }
+
+static void free_data(coons_patch *p)
+{
+    coons__free(p->pts);
+    coons__free(p->w);
+    coons__free(p->pw);
+    coons__free(p->ks);
+    coons__free(p->kt);
+}
+
+static void control_bbox(const coons_patch *p, double lo[3], double hi[3])
+{
+    for (size_t i = 0; i < p->ns * p->nt; i++) bbox_add(lo, hi, p->pts + 3 * i);
+}
+
+static void bspline_breaks(const coons_patch *p, int dir, coons__breaks *B)
+{
+    if (dir == 0)
+        coons__breaks_knots(B, p->ks, p->ns, p->ps);
+    else
+        coons__breaks_knots(B, p->kt, p->nt, p->pt);
+}
+
+const coons__patch_kind coons__bezier_surface_kind = {
+    .type = COONS_PATCH_BEZIER, .eval = eval, .grid = grid, .control_bbox = control_bbox,
+    .copy = copy_data, .free = free_data};
+const coons__patch_kind coons__bspline_surface_kind = {
+    .type = COONS_PATCH_BSPLINE, .eval = eval, .grid = grid, .control_bbox = control_bbox,
+    .breaks = bspline_breaks, .copy = copy_data, .free = free_data};
 
 static coons_status check_net(const double *points, size_t ns, size_t nt, const char *what,
                               coons_error *err)
@@ -199,7 +229,7 @@ coons_status coons_patch_new_bezier(const double *points, size_t ns, size_t nt, 
     coons_status rc = check_net(points, ns, nt, "bezier surface", err);
     if (rc) return rc;
     coons_patch *p = NULL;
-    if ((rc = coons__patch_alloc(COONS_PATCH_BEZIER, &p, err))) return rc;
+    if ((rc = coons__patch_alloc(&coons__bezier_surface_kind, &p, err))) return rc;
     p->ps = (int)ns - 1;
     p->pt = (int)nt - 1;
     p->ns = ns;
@@ -241,7 +271,7 @@ coons_status coons_patch_new_bspline(int ps, int pt, const double *points, size_
                                         "and > 0",
                                         what, i / nt, i % nt, weights[i]);
     coons_patch *p = NULL;
-    if ((rc = coons__patch_alloc(COONS_PATCH_BSPLINE, &p, err))) return rc;
+    if ((rc = coons__patch_alloc(&coons__bspline_surface_kind, &p, err))) return rc;
     p->ps = ps;
     p->pt = pt;
     p->ns = ns;

@@ -13,7 +13,7 @@
 #include "body_impl.h"
 #include "bspline.h"
 
-static coons_status make_tensor(coons_body_type type, const int deg[3], const double *points,
+static coons_status make_tensor(const coons__body_kind *kind, const int deg[3], const double *points,
                                 const size_t n[3], const double *const knots[3],
                                 const double *weights, const char *what, coons_body **out,
                                 coons_error *err)
@@ -50,7 +50,7 @@ static coons_status make_tensor(coons_body_type type, const int deg[3], const do
                                         what, i / (n[1] * n[2]), i / n[2] % n[1], i % n[2],
                                         weights[i]);
     coons_body *b;
-    coons_status rc = coons__body_alloc(type, COONS_BLEND_LINEAR, &b, err);
+    coons_status rc = coons__body_alloc(kind, COONS_BLEND_LINEAR, &b, err);
     if (rc) return rc;
     for (int d = 0; d < 3; d++) {
         b->deg[d] = deg[d];
@@ -92,7 +92,7 @@ coons_status coons_body_new_bezier(const double *points, const size_t n[3], coon
         }
         k[d] = kn[d];
     }
-    return make_tensor(COONS_BODY_BEZIER, deg, points, n, k, NULL, "bezier-volume", out, err);
+    return make_tensor(&coons__bezier_volume_kind, deg, points, n, k, NULL, "bezier-volume", out, err);
 }
 
 coons_status coons_body_new_bspline(const int degree[3], const double *points, const size_t n[3],
@@ -101,12 +101,12 @@ coons_status coons_body_new_bspline(const int degree[3], const double *points, c
                                     coons_body **out, coons_error *err)
 {
     const double *const knots[3] = {knots_u, knots_v, knots_w};
-    return make_tensor(COONS_BODY_BSPLINE, degree, points, n, knots, weights, "bspline-volume",
+    return make_tensor(&coons__bspline_volume_kind, degree, points, n, knots, weights, "bspline-volume",
                        out, err);
 }
 
-void coons__tensor_eval(const coons_body *b, double u, double v, double w, double out[3],
-                        double d[3][3])
+static void eval(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3])
 {
     int p = b->deg[0], q = b->deg[1], r = b->deg[2], nd = d ? 1 : 0;
     double Nu[2 * (COONS_SPLINE_MAX_DEGREE + 1)], Nv[2 * (COONS_SPLINE_MAX_DEGREE + 1)],
@@ -157,9 +157,8 @@ static void line_basis(const double *knots, size_t ncp, int deg, const double *t
  * point sum_e N_e(w) B_e. Rational volumes carry the weight as a fourth
  * homogeneous coordinate and divide at the end.
  */
-coons_status coons__tensor_grid(const coons_body *b, const double *u, size_t nu,
-                                const double *v, size_t nv, const double *w, size_t nw,
-                                double *out, coons_error *err)
+static coons_status grid(const coons_body *b, const double *u, size_t nu, const double *v,
+                         size_t nv, const double *w, size_t nw, double *out, coons_error *err)
 {
     int p = b->deg[0], q = b->deg[1], r = b->deg[2];
     size_t n1 = b->n[1], n2 = b->n[2], dim = b->w ? 4 : 3;
@@ -238,3 +237,34 @@ coons_status coons__tensor_grid(const coons_body *b, const double *u, size_t nu,
     coons__free(fi);
     return COONS_OK;
 }
+
+static void breaks(const coons_body *b, int d, coons__breaks *B)
+{
+    coons__breaks_knots(B, b->knots[d], b->n[d], b->deg[d]);
+}
+
+static coons_status copy_data(const coons_body *b, coons_body *d, coons_error *err)
+{
+    size_t np = b->n[0] * b->n[1] * b->n[2];
+    d->pts = coons__memdup(b->pts, 3 * np, sizeof(double));
+    d->w = b->w ? coons__memdup(b->w, np, sizeof(double)) : NULL;
+    for (int k = 0; k < 3; k++)
+        d->knots[k] =
+            coons__memdup(b->knots[k], b->n[k] + (size_t)b->deg[k] + 1, sizeof(double));
+    if (!d->pts || (b->w && !d->w) || !d->knots[0] || !d->knots[1] || !d->knots[2])
+        return coons__error_nomem(err);
+    return COONS_OK;
+}
+
+static void free_data(coons_body *b)
+{
+    coons__free(b->pts);
+    for (int d = 0; d < 3; d++) coons__free(b->knots[d]);
+    coons__free(b->w);
+}
+
+#define TENSOR_ROW(t)                                                                  \
+    {.type = t, .eval = eval, .grid = grid, .breaks = breaks, .copy = copy_data,          \
+     .free = free_data}
+const coons__body_kind coons__bezier_volume_kind = TENSOR_ROW(COONS_BODY_BEZIER);
+const coons__body_kind coons__bspline_volume_kind = TENSOR_ROW(COONS_BODY_BSPLINE);

@@ -11,6 +11,7 @@
 #include "coons_internal.h"
 #include "mesh_glue.h"
 #include "mesh_impl.h"
+#include "union_find.h"
 
 typedef struct edge_rec {
     uint32_t lo, hi; /* undirected key */
@@ -29,22 +30,6 @@ static int cmp_u32(const void *x, const void *y)
 {
     uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
     return a < b ? -1 : (a > b);
-}
-
-static uint32_t uf_find(uint32_t *uf, uint32_t a)
-{
-    while (uf[a] != a) {
-        uf[a] = uf[uf[a]];
-        a = uf[a];
-    }
-    return a;
-}
-
-static void uf_union(uint32_t *uf, uint32_t a, uint32_t b)
-{
-    a = uf_find(uf, a);
-    b = uf_find(uf, b);
-    if (a != b) uf[a > b ? a : b] = a < b ? a : b;
 }
 
 static int degenerate(const uint32_t *t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
@@ -71,40 +56,20 @@ static int link_is_fan(const uint32_t *link, size_t k, uint32_t *scratch)
     for (size_t e = 0; e < k; e++) {
         uint32_t *a = bsearch(&link[2 * e], nodes, nn, sizeof *nodes, cmp_u32);
         uint32_t *b = bsearch(&link[2 * e + 1], nodes, nn, sizeof *nodes, cmp_u32);
-        uf_union(uf, (uint32_t)(a - nodes), (uint32_t)(b - nodes));
+        coons__uf_union(uf, (uint32_t)(a - nodes), (uint32_t)(b - nodes));
     }
     for (uint32_t i = 1; i < nn; i++)
-        if (uf_find(uf, i) != uf_find(uf, 0)) return 0;
+        if (coons__uf_find(uf, i) != coons__uf_find(uf, 0)) return 0;
     return 1;
 }
 
-coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coons_error *err)
+/* Edges of the non-degenerate triangles into e (3 per triangle), sorted
+ * by undirected key, counted by use; degenerate triangles are counted and
+ * skipped. Returns the number of non-degenerate triangles. */
+static size_t count_edges(const coons_mesh *m, edge_rec *e, coons_mesh_report *r)
 {
-    if (r->version != COONS_MESH_REPORT_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "mesh report version %u, expected %u (use COONS_MESH_REPORT_INIT)",
-                                r->version, (unsigned)COONS_MESH_REPORT_VERSION);
-    coons_mesh_report z = COONS_MESH_REPORT_INIT;
-    *r = z;
-    size_t nv = m->nv, nt = m->nt;
-    r->triangles = nt;
-    r->volume = coons_mesh_volume(m);
-    r->area = coons_mesh_area(m);
-
-    edge_rec *e = coons__malloc_array(nt, 3 * sizeof *e);
-    uint32_t *uf = coons__malloc_array(nv ? nv : 1, sizeof *uf);
-    size_t *first = coons__calloc(nv + 1, sizeof *first);
-    uint32_t *inc = coons__malloc_array(nt ? nt : 1, 3 * sizeof *inc);
-    uint32_t *link = NULL, *scratch = NULL;
-    coons_status st = COONS_OK;
-    if (!e || !uf || !first || !inc) {
-        st = coons__error_nomem(err);
-        goto done;
-    }
-
-    /* Edges of the non-degenerate triangles, sorted by undirected key. */
     size_t ne = 0, nf = 0;
-    for (size_t t = 0; t < nt; t++) {
+    for (size_t t = 0; t < m->nt; t++) {
         const uint32_t *v = m->tri + 3 * t;
         if (degenerate(v)) {
             r->degenerate_triangles++;
@@ -133,34 +98,39 @@ coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coon
             r->misoriented_edges++;
         i = j;
     }
+    return nf;
+}
 
-    /* Incidence lists (CSR) for the vertex links; shells by union-find. */
-    for (uint32_t i = 0; i < nv; i++) uf[i] = i;
+/* Incidence lists (CSR): the triangles of vertex i are inc[first[i] ..
+ * first[i+1]-1]. first holds nv + 1 zeros on entry. *maxdeg gets the
+ * largest count. */
+static coons_status incidence(const coons_mesh *m, size_t *first, uint32_t *inc,
+                              size_t *maxdeg, coons_error *err)
+{
+    size_t nv = m->nv, nt = m->nt;
     for (size_t t = 0; t < nt; t++)
         for (int k = 0; k < 3; k++) first[m->tri[3 * t + k] + 1]++;
-    size_t maxdeg = 0;
+    *maxdeg = 0;
     for (size_t i = 0; i < nv; i++) {
-        if (first[i + 1] > maxdeg) maxdeg = first[i + 1];
+        if (first[i + 1] > *maxdeg) *maxdeg = first[i + 1];
         first[i + 1] += first[i];
     }
-    {
-        size_t *fill = coons__malloc_array(nv ? nv : 1, sizeof *fill);
-        if (!fill) {
-            st = coons__error_nomem(err);
-            goto done;
-        }
-        memcpy(fill, first, nv * sizeof *fill);
-        for (size_t t = 0; t < nt; t++)
-            for (int k = 0; k < 3; k++) inc[fill[m->tri[3 * t + k]]++] = (uint32_t)t;
-        coons__free(fill);
-    }
-    link = coons__malloc_array(maxdeg ? maxdeg : 1, 2 * sizeof *link);
-    scratch = coons__malloc_array(4 * maxdeg + 1, sizeof *scratch);
-    if (!link || !scratch) {
-        st = coons__error_nomem(err);
-        goto done;
-    }
-    for (size_t vi = 0; vi < nv; vi++) {
+    size_t *fill = coons__malloc_array(nv ? nv : 1, sizeof *fill);
+    if (!fill) return coons__error_nomem(err);
+    memcpy(fill, first, nv * sizeof *fill);
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) inc[fill[m->tri[3 * t + k]]++] = (uint32_t)t;
+    coons__free(fill);
+    return COONS_OK;
+}
+
+/* Per used vertex: its link is one fan? Joins each vertex with its
+ * neighbours in uf (shells). link and scratch hold 2 maxdeg and
+ * 4 maxdeg + 1 values. */
+static void check_links(const coons_mesh *m, const size_t *first, const uint32_t *inc,
+                        uint32_t *uf, uint32_t *link, uint32_t *scratch, coons_mesh_report *r)
+{
+    for (size_t vi = 0; vi < m->nv; vi++) {
         size_t k = 0;
         for (size_t p = first[vi]; p < first[vi + 1]; p++) {
             const uint32_t *v = m->tri + 3 * (size_t)inc[p];
@@ -168,8 +138,8 @@ coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coon
             int at = v[0] == vi ? 0 : (v[1] == vi ? 1 : 2);
             link[2 * k] = v[(at + 1) % 3];
             link[2 * k + 1] = v[(at + 2) % 3];
-            uf_union(uf, (uint32_t)vi, v[(at + 1) % 3]);
-            uf_union(uf, (uint32_t)vi, v[(at + 2) % 3]);
+            coons__uf_union(uf, (uint32_t)vi, v[(at + 1) % 3]);
+            coons__uf_union(uf, (uint32_t)vi, v[(at + 2) % 3]);
             k++;
         }
         if (first[vi + 1] == first[vi]) {
@@ -179,11 +149,22 @@ coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coon
         r->vertices++;
         if (k && !link_is_fan(link, k, scratch)) r->nonmanifold_vertices++;
     }
-    for (size_t vi = 0; vi < nv; vi++)
-        if (first[vi + 1] > first[vi] && uf_find(uf, (uint32_t)vi) == vi) r->shells++;
-    /* Expected Euler characteristic, part by part: a sampled body's boundary
-     * is a sphere, or tori once opposite faces were glued; anything else is
-     * assumed to be spheres, one per shell. */
+}
+
+/* Is used vertex vi the root of its shell? */
+static int shell_root(const size_t *first, uint32_t *uf, size_t vi)
+{
+    return first[vi + 1] > first[vi] && coons__uf_find(uf, (uint32_t)vi) == vi;
+}
+
+/* Shells, and the expected Euler characteristic, part by part: a sampled
+ * body's boundary is a sphere, or tori once opposite faces were glued;
+ * anything else is assumed to be spheres, one per shell. */
+static void count_shells(const coons_mesh *m, const size_t *first, uint32_t *uf,
+                         coons_mesh_report *r)
+{
+    for (size_t vi = 0; vi < m->nv; vi++)
+        if (shell_root(first, uf, vi)) r->shells++;
     for (size_t p = 0; p < m->nparts; p++) {
         const coons__mesh_part *P = &m->parts[p];
         if (P->sampled) {
@@ -191,9 +172,45 @@ coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coon
             continue;
         }
         for (size_t vi = P->vert_first; vi < P->vert_first + P->vert_count; vi++)
-            if (first[vi + 1] > first[vi] && uf_find(uf, (uint32_t)vi) == vi)
-                r->expected_euler += 2;
+            if (shell_root(first, uf, vi)) r->expected_euler += 2;
     }
+}
+
+coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coons_error *err)
+{
+    if (r->version != COONS_MESH_REPORT_VERSION)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "mesh report version %u, expected %u (use COONS_MESH_REPORT_INIT)",
+                                r->version, (unsigned)COONS_MESH_REPORT_VERSION);
+    coons_mesh_report z = COONS_MESH_REPORT_INIT;
+    *r = z;
+    size_t nv = m->nv, nt = m->nt;
+    r->triangles = nt;
+    r->volume = coons_mesh_volume(m);
+    r->area = coons_mesh_area(m);
+
+    edge_rec *e = coons__malloc_array(nt, 3 * sizeof *e);
+    uint32_t *uf = coons__malloc_array(nv ? nv : 1, sizeof *uf);
+    size_t *first = coons__calloc(nv + 1, sizeof *first);
+    uint32_t *inc = coons__malloc_array(nt ? nt : 1, 3 * sizeof *inc);
+    uint32_t *link = NULL, *scratch = NULL;
+    size_t nf = 0, maxdeg = 0;
+    coons_status st = COONS_OK;
+    if (!e || !uf || !first || !inc) {
+        st = coons__error_nomem(err);
+        goto done;
+    }
+    nf = count_edges(m, e, r);
+    for (uint32_t i = 0; i < nv; i++) uf[i] = i;
+    if ((st = incidence(m, first, inc, &maxdeg, err))) goto done;
+    link = coons__malloc_array(maxdeg ? maxdeg : 1, 2 * sizeof *link);
+    scratch = coons__malloc_array(4 * maxdeg + 1, sizeof *scratch);
+    if (!link || !scratch) {
+        st = coons__error_nomem(err);
+        goto done;
+    }
+    check_links(m, first, inc, uf, link, scratch, r);
+    count_shells(m, first, uf, r);
 
     r->euler = (long)r->vertices - (long)r->edges + (long)nf;
     r->closed = nt > 0 && r->boundary_edges == 0 && r->nonmanifold_edges == 0;

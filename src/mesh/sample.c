@@ -51,6 +51,7 @@
 #include "coons_internal.h"
 #include "mesh_glue.h"
 #include "mesh_impl.h"
+#include "union_find.h"
 
 enum {
     START_INTERVALS = 4, /* along the longest direction */
@@ -150,83 +151,98 @@ static coons_status alloc_lattices(sampler *s)
     return COONS_OK;
 }
 
+/* Starting interval counts from the body's extent along each direction,
+ * raised so that cells are at most max_aspect times longer than wide. */
+static coons_status start_counts(sampler *s)
+{
+    /* Extent along each direction: the longest lattice line of a 9 x 9
+     * sampling of the faces that run along it. */
+    enum { K = 9 };
+    double g[K], len[3] = {0, 0, 0};
+    for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
+    coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+    if (st) return st;
+    for (int f = 0; f < 6; f++) {
+        if ((st = eval_face(s, f, g, K, g, K, s->buf))) return st;
+        for (int j = 0; j < K; j++) {
+            double la = 0, lb = 0;
+            for (int i = 0; i + 1 < K; i++) {
+                la += v3_dist(s->buf + 3 * (i * K + j), s->buf + 3 * ((i + 1) * K + j));
+                lb += v3_dist(s->buf + 3 * (j * K + i), s->buf + 3 * (j * K + i + 1));
+            }
+            if (la > len[FACES[f].a]) len[FACES[f].a] = la;
+            if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
+        }
+    }
+    double lmax = fmax(len[0], fmax(len[1], len[2]));
+    for (int d = 0; d < 3; d++) {
+        double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
+        s->n[d] = k < 1 ? 1 : (k > START_INTERVALS ? START_INTERVALS : (size_t)k);
+    }
+    /* Cell length along d is about len[d] / n[d]; the shortest of them
+     * (ignoring collapsed directions) bounds the others. */
+    double cmin = INFINITY;
+    for (int d = 0; d < 3; d++)
+        if (len[d] > 1e-9 * lmax) cmin = fmin(cmin, len[d] / (double)s->n[d]);
+    if (isfinite(s->o->max_aspect) && isfinite(cmin))
+        for (int d = 0; d < 3; d++) {
+            double k = ceil(len[d] / (s->o->max_aspect * cmin) - 1e-9);
+            /* capped so that a needle cannot exhaust the budget here */
+            if (k > 4096) k = 4096;
+            if (k > (double)s->n[d]) s->n[d] = (size_t)k;
+        }
+    return COONS_OK;
+}
+
+/* The starting lattice values of direction d: n[d] uniform intervals
+ * merged with the breakpoints of the body's data. */
+static coons_status start_values(sampler *s, int d)
+{
+    /* Adaptive lattices start at the breakpoints of the body's data
+     * (knots, segment ends): a kink inside a cell converges only
+     * linearly, and its peak error falls between the measured samples.
+     * Uniform values closer than a quarter step to a breakpoint yield. */
+    double *br = NULL;
+    size_t nbr = 0, n = s->n[d], k = 0;
+    if (!s->o->resolution) {
+        coons_status st = coons__body_breaks(s->body, d, &br, &nbr, s->err);
+        if (st) return st;
+    }
+    s->t[d] = coons__malloc_array(n + nbr + 1, sizeof(double));
+    if (!s->t[d]) {
+        coons__free(br);
+        return coons__error_nomem(s->err);
+    }
+    for (size_t i = 0, j = 0; i <= n || j < nbr;) {
+        double x = i <= n ? (double)i / (double)n : 2.0, y = j < nbr ? br[j] : 2.0;
+        if (y <= x) {
+            if (!k || y > s->t[d][k - 1]) s->t[d][k++] = y;
+            j++;
+            if (fabs(x - y) < 0.25 / (double)n) i++;
+        } else {
+            int near = (j < nbr && br[j] - x < 0.25 / (double)n) ||
+                       (j > 0 && x - br[j - 1] < 0.25 / (double)n);
+            if (!near && (!k || x > s->t[d][k - 1])) s->t[d][k++] = x;
+            i++;
+        }
+    }
+    coons__free(br);
+    s->t[d][0] = 0.0;
+    s->t[d][k - 1] = 1.0;
+    s->n[d] = k - 1;
+    return COONS_OK;
+}
+
 static coons_status init_lattices(sampler *s)
 {
+    coons_status st = COONS_OK;
     if (s->o->resolution) {
         for (int d = 0; d < 3; d++) s->n[d] = s->o->resolution;
-    } else {
-        /* Extent along each direction: the longest lattice line of a 9 x 9
-         * sampling of the faces that run along it. */
-        enum { K = 9 };
-        double g[K], len[3] = {0, 0, 0};
-        for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
-        coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
-        if (st) return st;
-        for (int f = 0; f < 6; f++) {
-            if ((st = eval_face(s, f, g, K, g, K, s->buf))) return st;
-            for (int j = 0; j < K; j++) {
-                double la = 0, lb = 0;
-                for (int i = 0; i + 1 < K; i++) {
-                    la += v3_dist(s->buf + 3 * (i * K + j), s->buf + 3 * ((i + 1) * K + j));
-                    lb += v3_dist(s->buf + 3 * (j * K + i), s->buf + 3 * (j * K + i + 1));
-                }
-                if (la > len[FACES[f].a]) len[FACES[f].a] = la;
-                if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
-            }
-        }
-        double lmax = fmax(len[0], fmax(len[1], len[2]));
-        for (int d = 0; d < 3; d++) {
-            double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
-            s->n[d] = k < 1 ? 1 : (k > START_INTERVALS ? START_INTERVALS : (size_t)k);
-        }
-        /* Cell length along d is about len[d] / n[d]; the shortest of them
-         * (ignoring collapsed directions) bounds the others. */
-        double cmin = INFINITY;
-        for (int d = 0; d < 3; d++)
-            if (len[d] > 1e-9 * lmax) cmin = fmin(cmin, len[d] / (double)s->n[d]);
-        if (isfinite(s->o->max_aspect) && isfinite(cmin))
-            for (int d = 0; d < 3; d++) {
-                double k = ceil(len[d] / (s->o->max_aspect * cmin) - 1e-9);
-                /* capped so that a needle cannot exhaust the budget here */
-                if (k > 4096) k = 4096;
-                if (k > (double)s->n[d]) s->n[d] = (size_t)k;
-            }
+    } else if ((st = start_counts(s))) {
+        return st;
     }
-    for (int d = 0; d < 3; d++) {
-        /* Adaptive lattices start at the breakpoints of the body's data
-         * (knots, segment ends): a kink inside a cell converges only
-         * linearly, and its peak error falls between the measured samples.
-         * Uniform values closer than a quarter step to a breakpoint yield. */
-        double *br = NULL;
-        size_t nbr = 0, n = s->n[d], k = 0;
-        if (!s->o->resolution) {
-            coons_status st = coons__body_breaks(s->body, d, &br, &nbr, s->err);
-            if (st) return st;
-        }
-        s->t[d] = coons__malloc_array(n + nbr + 1, sizeof(double));
-        if (!s->t[d]) {
-            coons__free(br);
-            return coons__error_nomem(s->err);
-        }
-        for (size_t i = 0, j = 0; i <= n || j < nbr;) {
-            double x = i <= n ? (double)i / (double)n : 2.0, y = j < nbr ? br[j] : 2.0;
-            if (y <= x) {
-                if (!k || y > s->t[d][k - 1]) s->t[d][k++] = y;
-                j++;
-                if (fabs(x - y) < 0.25 / (double)n) i++;
-            } else {
-                int near = (j < nbr && br[j] - x < 0.25 / (double)n) ||
-                           (j > 0 && x - br[j - 1] < 0.25 / (double)n);
-                if (!near && (!k || x > s->t[d][k - 1])) s->t[d][k++] = x;
-                i++;
-            }
-        }
-        coons__free(br);
-        s->t[d][0] = 0.0;
-        s->t[d][k - 1] = 1.0;
-        s->n[d] = k - 1;
-    }
-    return alloc_lattices(s);
+    for (int d = 0; d < 3 && !st; d++) st = start_values(s, d);
+    return st ? st : alloc_lattices(s);
 }
 
 static coons_status limit_error(sampler *s, size_t need)
@@ -254,25 +270,13 @@ static int owner(const sampler *s, const size_t ijk[3])
     return -1; /* interior: never asked */
 }
 
-static uint32_t find(uint32_t *uf, uint32_t a)
-{
-    while (uf[a] != a) {
-        uf[a] = uf[uf[a]];
-        a = uf[a];
-    }
-    return a;
-}
-
 static void merge_close(sampler *s, uint32_t a, uint32_t b)
 {
-    uint32_t ra = find(s->uf, a), rb = find(s->uf, b);
+    uint32_t ra = coons__uf_find(s->uf, a), rb = coons__uf_find(s->uf, b);
     if (ra == rb || v3_dist(s->pos + 3 * (size_t)ra, s->pos + 3 * (size_t)rb) > s->merge_tol)
         return;
     /* The lower id, evaluated first, stays the representative. */
-    if (ra < rb)
-        s->uf[rb] = ra;
-    else
-        s->uf[ra] = rb;
+    coons__uf_link(s->uf, ra, rb);
 }
 
 static void free_mesh(sampler *s)
@@ -294,14 +298,20 @@ static void free_mesh(sampler *s)
 
 static inline const double *rep_pos(sampler *s, uint32_t id)
 {
-    return s->pos + 3 * (size_t)find(s->uf, id);
+    return s->pos + 3 * (size_t)coons__uf_find(s->uf, id);
 }
 
-/* Evaluates the lattice, shares seam vertices, merges collapsed edges,
- * splits cells along the shorter diagonal and orients the triangles. */
-static coons_status build(sampler *s)
+/* Raw vertex of lattice point (ia, ib) of face f. */
+static inline uint32_t lattice_id(const sampler *s, int f, size_t ia, size_t ib)
 {
-    free_mesh(s);
+    return s->ids[f][ia * (s->n[FACES[f].b] + 1) + ib];
+}
+
+/* The arrays of one build: raw vertices (the lattice points on the
+ * boundary), their union-find, per face its lattice ids and diagonals, and
+ * room for two triangles per cell. */
+static coons_status alloc_mesh(sampler *s)
+{
     const size_t *n = s->n;
     size_t total = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
     size_t inner = (n[0] - 1) * (n[1] - 1) * (n[2] - 1);
@@ -322,10 +332,16 @@ static coons_status build(sampler *s)
     }
     s->tri = coons__malloc_array(cells, 6 * sizeof(uint32_t));
     if (!s->tri) return coons__error_nomem(s->err);
+    return COONS_OK;
+}
 
+/* Evaluates every face on its lattice; a point is stored by the face that
+ * owns it (owner()) and shared by id with the later faces, so seams are
+ * one vertex by construction. Extends lo/hi by the stored points. */
+static coons_status eval_lattice(sampler *s, double lo[3], double hi[3])
+{
+    const size_t *n = s->n;
     uint32_t next = 0;
-    double lo[3], hi[3];
-    bbox_empty(lo, hi);
     for (int f = 0; f < 6; f++) {
         const face_desc *F = &FACES[f];
         size_t na = n[F->a], nb = n[F->b];
@@ -345,8 +361,7 @@ static coons_status build(sampler *s)
                     v3_copy(s->pos + 3 * (size_t)id, s->buf + 3 * (ia * (nb + 1) + ib));
                     bbox_add(lo, hi, s->pos + 3 * (size_t)id);
                 } else {
-                    const face_desc *G = &FACES[g];
-                    id = s->ids[g][ijk[G->a] * (n[G->b] + 1) + ijk[G->b]];
+                    id = lattice_id(s, g, ijk[FACES[g].a], ijk[FACES[g].b]);
                 }
                 s->ids[f][ia * (nb + 1) + ib] = id;
             }
@@ -354,47 +369,51 @@ static coons_status build(sampler *s)
     if (next != s->nv)
         return coons__error_set(s->err, COONS_E_INTERNAL, "lattice vertex count %u != %zu",
                                 (unsigned)next, s->nv);
+    return COONS_OK;
+}
 
-    double maxabs = 0;
-    for (int d = 0; d < 3; d++) maxabs = fmax(maxabs, fmax(fabs(lo[d]), fabs(hi[d])));
-    s->merge_tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
-    for (uint32_t i = 0; i < next; i++) s->uf[i] = i;
-
-    /* Opposite faces that coincide point for point (a body closed on itself
-     * along u, v or w: a ring made with closed edge curves) are glued and
-     * left out: they are inside the solid, and what remains is its boundary
-     * (a torus for one such pair). */
+/* Opposite faces that coincide point for point (a body closed on itself
+ * along u, v or w: a ring made with closed edge curves) are glued and
+ * left out: they are inside the solid, and what remains is its boundary
+ * (a torus for one such pair). */
+static void glue_opposite_faces(sampler *s)
+{
     s->glued = 0;
     for (int d = 0; d < 3; d++) {
         const uint32_t *i0 = s->ids[2 * d], *i1 = s->ids[2 * d + 1];
-        size_t np = (n[FACES[2 * d].a] + 1) * (n[FACES[2 * d].b] + 1), k;
+        size_t np = (s->n[FACES[2 * d].a] + 1) * (s->n[FACES[2 * d].b] + 1), k;
         for (k = 0; k < np; k++)
             if (v3_dist(s->pos + 3 * (size_t)i0[k], s->pos + 3 * (size_t)i1[k]) > s->merge_tol)
                 break;
         if (k < np) continue;
         s->glued |= 1 << d;
-        for (k = 0; k < np; k++) {
-            uint32_t ra = find(s->uf, i0[k]), rb = find(s->uf, i1[k]);
-            if (ra != rb) s->uf[ra > rb ? ra : rb] = ra < rb ? ra : rb;
-        }
+        for (k = 0; k < np; k++) coons__uf_union(s->uf, i0[k], i1[k]);
     }
+}
 
+/* Collapses the zero-length lattice lines (cone apex, shrunk faces). */
+static void merge_lattice_lines(sampler *s)
+{
     for (int f = 0; f < 6; f++) {
-        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
-        const uint32_t *id = s->ids[f];
+        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t ia = 0; ia <= na; ia++)
             for (size_t ib = 0; ib <= nb; ib++) {
-                if (ia < na) merge_close(s, id[ia * (nb + 1) + ib], id[(ia + 1) * (nb + 1) + ib]);
-                if (ib < nb) merge_close(s, id[ia * (nb + 1) + ib], id[ia * (nb + 1) + ib + 1]);
+                if (ia < na) merge_close(s, lattice_id(s, f, ia, ib), lattice_id(s, f, ia + 1, ib));
+                if (ib < nb) merge_close(s, lattice_id(s, f, ia, ib), lattice_id(s, f, ia, ib + 1));
             }
     }
+}
+
+/* Splits each cell along its shorter diagonal, and collapses that
+ * diagonal where it has zero length. */
+static void choose_diagonals(sampler *s)
+{
     for (int f = 0; f < 6; f++) {
-        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
-        const uint32_t *id = s->ids[f];
+        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t p = 0; p < na; p++)
             for (size_t q = 0; q < nb; q++) {
-                uint32_t i00 = id[p * (nb + 1) + q], i10 = id[(p + 1) * (nb + 1) + q];
-                uint32_t i01 = id[p * (nb + 1) + q + 1], i11 = id[(p + 1) * (nb + 1) + q + 1];
+                uint32_t i00 = lattice_id(s, f, p, q), i10 = lattice_id(s, f, p + 1, q);
+                uint32_t i01 = lattice_id(s, f, p, q + 1), i11 = lattice_id(s, f, p + 1, q + 1);
                 double d1 = v3_dist(rep_pos(s, i00), rep_pos(s, i11));
                 double d2 = v3_dist(rep_pos(s, i10), rep_pos(s, i01));
                 unsigned char dg = d2 < d1;
@@ -405,18 +424,22 @@ static coons_status build(sampler *s)
                     merge_close(s, i00, i11);
             }
     }
+}
 
+/* The two triangles of every cell of the faces not glued, between the
+ * representatives, wound by the face's orientation; collapsed ones drop. */
+static void emit_cells(sampler *s)
+{
     size_t nt = 0;
     for (int f = 0; f < 6; f++) {
         if (s->glued & 1 << FACES[f].fixed) continue;
-        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
-        const uint32_t *id = s->ids[f];
+        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t p = 0; p < na; p++)
             for (size_t q = 0; q < nb; q++) {
-                uint32_t A = find(s->uf, id[p * (nb + 1) + q]);
-                uint32_t B = find(s->uf, id[(p + 1) * (nb + 1) + q]);
-                uint32_t C = find(s->uf, id[(p + 1) * (nb + 1) + q + 1]);
-                uint32_t D = find(s->uf, id[p * (nb + 1) + q + 1]);
+                uint32_t A = coons__uf_find(s->uf, lattice_id(s, f, p, q));
+                uint32_t B = coons__uf_find(s->uf, lattice_id(s, f, p + 1, q));
+                uint32_t C = coons__uf_find(s->uf, lattice_id(s, f, p + 1, q + 1));
+                uint32_t D = coons__uf_find(s->uf, lattice_id(s, f, p, q + 1));
                 uint32_t t[2][3];
                 if (!s->diag[f][p * nb + q]) {
                     t[0][0] = A, t[0][1] = B, t[0][2] = C;
@@ -441,10 +464,14 @@ static coons_status build(sampler *s)
             }
     }
     s->nt = nt;
+}
 
-    /* Outward whatever the handedness: a left-handed body (det J < 0) maps
-     * the outward lattice orientation inward, which makes the volume
-     * negative. Shifting by one vertex reduces cancellation. */
+/* Outward whatever the handedness: a left-handed body (det J < 0) maps
+ * the outward lattice orientation inward, which makes the volume
+ * negative. Shifting by one vertex reduces cancellation. */
+static void orient_outward(sampler *s)
+{
+    size_t nt = s->nt;
     double vol = 0;
     const double *o = nt ? s->pos + 3 * (size_t)s->tri[0] : NULL;
     for (size_t t = 0; t < nt; t++) {
@@ -461,22 +488,51 @@ static coons_status build(sampler *s)
             s->tri[3 * t + 1] = s->tri[3 * t + 2];
             s->tri[3 * t + 2] = tmp;
         }
+}
+
+/* Evaluates the lattice, shares seam vertices, merges collapsed edges,
+ * splits cells along the shorter diagonal and orients the triangles. */
+static coons_status build(sampler *s)
+{
+    free_mesh(s);
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    coons_status st = alloc_mesh(s);
+    if (!st) st = eval_lattice(s, lo, hi);
+    if (st) return st;
+    double maxabs = 0;
+    for (int d = 0; d < 3; d++) maxabs = fmax(maxabs, fmax(fabs(lo[d]), fabs(hi[d])));
+    s->merge_tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
+    for (uint32_t i = 0; i < (uint32_t)s->nv; i++) s->uf[i] = i;
+    glue_opposite_faces(s);
+    merge_lattice_lines(s);
+    choose_diagonals(s);
+    emit_cells(s);
+    orient_outward(s);
     return COONS_OK;
 }
 
 static inline double dmin(double a, double b) { return a < b ? a : b; }
 static inline double dmax(double a, double b) { return a > b ? a : b; }
 
+/* |o - t dir|^2: the squared distance of a point, o from a base point,
+ * to the point at t along dir. */
+static double off_dist2(const double o[3], double t, const double dir[3])
+{
+    double q[3];
+    v3_copy(q, o);
+    v3_axpy(q, -t, dir);
+    return v3_dot(q, q);
+}
+
 /* Squared distance from p to segment ab. */
 static double seg_dist2(const double p[3], const double a[3], const double b[3])
 {
-    double ab[3], q[3];
+    double ab[3], ap[3];
     v3_sub(ab, b, a);
-    v3_sub(q, p, a);
-    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(q, ab) / l2 : 0;
-    t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    v3_axpy(q, -t, ab);
-    return v3_dot(q, q);
+    v3_sub(ap, p, a);
+    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(ap, ab) / l2 : 0;
+    return off_dist2(ap, clamp01(t), ab);
 }
 
 /* Squared distance from p to triangle abc (closest point by Voronoi
@@ -498,9 +554,7 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
     double vc = d1 * d4 - d3 * d2;
     if (vc <= 0 && d1 >= 0 && d3 <= 0) {
         double v = d1 / (d1 - d3);
-        v3_copy(q, ap);
-        v3_axpy(q, -v, ab);
-        return v3_dot(q, q);
+        return off_dist2(ap, v, ab);
     }
     double cp[3];
     v3_sub(cp, p, c);
@@ -509,18 +563,14 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
     double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) {
         double w = d2 / (d2 - d6);
-        v3_copy(q, ap);
-        v3_axpy(q, -w, ac);
-        return v3_dot(q, q);
+        return off_dist2(ap, w, ac);
     }
     double va = d3 * d6 - d5 * d4;
     if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
         double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
         double bc[3];
         v3_sub(bc, c, b);
-        v3_copy(q, bp);
-        v3_axpy(q, -w, bc);
-        return v3_dot(q, q);
+        return off_dist2(bp, w, bc);
     }
     double den = va + vb + vc;
     if (!(den > 0)) /* degenerate (collinear): the nearest side */

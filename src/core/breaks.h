@@ -1,0 +1,31 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Breakpoints of a curve's, patch's or body's data in (0,1): where the map
+ * may lose smoothness (knots, segment ends). The volume quadrature and the
+ * boundary sampler start their cells there. Internal. */
+#ifndef COONS_BREAKS_H
+#define COONS_BREAKS_H
+
+#include "coons_internal.h"
+
+/* More breakpoints than this in a direction: uniform cells instead. */
+#define COONS__MAX_BREAKS 64
+
+/* A growing list of values; nomem is set (and sticks) when growing fails. */
+typedef struct coons__breaks {
+    double *v;
+    size_t n, cap;
+    int nomem;
+} coons__breaks;
+
+/* Appends x if it lies in (0,1). */
+void coons__breaks_add(coons__breaks *B, double x);
+
+/* The inner knots k[p+1..ncp-1] of a knot vector of degree p for ncp
+ * control points, mapped from [k_p, k_ncp] onto [0,1] (nothing if k is
+ * NULL); stops once the list holds more than COONS__MAX_BREAKS values. */
+void coons__breaks_knots(coons__breaks *B, const double *k, size_t ncp, int p);
+
+/* The ends s/nseg, s = 1..nseg-1, of nseg equal segments (same stop). */
+void coons__breaks_uniform(coons__breaks *B, size_t nseg);
+
+#endif

@@ -1,0 +1,111 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * The tables of the core: one row per curve, patch and body type, holding
+ * the type's operations. Internal.
+ *
+ * A record (coons_curve, coons_patch, coons_body) points at its row; the
+ * dispatch files curve.c, patch.c and body.c keep only the record's
+ * lifecycle and call through the row, so they know no type. Each type's
+ * file (named after the type, citing the seed equation it implements)
+ * defines its row. kinds.c collects the rows into one table per kind,
+ * indexed by the public type enum, with the model-format name of each.
+ *
+ * Adding a type: its enum value in the public header, one new file that
+ * defines the row (declared below), and one line in the table of kinds.c.
+ *
+ * Conventions of every row:
+ * - eval gets parameters already clamped to [0,1] (clamp01), grid gets them
+ *   as given and clamps each itself; grid sizes are non-zero;
+ * - copy gets d as a bitwise copy of the source record and replaces every
+ *   pointer the type owns with a deep copy; it sets the pointers it has not
+ *   copied yet to NULL first, so that on failure free(d) is safe;
+ * - free releases what the type owns (not the record);
+ * - an operation that a type does not need is NULL where so stated.
+ */
+#ifndef COONS_KINDS_H
+#define COONS_KINDS_H
+
+#include "breaks.h"
+#include "coons_internal.h"
+
+typedef struct coons__pline coons__pline; /* patch_impl.h */
+
+typedef struct coons__curve_kind {
+    coons_curve_type type;
+    /* Point (out[0]) and derivatives up to order (<= 2) at t. */
+    void (*eval)(const coons_curve *c, double t, int order, double out[][3]);
+    /* coons_curve_bezier_segments. */
+    coons_status (*bezier)(const coons_curve *c, double *points, size_t capacity,
+                           size_t *segments, int *degree, coons_error *err);
+    /* Breakpoints of the curve's data in (0,1) into B. */
+    void (*breaks)(const coons_curve *c, coons__breaks *B);
+    coons_status (*copy)(const coons_curve *c, coons_curve *d, coons_error *err);
+    void (*free)(coons_curve *c);
+} coons__curve_kind;
+
+typedef struct coons__patch_kind {
+    coons_patch_type type;
+    /* Point and partials out[0..5] = x, x_s, x_t, x_ss, x_st, x_tt up to
+     * order (<= 2). */
+    void (*eval)(const coons_patch *p, double s, double t, int order, double out[][3]);
+    /* coons_patch_eval_grid, arguments checked. */
+    coons_status (*grid)(const coons_patch *p, const double *s, size_t ns, const double *t,
+                         size_t nt, double *out, coons_error *err);
+    /* Boolean-sum types only (boolean_sum.c), else NULL: the s-line and
+     * t-line of patch_impl.h. */
+    void (*sline)(const coons_patch *p, double s, int order, coons__pline *L);
+    void (*tline)(const coons_patch *p, double t, int order, coons__pline *L);
+    void (*control_bbox)(const coons_patch *p, double lo[3], double hi[3]);
+    /* Breakpoints along s (dir 0) or t (dir 1) into B; NULL: polynomial. */
+    void (*breaks)(const coons_patch *p, int dir, coons__breaks *B);
+    coons_status (*copy)(const coons_patch *p, coons_patch *d, coons_error *err);
+    void (*free)(coons_patch *p);
+} coons__patch_kind;
+
+typedef struct coons__body_kind {
+    coons_body_type type;
+    /* Point (+ partials d[q] = dF/dq if d is not NULL). */
+    void (*eval)(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3]);
+    /* coons_body_eval_grid; nu*nv*nw*3 does not overflow. */
+    coons_status (*grid)(const coons_body *b, const double *u, size_t nu, const double *v,
+                         size_t nv, const double *w, size_t nw, double *out, coons_error *err);
+    /* det J on a grid into det[(i*nv + j)*nw + k]; NULL: point by point
+     * through eval (body_volume.c). */
+    coons_status (*det_grid)(const coons_body *b, const double *u, size_t nu, const double *v,
+                             size_t nv, const double *w, size_t nw, double *det,
+                             coons_error *err);
+    /* Breakpoints along direction d (0: u, 1: v, 2: w) into B; NULL: none. */
+    void (*breaks)(const coons_body *b, int d, coons__breaks *B);
+    /* NULL: the type owns no memory beyond the record. */
+    coons_status (*copy)(const coons_body *b, coons_body *d, coons_error *err);
+    void (*free)(coons_body *b);
+} coons__body_kind;
+
+/* Breakpoints of c in (0,1) into B through its row (nothing if c is NULL;
+ * curve.c). */
+void coons__curve_breaks(const coons_curve *c, coons__breaks *B);
+/* Breakpoints of p along s (dir 0) or t (dir 1) through its row (patch.c). */
+void coons__patch_breaks(const coons_patch *p, int dir, coons__breaks *B);
+
+/* The row of a type, or NULL for a value outside the enum. */
+const coons__curve_kind *coons__curve_kind_of(coons_curve_type type);
+const coons__patch_kind *coons__patch_kind_of(coons_patch_type type);
+const coons__body_kind *coons__body_kind_of(coons_body_type type);
+
+/* The rows, each defined in its type's file. */
+extern const coons__curve_kind coons__line_kind, coons__polyline_kind, coons__bezier_kind,
+    coons__hermite_kind, coons__clamped_cubic_kind, coons__bspline_kind; /* bspline_curve.c */
+extern const coons__curve_kind coons__coons_cubic_kind;                 /* coons_cubic.c */
+extern const coons__patch_kind coons__bilinear_kind, coons__ruled_kind,
+    coons__coons_patch_kind;                                     /* coons_patch.c */
+extern const coons__patch_kind coons__hermite_coons_kind;        /* hermite_coons.c */
+extern const coons__patch_kind coons__bezier_surface_kind,
+    coons__bspline_surface_kind;                                 /* tensor_surface.c */
+extern const coons__body_kind coons__body0_kind;                 /* body0.c */
+extern const coons__body_kind coons__body1_kind;                 /* body1.c */
+extern const coons__body_kind coons__body2_kind;                 /* body2.c */
+extern const coons__body_kind coons__bezier_volume_kind,
+    coons__bspline_volume_kind;                                  /* tensor_volume.c */
+
+#endif
