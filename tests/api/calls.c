@@ -10,6 +10,7 @@
  */
 #include <coons.h>
 
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -243,12 +244,50 @@ static void models_and_meshes(void)
     coons_mesh_free(m);
 }
 
+static void volume_meshes(void)
+{
+    coons_error err = COONS_ERROR_INIT;
+    double c[8][3];
+    cube(c);
+    /* One hex8 cell in Gmsh's corner order: the bottom (z = 0) square
+     * counter-clockwise, then the top one. */
+    uint32_t cell[8] = {0, 4, 6, 2, 1, 5, 7, 3};
+    uint32_t bottom[4] = {0, 4, 6, 2}, face[2] = {0, 4};
+    double u[8];
+    int32_t body[1] = {0};
+    for (int n = 0; n < 8; n++) u[n] = c[n][0];
+    coons_volume_mesh *vm = NULL;
+    size_t first = 9, part = 9;
+    check("volume mesh new", coons_volume_mesh_new(COONS_ELEMENT_HEX8, &vm, &err) == COONS_OK);
+    check("add nodes", coons_volume_mesh_add_nodes(vm, c[0], 8, &first, &err) == COONS_OK &&
+                           first == 0);
+    check("add part", coons_volume_mesh_add_part(vm, "cube", &part, &err) == COONS_OK &&
+                          part == 0);
+    check("add cells", coons_volume_mesh_add_cells(vm, cell, 1, part, &first, &err) == COONS_OK);
+    check("node field", coons_volume_mesh_add_field(vm, COONS_FIELD_NODE, "u", COONS_FIELD_FLOAT64,
+                                                    u, &err) == COONS_OK);
+    check("cell field", coons_volume_mesh_add_field(vm, COONS_FIELD_CELL, "body", COONS_FIELD_INT32,
+                                                    body, &err) == COONS_OK);
+    check("node set", coons_volume_mesh_add_node_set(vm, "bottom", bottom, 4, &err) == COONS_OK);
+    uint32_t all[1] = {0};
+    check("cell set", coons_volume_mesh_add_cell_set(vm, "all", all, 1, &err) == COONS_OK);
+    check("face set", coons_volume_mesh_add_face_set(vm, "w0", face, 1, &err) == COONS_OK);
+    const uint32_t *items = NULL;
+    size_t count = 0;
+    check("node set view", coons_volume_mesh_node_set(vm, 0, &items, &count) && count == 4 &&
+                               items[3] == 2);
+    check("cells view", coons_volume_mesh_cells(vm)[1] == 4 &&
+                            coons_volume_mesh_node_count(vm) == 8);
+    coons_volume_mesh_free(vm);
+}
+
 int main(void)
 {
     curves();
     patches();
     bodies();
     models_and_meshes();
+    volume_meshes();
     if (failures) return 1;
     printf("calls: every check passed\n");
     return 0;

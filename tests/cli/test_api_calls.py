@@ -46,7 +46,6 @@ int probe(coons_curve *b[4], coons_patch **p, coons_error *e)
 FINE_02 = NEEDS_CAST_01.replace("coons_patch_coons(", "coons_patch_new_coons(")
 
 
-# migrate-0.2: on
 
 
 def sanitized(build):
@@ -103,7 +102,7 @@ def main():
                         r.check(f"{tag}: calls runs, every check passes", p.returncode == 0,
                                 p.stdout)
             # The harness sees a signature that needs a cast.
-            for name, body, want_ok in (("0.1 coons_patch_new_coons(coons_curve *b[4])",
+            for name, body, want_ok in (("0.1 coons_patch_coons(coons_curve *b[4])",
                                          NEEDS_CAST_01, False),
                                         ("0.2 coons_patch_new_coons(coons_curve *b[4])",
                                          FINE_02, True)):
@@ -121,3 +120,4 @@ def main():
 
 if __name__ == "__main__":
     main()
+# migrate-0.2: on
