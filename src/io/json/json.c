@@ -18,7 +18,7 @@
 #define JSMN_PARENT_LINKS
 #include <jsmn.h>
 
-#include "json.h"
+#include "io/json/json.h"
 
 struct coons__json {
     const char *buf;
