@@ -17,7 +17,6 @@ static void resolve(const coons_model_load_options *o, coons_model_load_options 
     coons_model_load_options d = COONS_MODEL_LOAD_OPTIONS_INIT;
     if (o) d = *o;
     if (!d.max_bytes) d.max_bytes = COONS_MODEL_MAX_BYTES;
-    if (d.max_bytes > (size_t)INT32_MAX - 2) d.max_bytes = (size_t)INT32_MAX - 2; /* jsmn: int */
     if (!d.max_values) d.max_values = COONS_MODEL_MAX_VALUES;
     if (!d.max_depth) d.max_depth = COONS_MODEL_MAX_DEPTH;
     if (d.max_depth > COONS__JSON_DEPTH_CEILING) d.max_depth = COONS__JSON_DEPTH_CEILING;
@@ -114,14 +113,14 @@ static coons_status too_big(coons_error *err, const char *path, size_t max_bytes
 static coons_status read_all(FILE *f, const char *path, size_t cap, size_t max_bytes,
                              char **out, size_t *len_out, coons_error *err)
 {
-    size_t len = 0;
+    size_t len = 0, most = max_bytes < SIZE_MAX ? max_bytes + 1 : SIZE_MAX;
     char *buf = coons__malloc(cap);
     if (!buf) return coons__error_nomem(err);
     for (;;) {
         if (len == cap) {
-            if (cap > max_bytes) break;
+            if (cap > max_bytes || cap == SIZE_MAX) break;
             size_t nc = cap > SIZE_MAX / 2 ? SIZE_MAX : cap * 2;
-            if (nc > max_bytes + 1) nc = max_bytes + 1;
+            if (nc > most) nc = most;
             char *nb = coons__realloc(buf, nc);
             if (!nb) {
                 coons__free(buf);
