@@ -73,6 +73,10 @@ coons_status coons__ld_fail_at(coons__ld *L, size_t offset, coons_status code, c
 /* The same at the start of token tok, with a formatted message. */
 coons_status coons__ld_fail(coons__ld *L, size_t tok, coons_status code, const char *fmt, ...)
     COONS__PRINTF(4, 5);
+/* coons__ld_fail() with "/key/part" on the path (an agreement error at
+ * one part of an object of parts). */
+coons_status coons__ld_fail_in(coons__ld *L, const char *key, const char *part, size_t tok,
+                              coons_status code, const char *fmt, ...) COONS__PRINTF(6, 7);
 /* rc of a constructor: OK, or "cannot build <what>: <its message>". */
 coons_status coons__ld_built(coons__ld *L, size_t tok, coons_status rc, const char *what,
                              const coons_error *e);
@@ -123,6 +127,11 @@ typedef struct coons__ld_obj {
     char need[192]; /* "<what> takes <keys>", for a missing key */
 } coons__ld_obj;
 
+/* The "type" of object obj (kind: "a curve", ...) among types[], and the
+ * record o of the object, its what "a <type><suffix>". */
+coons_status coons__ld_typed(coons__ld *L, size_t obj, const char *kind,
+                             const char *const *types, const char *suffix, int *type,
+                             coons__ld_obj *o);
 /* members() of o with the reader's keys, and o->need from them. */
 coons_status coons__ld_keys(coons__ld *L, coons__ld_obj *o, const char *const *keys,
                             size_t *val);

@@ -25,10 +25,10 @@ coons_status coons__ld_body(coons__ld *L, size_t obj, size_t index, coons_body *
     for (int i = 0; i < NBODIES; i++) names[i] = coons_body_type_name(BODIES[i].type);
     names[NBODIES] = NULL;
     int type = 0;
-    coons_status rc = coons__ld_type_of_obj(L, obj, "a body", names, &type);
+    coons__ld_obj o;
+    coons_status rc = coons__ld_typed(L, obj, "a body", names, "", &type, &o);
     if (rc) return rc;
-    coons__ld_obj o = {.tok = obj, .index = index};
-    snprintf(o.what, sizeof o.what, "a %s", names[type]);
+    o.index = index;
     snprintf(o.hint, sizeof o.hint,
              "\"blend\" is allowed on body0, body1 and body2 only, not on a %s", names[type]);
     return BODIES[type].read(L, &o, out);

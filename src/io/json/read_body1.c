@@ -22,15 +22,11 @@ static coons_status corners(coons__ld *L, coons_curve *const c[12], const size_t
     char sa[96], sb[96];
     coons__ld_fmt3(sa, sizeof sa, r.pa);
     coons__ld_fmt3(sb, sizeof sb, r.pb);
-    size_t old = coons__ld_push_key(L, "edges");
-    coons__ld_push_key(L, a);
-    coons_status rc = coons__ld_fail(
-        L, tok[r.a], COONS_E_INCOMPATIBLE,
-        "edges %s and %s do not meet at corner P%d%d%d (u=%d, v=%d, w=%d): %s(%d) = %s, "
-        "%s(%d) = %s, %.3g apart, more than the tolerance %.3g",
-        a, b, i, j, k, i, j, k, a, (int)r.ta, sa, b, (int)r.tb, sb, r.dist, L->ctol);
-    coons__ld_pop(L, old);
-    return rc;
+    return coons__ld_fail_in(L, "edges", a, tok[r.a], COONS_E_INCOMPATIBLE,
+                             "edges %s and %s do not meet at corner P%d%d%d (u=%d, v=%d, w=%d): "
+                             "%s(%d) = %s, %s(%d) = %s, %.3g apart, more than the tolerance %.3g",
+                             a, b, i, j, k, i, j, k, a, (int)r.ta, sa, b, (int)r.tb, sb, r.dist,
+                             L->ctol);
 }
 
 coons_status coons__ld_read_body1(coons__ld *L, coons__ld_obj *o, coons_body **out)

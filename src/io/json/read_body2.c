@@ -21,15 +21,12 @@ static coons_status edges(coons__ld *L, coons_patch *const f[6], const size_t to
     char sa[96], sb[96];
     coons__ld_fmt3(sa, sizeof sa, r.pa);
     coons__ld_fmt3(sb, sizeof sb, r.pb);
-    size_t old = coons__ld_push_key(L, "faces");
-    coons__ld_push_key(L, a);
-    coons_status rc = coons__ld_fail(
-        L, tok[r.a], COONS_E_INCOMPATIBLE,
-        "faces %s and %s disagree along their shared edge %s: at %c = %.6g, %s gives %s and %s "
-        "gives %s, %.3g apart, more than the tolerance %.3g",
-        a, b, coons_body_edge_name(r.at), "uvw"[r.at / 4], r.ta, a, sa, b, sb, r.dist, L->ctol);
-    coons__ld_pop(L, old);
-    return rc;
+    return coons__ld_fail_in(L, "faces", a, tok[r.a], COONS_E_INCOMPATIBLE,
+                             "faces %s and %s disagree along their shared edge %s: at %c = %.6g, "
+                             "%s gives %s and %s gives %s, %.3g apart, more than the tolerance "
+                             "%.3g",
+                             a, b, coons_body_edge_name(r.at), "uvw"[r.at / 4], r.ta, a, sa, b,
+                             sb, r.dist, L->ctol);
 }
 
 coons_status coons__ld_read_body2(coons__ld *L, coons__ld_obj *o, coons_body **out)

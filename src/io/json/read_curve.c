@@ -25,10 +25,9 @@ coons_status coons__ld_curve(coons__ld *L, size_t obj, coons_curve **out)
     for (int i = 0; i < NCURVES; i++) names[i] = coons_curve_type_name(CURVES[i].type);
     names[NCURVES] = NULL;
     int type = 0;
-    coons_status rc = coons__ld_type_of_obj(L, obj, "a curve", names, &type);
+    coons__ld_obj o;
+    coons_status rc = coons__ld_typed(L, obj, "a curve", names, " curve", &type, &o);
     if (rc) return rc;
-    coons__ld_obj o = {.tok = obj};
-    snprintf(o.what, sizeof o.what, "a %s curve", names[type]);
     snprintf(o.hint, sizeof o.hint, "%s",
              "a blend belongs to coons patches and to body0, body1 and body2, not to curves");
     return CURVES[type].read(L, &o, out);

@@ -24,10 +24,9 @@ coons_status coons__ld_patch(coons__ld *L, size_t obj, coons_patch **out)
     for (int i = 0; i < NPATCHES; i++) names[i] = coons_patch_type_name(PATCHES[i].type);
     names[NPATCHES] = NULL;
     int type = 0;
-    coons_status rc = coons__ld_type_of_obj(L, obj, "a patch", names, &type);
+    coons__ld_obj o;
+    coons_status rc = coons__ld_typed(L, obj, "a patch", names, " patch", &type, &o);
     if (rc) return rc;
-    coons__ld_obj o = {.tok = obj};
-    snprintf(o.what, sizeof o.what, "a %s patch", names[type]);
     snprintf(o.hint, sizeof o.hint, "%s",
              "only a coons patch (and body0, body1, body2) has a blend");
     return PATCHES[type].read(L, &o, out);

@@ -52,13 +52,9 @@ coons_status coons__ld_patch_corners(coons__ld *L, coons_curve *const c[4], cons
              r.at >> 1);
     coons__ld_fmt3(sa, sizeof sa, r.pa);
     coons__ld_fmt3(sb, sizeof sb, r.pb);
-    size_t old = coons__ld_push_key(L, "boundary");
-    coons__ld_push_key(L, a);
-    coons_status rc = coons__ld_fail(
-        L, tokv[r.a], COONS_E_INCOMPATIBLE,
-        "boundary curves %s and %s do not meet at corner %s: %s(%d) = %s, %s(%d) = %s, %.3g "
-        "apart, more than the tolerance %.3g",
-        a, bn, corner, a, (int)r.ta, sa, bn, (int)r.tb, sb, r.dist, L->ctol);
-    coons__ld_pop(L, old);
-    return rc;
+    return coons__ld_fail_in(L, "boundary", a, tokv[r.a], COONS_E_INCOMPATIBLE,
+                             "boundary curves %s and %s do not meet at corner %s: %s(%d) = %s, "
+                             "%s(%d) = %s, %.3g apart, more than the tolerance %.3g",
+                             a, bn, corner, a, (int)r.ta, sa, bn, (int)r.tb, sb, r.dist,
+                             L->ctol);
 }

@@ -59,15 +59,10 @@ static coons_status cross_check(coons__ld *L, coons_curve *const bd[4], coons_cu
     char sa[96], sb[96];
     coons__ld_fmt3(sa, sizeof sa, r.pa);
     coons__ld_fmt3(sb, sizeof sb, r.pb);
-    size_t old = coons__ld_push_key(L, "boundary");
-    coons__ld_push_key(L, other);
-    coons_status rc = coons__ld_fail(
-        L, btok[r.b], COONS_E_INCOMPATIBLE,
-        "cross curve %s disagrees with boundary curve %s: cross.%s(%d) = %s but %s'(%d) = %s, "
-        "%.3g apart, more than the tolerance %.3g",
-        k, other, k, (int)r.ta, sa, other, (int)r.tb, sb, r.dist, L->ctol);
-    coons__ld_pop(L, old);
-    return rc;
+    return coons__ld_fail_in(L, "boundary", other, btok[r.b], COONS_E_INCOMPATIBLE,
+                             "cross curve %s disagrees with boundary curve %s: cross.%s(%d) = %s "
+                             "but %s'(%d) = %s, %.3g apart, more than the tolerance %.3g",
+                             k, other, k, (int)r.ta, sa, other, (int)r.tb, sb, r.dist, L->ctol);
 }
 
 /* "cross" (tok 0: none) and "twist". */

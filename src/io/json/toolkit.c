@@ -56,6 +56,21 @@ coons_status coons__ld_fail(coons__ld *L, size_t tok, coons_status code, const c
     return coons__ld_fail_at(L, coons__json_start(L->j, tok), code, msg);
 }
 
+coons_status coons__ld_fail_in(coons__ld *L, const char *key, const char *part, size_t tok,
+                              coons_status code, const char *fmt, ...)
+{
+    char msg[COONS_ERROR_MESSAGE_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    size_t old = coons__ld_push_key(L, key);
+    coons__ld_push_key(L, part);
+    coons_status rc = coons__ld_fail_at(L, coons__json_start(L->j, tok), code, msg);
+    coons__ld_pop(L, old);
+    return rc;
+}
+
 coons_status coons__ld_built(coons__ld *L, size_t tok, coons_status rc, const char *what,
                              const coons_error *e)
 {
@@ -242,6 +257,18 @@ coons_status coons__ld_type_of_obj(coons__ld *L, size_t obj, const char *what,
     }
     coons__ld_pop(L, old);
     return rc;
+}
+
+coons_status coons__ld_typed(coons__ld *L, size_t obj, const char *kind,
+                             const char *const *types, const char *suffix, int *type,
+                             coons__ld_obj *o)
+{
+    coons_status rc = coons__ld_type_of_obj(L, obj, kind, types, type);
+    if (rc) return rc;
+    memset(o, 0, sizeof *o);
+    o->tok = obj;
+    snprintf(o->what, sizeof o->what, "a %s%s", types[*type], suffix);
+    return COONS_OK;
 }
 
 coons_status coons__ld_keys(coons__ld *L, coons__ld_obj *o, const char *const *keys,
