@@ -29,7 +29,8 @@ coons_status coons__ld_four_curves(coons__ld *L, size_t tok, const char *key, co
     for (int k = 0; k < 4 && !rc; k++)
         if (!tokv[k]) {
             char m[96];
-            snprintf(m, sizeof m, "%s needs all four curves t0, t1, s0 and s1", what);
+            snprintf(m, sizeof m, "%s needs all four curves %s, %s, %s and %s", what, sides[0],
+                     sides[1], sides[2], sides[3]);
             rc = coons__ld_need(L, tok, 0, sides[k], m);
         }
     for (int k = 0; k < 4 && !rc; k++) {
