@@ -6,7 +6,7 @@ set -euo pipefail
 
 PKGS=(
   build-essential cmake ninja-build pkg-config
-  libcmocka-dev libjsmn-dev
+  libcmocka-dev
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev
   openscad mandoc groff-base valgrind
   clang libclang-rt-14-dev

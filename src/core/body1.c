@@ -9,6 +9,7 @@
  * average (model format, "Consistency").
  * Edge e: u-edges 0 + 2j + k, v-edges 4 + 2i + k, w-edges 8 + 2i + j.
  */
+#include "agree.h"
 #include "body_impl.h"
 
 coons_status coons_body_new_body1(coons_curve *const *edges_in, coons_blend blend, double tol,
@@ -35,6 +36,16 @@ coons_status coons_body_new_body1(coons_curve *const *edges_in, coons_blend blen
         bbox_add(lo, hi, c);
     }
     double eps = coons__tolerance(tol, bbox_diag(lo, hi));
+    coons__agree ag;
+    if (coons__agree_body1_corners(edges, eps, &ag)) {
+        int i = ag.at >> 2, j = (ag.at >> 1) & 1, k = ag.at & 1;
+        return coons__error_set(err, COONS_E_INCOMPATIBLE,
+                                "body1: corner C%d%d%d (u=%d,v=%d,w=%d): edges %s and %s differ "
+                                "by %.6g (tolerance %.3g)",
+                                i, j, k, i, j, k, coons__body_edge_name(ag.a),
+                                coons__body_edge_name(ag.b), ag.dist, eps);
+    }
+    /* Each corner is the average of its three edges. */
     double corner[8][3];
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++)
@@ -42,18 +53,8 @@ coons_status coons_body_new_body1(coons_curve *const *edges_in, coons_blend blen
                 int id[3] = {2 * j + k, 4 + 2 * i + k, 8 + 2 * i + j};
                 double t[3] = {i, j, k}, p[3][3];
                 for (int s = 0; s < 3; s++) coons_curve_eval(edges[id[s]], t[s], p[s]);
-                for (int s = 0; s < 3; s++) {
-                    double dist = v3_dist(p[s], p[(s + 1) % 3]);
-                    if (!(dist <= eps))
-                        return coons__error_set(
-                            err, COONS_E_INCOMPATIBLE,
-                            "body1: corner C%d%d%d (u=%d,v=%d,w=%d): edges %s and %s differ by "
-                            "%.6g (tolerance %.3g)",
-                            i, j, k, i, j, k, coons__body_edge_name(id[s]),
-                            coons__body_edge_name(id[(s + 1) % 3]), dist, eps);
-                }
                 double *c = corner[4 * i + 2 * j + k];
-                for (int r = 0; r < 3; r++) c[r] = (p[0][r] + p[1][r] + p[2][r]) / 3.0;
+                for (int q = 0; q < 3; q++) c[q] = (p[0][q] + p[1][q] + p[2][q]) / 3.0;
             }
     coons_body *b;
     coons_status rc = coons__body_alloc(&coons__body1_kind, blend, &b, err);

@@ -16,26 +16,14 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "agree.h"
 #include "body_impl.h"
 
 /* Source m (0, 1) of edge e: face index, which patch parameter runs with
  * the edge (0 = s, 1 = t), and the fixed value of the other. */
 static void edge_source(int e, int m, int *face, int *run, int *fixed)
 {
-    int dir = e / 4, x = (e >> 1) & 1, y = e & 1;
-    if (dir == 0) { /* u-edge, J = x, K = y */
-        *face = m == 0 ? 2 + x : 4 + y;
-        *run = 0;
-        *fixed = m == 0 ? y : x;
-    } else if (dir == 1) { /* v-edge, I = x, K = y */
-        *face = m == 0 ? x : 4 + y;
-        *run = m == 0 ? 0 : 1;
-        *fixed = m == 0 ? y : x;
-    } else { /* w-edge, I = x, J = y */
-        *face = m == 0 ? x : 2 + y;
-        *run = 1;
-        *fixed = m == 0 ? y : x;
-    }
+    coons__agree_edge_source(e, m, face, run, fixed);
 }
 
 static void source_at(const coons_patch *p, int run, int fixed, double x, double out[3],
@@ -71,36 +59,18 @@ coons_status coons_body_new_body2(coons_patch *const *faces_in, coons_blend blen
         bbox_add(lo, hi, c);
     }
     double eps = coons__tolerance(tol, bbox_diag(lo, hi));
-    /* Parametric agreement along each shared edge, at 17 inner samples and
-     * both ends (the ends also cover the corners: any two of the three
-     * faces at a corner share an edge through it). */
-    enum { SAMPLES = 18 };
+    /* Parametric agreement along each shared edge (agree.h). */
     static const char *const fixed_names[3][2] = {{"v", "w"}, {"u", "w"}, {"u", "v"}};
-    for (int e = 0; e < 12; e++) {
-        int fa, ra, xa, fb, rb, xb;
-        edge_source(e, 0, &fa, &ra, &xa);
-        edge_source(e, 1, &fb, &rb, &xb);
-        double worst = -1.0, at = 0.0;
-        for (int m = 0; m <= SAMPLES; m++) {
-            double x = (double)m / SAMPLES, pa[3], pb[3];
-            source_at(faces[fa], ra, xa, x, pa, NULL);
-            source_at(faces[fb], rb, xb, x, pb, NULL);
-            double dist = v3_dist(pa, pb);
-            if (!(dist <= worst)) { /* also catches NaN */
-                worst = dist;
-                at = x;
-            }
-        }
-        if (!(worst <= eps)) {
-            int dir = e / 4;
-            return coons__error_set(
-                err, COONS_E_INCOMPATIBLE,
-                "body2: edge %s (%s=%d,%s=%d): faces %s and %s differ by %.6g at %c=%.6g "
-                "(tolerance %.3g)",
-                coons__body_edge_name(e), fixed_names[dir][0], (e >> 1) & 1,
-                fixed_names[dir][1], e & 1, coons__body_face_name(fa), coons__body_face_name(fb),
-                worst, "uvw"[dir], at, eps);
-        }
+    coons__agree ag;
+    if (coons__agree_body2_edges(faces, eps, &ag)) {
+        int e = ag.at, dir = e / 4;
+        return coons__error_set(
+            err, COONS_E_INCOMPATIBLE,
+            "body2: edge %s (%s=%d,%s=%d): faces %s and %s differ by %.6g at %c=%.6g "
+            "(tolerance %.3g)",
+            coons__body_edge_name(e), fixed_names[dir][0], (e >> 1) & 1, fixed_names[dir][1],
+            e & 1, coons__body_face_name(ag.a), coons__body_face_name(ag.b), ag.dist, "uvw"[dir],
+            ag.ta, eps);
     }
     coons_body *b;
     coons_status rc = coons__body_alloc(&coons__body2_kind, blend, &b, err);

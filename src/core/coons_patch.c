@@ -12,22 +12,11 @@
  */
 #include <string.h>
 
+#include "agree.h"
 #include "basis.h"
 #include "patch_impl.h"
 
 static const char *const curve_name[4] = {"t0", "t1", "s0", "s1"};
-
-/* Corner X(a,b), index a + 2b: the t-curve and parameter, the s-curve and
- * parameter that meet there. */
-static const struct {
-    int tc, sc;
-    double tp, sp;
-} corner_src[4] = {
-    {COONS_SIDE_T0, COONS_SIDE_S0, 0.0, 0.0},
-    {COONS_SIDE_T0, COONS_SIDE_S1, 1.0, 0.0},
-    {COONS_SIDE_T1, COONS_SIDE_S0, 0.0, 1.0},
-    {COONS_SIDE_T1, COONS_SIDE_S1, 1.0, 1.0},
-};
 
 coons_status coons__patch_corners(const coons_curve *const b[4], double tol, double X[4][3],
                                   double *tol_used, coons_error *err)
@@ -49,18 +38,20 @@ coons_status coons__patch_corners(const coons_curve *const b[4], double tol, dou
         bbox_add(lo, hi, c);
     }
     double tv = coons__tolerance(tol, bbox_diag(lo, hi));
+    coons__agree r;
+    if (coons__agree_patch_corners(b, tv, &r))
+        return coons__error_set(err, COONS_E_INCOMPATIBLE,
+                                "corner (s=%d,t=%d): %s(%d) and %s(%d) are %g apart "
+                                "(tolerance %g)",
+                                r.at & 1, r.at >> 1, curve_name[r.a], (int)r.ta, curve_name[r.b],
+                                (int)r.tb, r.dist, tv);
+    /* Corner X(s,t), index s + 2t, the average of the t-curve and the
+     * s-curve that meet there. */
     for (int k = 0; k < 4; k++) {
+        int s = k & 1, t = k >> 1;
         double a[3], c[3];
-        coons_curve_eval(b[corner_src[k].tc], corner_src[k].tp, a);
-        coons_curve_eval(b[corner_src[k].sc], corner_src[k].sp, c);
-        double d = v3_dist(a, c);
-        if (!(d <= tv))
-            return coons__error_set(err, COONS_E_INCOMPATIBLE,
-                                    "corner (s=%d,t=%d): %s(%d) and %s(%d) are %g apart "
-                                    "(tolerance %g)",
-                                    k & 1, k >> 1, curve_name[corner_src[k].tc],
-                                    (int)corner_src[k].tp, curve_name[corner_src[k].sc],
-                                    (int)corner_src[k].sp, d, tv);
+        coons_curve_eval(b[t ? COONS_SIDE_T1 : COONS_SIDE_T0], s, a);
+        coons_curve_eval(b[s ? COONS_SIDE_S1 : COONS_SIDE_S0], t, c);
         for (int i = 0; i < 3; i++) X[k][i] = 0.5 * (a[i] + c[i]);
     }
     if (tol_used) *tol_used = tv;

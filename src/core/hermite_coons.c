@@ -14,6 +14,7 @@
  */
 #include <string.h>
 
+#include "agree.h"
 #include "basis.h"
 #include "patch_impl.h"
 
@@ -130,25 +131,15 @@ coons_status coons_patch_new_hermite_coons(coons_curve *const *boundary_in,
     double xs[4][3], xt[4][3];
     corner_tangents(boundary, xs, xt);
 
-    if (ncross) {
+    coons__agree ag;
+    if (ncross && coons__agree_cross(boundary, opts->cross, tol, &ag)) {
         /* cross t0/t1 = x_t(s,b) at s = 0,1; cross s0/s1 = x_s(a,t) at t = 0,1. */
-        static const char *const tname[4] = {"s0'(0)", "s1'(0)", "s0'(1)", "s1'(1)"};
-        static const char *const sname[4] = {"t0'(0)", "t0'(1)", "t1'(0)", "t1'(1)"};
-        for (int c = 0; c < 4; c++) {
-            for (int e = 0; e < 2; e++) {
-                int k = c < 2 ? e + 2 * c : (c - 2) + 2 * e;
-                const double *want = c < 2 ? xt[k] : xs[k];
-                double got[3];
-                coons_curve_eval(opts->cross[c], (double)e, got);
-                double d = v3_dist(got, want);
-                if (!(d <= tol))
-                    return coons__error_set(
-                        err, COONS_E_INCOMPATIBLE,
-                        "corner (s=%d,t=%d): cross %s(%d) and the boundary tangent %s are "
-                        "%g apart (tolerance %g)",
-                        k & 1, k >> 1, cross_name[c], e, c < 2 ? tname[k] : sname[k], d, tol);
-            }
-        }
+        int c = ag.at, e = (int)ag.ta, k = c < 2 ? e + 2 * c : (c - 2) + 2 * e;
+        return coons__error_set(err, COONS_E_INCOMPATIBLE,
+                                "corner (s=%d,t=%d): cross %s(%d) and the boundary tangent "
+                                "%s'(%d) are %g apart (tolerance %g)",
+                                k & 1, k >> 1, cross_name[c], e, cross_name[ag.b], (int)ag.tb,
+                                ag.dist, tol);
     }
 
     double tw[4][3];

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The model record (model format version 1, "Top level"): bodies, their
- * names, units, tolerance and operation. Loading is in src/io/model_json.c. */
+ * names, units, tolerance and operation. Loading is in src/io/json/ (loader.h). */
 #include <string.h>
 
 #include "model_impl.h"

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The model record, filled by the loader (src/io/model_json.c). Internal. */
+/* The model record, filled by the loader (src/io/json/loader.h). Internal. */
 #ifndef COONS_MODEL_IMPL_H
 #define COONS_MODEL_IMPL_H
 

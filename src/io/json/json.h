@@ -6,9 +6,7 @@
  * Parsing runs in two steps. A validating scan (no allocation) checks the
  * whole grammar, UTF-8, escapes, the nesting depth and the number of values,
  * and on failure reports the exact byte offset and JSON pointer. Only then
- * are exactly that many tokens allocated and filled by jsmn, which records
- * start/end offsets and (JSMN_PARENT_LINKS) parents; the scan makes up for
- * what jsmn does not check (commas, string contents, number grammar).
+ * are exactly that many tokens allocated, and the same scan fills them.
  *
  * Tokens are numbered in document order; the subtree of token i is
  * [i, next(i)). An object's children alternate key, value.
