@@ -127,7 +127,7 @@ def main(argv):
         return 2
     changed = 0
     for path in files:
-        with open(path, encoding="utf-8") as f:
+        with open(path, encoding="utf-8", errors="surrogateescape") as f:
             text = f.read()
         new, notes = migrate(text)
         for n, old in notes:
@@ -137,7 +137,7 @@ def main(argv):
             if check:
                 print(f"{path}: would be rewritten")
             else:
-                with open(path, "w", encoding="utf-8") as f:
+                with open(path, "w", encoding="utf-8", errors="surrogateescape") as f:
                     f.write(new)
     return 1 if check and changed else 0
 
