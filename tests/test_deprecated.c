@@ -200,8 +200,11 @@ static void test_models_and_meshes(void **state)
                         3 * sizeof(double) * coons_mesh_vertex_count(m1));
     coons_mesh_free(m1);
     m1 = NULL;
-    coons_status s1 = coons_model_solid(a, &so, NULL, &m1, NULL, &e);
+    coons_csg_report rep; /* 0.1 code: no version to set */
+    memset(&rep, 0xa5, sizeof rep);
+    coons_status s1 = coons_model_solid(a, &so, NULL, &m1, &rep, &e);
     assert_int_equal(s1, COONS_OK);
+    assert_int_equal(rep.version, COONS_CSG_REPORT_VERSION);
     assert_int_equal(coons_mesh_triangle_count(m1), coons_mesh_triangle_count(m2));
     assert_int_equal(coons_csg_available(), coons_csg_is_available());
     size_t p1 = 7, p2 = 9;

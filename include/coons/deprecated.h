@@ -6,10 +6,12 @@
  * 0.2 names every function `coons_<object>_<verb>` and takes point arrays
  * flat and arrays of handles as `coons_X *const *` (coons/types.h, "Arrays").
  * The 0.1 functions below still work, with their 0.1 parameters, as thin
- * wrappers over the 0.2 ones; a compiler that supports it warns at every
- * use. They go away in 0.3. Define COONS_NO_DEPRECATED before including
- * <coons.h> to hide them (and so find every use); tools/migrate-0.2.py
- * rewrites the names in a source tree. libcoons(3), DEPRECATED, lists them.
+ * wrappers over the 0.2 ones, so that 0.1 code builds as it did (warning-
+ * free under -Werror too). They go away in 0.3. To find every use, define
+ * COONS_DEPRECATION_WARNINGS before including <coons.h> (gcc and clang then
+ * warn at each call), or COONS_NO_DEPRECATED (they are not declared at
+ * all); tools/migrate-0.2.py rewrites the names in a source tree.
+ * libcoons(3), HISTORY, lists them.
  */
 #ifndef COONS_DEPRECATED_H
 #define COONS_DEPRECATED_H
@@ -22,7 +24,7 @@
 #include "coons/mesh.h"
 #include "coons/csg.h"
 
-#if defined(__GNUC__) || defined(__clang__)
+#if defined(COONS_DEPRECATION_WARNINGS) && (defined(__GNUC__) || defined(__clang__))
 #define COONS_DEPRECATED_FOR(f) __attribute__((deprecated("use " #f)))
 #else
 #define COONS_DEPRECATED_FOR(f)

@@ -159,6 +159,8 @@ coons_status coons_model_solid(const coons_model *model, const coons_sample_opti
                                const coons_csg_options *copts, coons_mesh **out,
                                coons_csg_report *report, coons_error *err)
 {
+    /* 0.1's report had no version field: a 0.1 caller never sets it. */
+    if (report) report->version = COONS_CSG_REPORT_VERSION;
     return coons_model_solidify(model, sopts, copts, out, report, err);
 }
 

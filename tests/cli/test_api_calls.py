@@ -11,7 +11,10 @@
   checks (values worked out by hand) pass;
 - the harness catches a signature that needs a cast: the 0.1 form
   `coons_patch_coons(b, ...)` with a plain `coons_curve *b[4]` fails to
-  compile under the same flags, while the 0.2 call does not.
+  compile under the same flags, while the 0.2 call does not;
+- 0.1 code (the deprecated names, with the casts 0.1 needed) still builds
+  warning-free under -Werror, and -DCOONS_DEPRECATION_WARNINGS makes gcc and
+  clang warn at the use.
 
 In a sanitizer build the programs are compiled only, and linked and run with
 gcc and the same sanitizers.
@@ -44,6 +47,9 @@ int probe(coons_curve *b[4], coons_patch **p, coons_error *e)
 }
 """
 FINE_02 = NEEDS_CAST_01.replace("coons_patch_coons(", "coons_patch_new_coons(")
+# A 0.1 program as 0.1 wanted it (with the cast): builds warning-free in 0.2,
+# and warns when COONS_DEPRECATION_WARNINGS asks for it.
+OLD_01 = NEEDS_CAST_01.replace("coons_patch_coons(b,", "coons_patch_coons((const coons_curve *const *)b,")
 
 
 
@@ -113,6 +119,15 @@ def main():
                                     ["-Wno-deprecated-declarations"], link=False)
                 r.check(f"{cc}: {name} " + ("compiles" if want_ok else "is refused (needs a cast)"),
                         (rc == 0) == want_ok, log)
+            c = os.path.join(tmp, "old.c")
+            with open(c, "w") as f:
+                f.write(OLD_01)
+            for extra, want_ok in (([], True), (["-DCOONS_DEPRECATION_WARNINGS"], False)):
+                rc, log = compile_c(cc, "c11", c, os.path.join(tmp, "old.o"), r.build, inc, extra,
+                                    link=False)
+                r.check(f"{cc}: 0.1 code " + ("builds warning-free" if want_ok else
+                                              "warns with -DCOONS_DEPRECATION_WARNINGS"),
+                        (rc == 0) == want_ok and (want_ok or "deprecated" in log), log)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     r.finish()
