@@ -63,6 +63,8 @@ USAGE = [
     (["-o", os.path.join(work, "mesh.txt"), BOX], "cannot tell the output format"),
     (["-o", os.path.join(work, "mesh"), BOX], "cannot tell the output format"),
     (["-o", os.path.join(work, ".stl"), BOX], "cannot tell the output format"),
+    (["-o", os.path.join(work, "part.vtk"), BOX], "'vtk' is a volume-mesh format"),
+    (["-f", "vtk", "-o", out_file, BOX], "'vtk' is a volume-mesh format"),
     (["--body", "1", "--info", BOX], "indices 0..0"),
     (["--body", "nosuch", "--eval", BOX], "no body of that name"),
     (["--body", "99999999999999999999999", "--info", BOX], "the model has 1 body"),
