@@ -170,6 +170,10 @@ coons_status coons__ld_net_key(coons__ld *L, size_t val, const char *key,
 /* ncp + p + 1 knots of degree p; *out allocated. */
 coons_status coons__ld_knots(coons__ld *L, size_t tok, int p, size_t ncp, double **out);
 /* "linear" / "cubic" under the key "blend"; tok 0: linear. */
+/* The string at `key` (pushed on the path) is keyword a (*out = 0) or b
+ * (*out = 1); anything else is an error that names both. */
+coons_status coons__ld_keyword(coons__ld *L, size_t tok, const char *key, const char *a,
+                              const char *b, int *out);
 coons_status coons__ld_blend(coons__ld *L, size_t tok, coons_blend *out);
 
 /* Tensor-product data of surfaces (dims 2) and volumes (3): the values of

@@ -76,21 +76,9 @@ static coons_status tolerance(coons__ld *L, size_t tok)
 
 static coons_status operation(coons__ld *L, size_t tok)
 {
-    size_t old = coons__ld_push_key(L, "operation");
-    coons_status rc = coons__ld_expect(L, tok, COONS__JSON_STRING, "\"union\" or \"none\"");
-    if (!rc) {
-        if (coons__json_string_eq(L->j, tok, "union"))
-            L->op = COONS_OP_UNION;
-        else if (coons__json_string_eq(L->j, tok, "none"))
-            L->op = COONS_OP_NONE;
-        else {
-            char s[64];
-            coons__ld_text_of(L, tok, s, sizeof s);
-            rc = coons__ld_fail(L, tok, COONS_E_INVALID,
-                                "unknown operation \"%s\"; expected \"union\" or \"none\"", s);
-        }
-    }
-    coons__ld_pop(L, old);
+    int k = 0;
+    coons_status rc = coons__ld_keyword(L, tok, "operation", "union", "none", &k);
+    if (!rc) L->op = k ? COONS_OP_NONE : COONS_OP_UNION;
     return rc;
 }
 

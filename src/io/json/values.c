@@ -248,23 +248,36 @@ coons_status coons__ld_knots(coons__ld *L, size_t tok, int p, size_t ncp, double
     return COONS_OK;
 }
 
+coons_status coons__ld_keyword(coons__ld *L, size_t tok, const char *key, const char *a,
+                              const char *b, int *out)
+{
+    char expected[64];
+    snprintf(expected, sizeof expected, "\"%s\" or \"%s\"", a, b);
+    size_t old = coons__ld_push_key(L, key);
+    coons_status rc = coons__ld_expect(L, tok, COONS__JSON_STRING, expected);
+    if (!rc) {
+        if (coons__json_string_eq(L->j, tok, a))
+            *out = 0;
+        else if (coons__json_string_eq(L->j, tok, b))
+            *out = 1;
+        else {
+            char s[64];
+            coons__ld_text_of(L, tok, s, sizeof s);
+            rc = coons__ld_fail(L, tok, COONS_E_INVALID, "unknown %s \"%s\"; expected %s", key,
+                                s, expected);
+        }
+    }
+    coons__ld_pop(L, old);
+    return rc;
+}
+
 coons_status coons__ld_blend(coons__ld *L, size_t tok, coons_blend *out)
 {
     *out = COONS_BLEND_LINEAR;
     if (!tok) return COONS_OK;
-    size_t old = coons__ld_push_key(L, "blend");
-    coons_status rc = coons__ld_expect(L, tok, COONS__JSON_STRING, "\"linear\" or \"cubic\"");
-    if (!rc) {
-        if (coons__json_string_eq(L->j, tok, "cubic"))
-            *out = COONS_BLEND_CUBIC;
-        else if (!coons__json_string_eq(L->j, tok, "linear")) {
-            char s[64];
-            coons__ld_text_of(L, tok, s, sizeof s);
-            rc = coons__ld_fail(L, tok, COONS_E_INVALID,
-                                "unknown blend \"%s\"; expected \"linear\" or \"cubic\"", s);
-        }
-    }
-    coons__ld_pop(L, old);
+    int k = 0;
+    coons_status rc = coons__ld_keyword(L, tok, "blend", "linear", "cubic", &k);
+    if (!rc) *out = k ? COONS_BLEND_CUBIC : COONS_BLEND_LINEAR;
     return rc;
 }
 
