@@ -76,7 +76,12 @@ typedef enum coons_format {
     COONS_FORMAT_STL_ASCII = 2,  /**< ASCII STL */
     COONS_FORMAT_OFF = 3,        /**< Object File Format, text */
     COONS_FORMAT_SCAD = 4,       /**< OpenSCAD source */
-    COONS_FORMAT_VTK = 5         /**< legacy VTK unstructured grid, ASCII (volume) */
+    COONS_FORMAT_VTK = 5,        /**< legacy VTK unstructured grid, ASCII (volume) */
+    COONS_FORMAT_MSH2 = 6,       /**< Gmsh MSH 2.2 ASCII (volume; what `.msh` means) */
+    COONS_FORMAT_MSH4 = 7,       /**< Gmsh MSH 4.1 ASCII (volume) */
+    COONS_FORMAT_VTU = 8,        /**< VTK XML UnstructuredGrid, version 1.0 (volume) */
+    COONS_FORMAT_INP = 9,        /**< Abaqus / CalculiX input deck (volume) */
+    COONS_FORMAT_VTU_ASCII = 10  /**< VTK XML UnstructuredGrid, ASCII data (volume) */
 } coons_format;
 
 /** The kind of mesh a format holds (coons_format_kind()). */

@@ -257,6 +257,144 @@ COONS_EXPORT const char *coons_volume_mesh_cell_set(const coons_volume_mesh *vm,
 COONS_EXPORT const char *coons_volume_mesh_face_set(const coons_volume_mesh *vm, size_t i,
                                                     const uint32_t **pairs, size_t *count);
 
+/* ------------------------------------------------------------------------ */
+/* Meshing bodies into hexahedra on their (u,v,w) lattice (src/mesh/volume) */
+/* ------------------------------------------------------------------------ */
+
+/** Default largest number of cells of coons_body_volume_mesh() and
+ *  coons_model_volume_mesh(): 2^22 (4,194,304). */
+#define COONS_VOLUME_MAX_CELLS ((size_t)1 << 22)
+
+/** Version of ::coons_volume_options this header describes. */
+#define COONS_VOLUME_OPTIONS_VERSION 1
+
+/**
+ * How bodies are meshed. Initialise with ::COONS_VOLUME_OPTIONS_INIT;
+ * passing NULL means all defaults.
+ */
+typedef struct coons_volume_options {
+    /** ::COONS_VOLUME_OPTIONS_VERSION. */
+    unsigned int version;
+    /** ::COONS_ELEMENT_HEX8 (also 0, the default), HEX20 or HEX27. */
+    coons_element element;
+    /**
+     * Intervals of the lattice along u, v, w. All 0: the lattice the
+     * boundary sampler picks for `tolerance` (coons_body_sample()), so the
+     * volume mesh's boundary is the boundary mesh's lattice. Otherwise each
+     * must be >= 1 (a uniform lattice).
+     */
+    unsigned int resolution[3];
+    /** Tolerance of the sampled lattice, model units; <= 0: the model's
+     *  tolerance (coons_model_volume_mesh()) or 1/1000 of the body's control
+     *  box diagonal (coons_body_volume_mesh()). */
+    double tolerance;
+    /** Largest number of cells; 0: ::COONS_VOLUME_MAX_CELLS. */
+    size_t max_cells;
+} coons_volume_options;
+
+#define COONS_VOLUME_OPTIONS_INIT {COONS_VOLUME_OPTIONS_VERSION, COONS_ELEMENT_HEX8, {0u, 0u, 0u}, 0.0, 0u}
+
+/** Sets `*o` to ::COONS_VOLUME_OPTIONS_INIT; NULL is a harmless no-op. */
+COONS_EXPORT void coons_volume_options_init(coons_volume_options *o);
+
+/**
+ * Meshes one body into hexahedra on a lattice of (u,v,w), as one part
+ * named `name` (NULL: "body0").
+ *
+ * Nodes: lattice points; for ::COONS_ELEMENT_HEX20 also the midpoints of
+ * the lattice edges, for ::COONS_ELEMENT_HEX27 also of the lattice faces and
+ * cells, all in parameter space. Every node is the body's exact point at its
+ * parameters (isoparametric). Lattice nodes that evaluate to the same point
+ * (a collapsed edge or face: an apex, a tip) are one node, so cells there
+ * repeat nodes (see the node order above).
+ *
+ * A left-handed body (det J < 0) has each cell's node order mirrored
+ * (r -> 1 - r), so that every valid cell is positively oriented; the
+ * node field `det_j` keeps the sign of the body's map.
+ *
+ * Fields: node `u`, `v`, `w`, `det_j` (Float64), cell `body` (Int32, 0
+ * here) and `scaled_jacobian` (Float64, see coons_volume_mesh_quality()).
+ * Sets: the cell set `name`, and for each of the six faces F (u0 ... w1,
+ * coons_body_face_name()) a node set and a face set `name.F` (a face that
+ * collapses to a curve or a point has empty sets).
+ *
+ * Inverted cells are kept: check coons_volume_mesh_quality().
+ *
+ * @return ::COONS_OK; ::COONS_E_INVALID (bad options, a point not finite);
+ *         ::COONS_E_LIMIT (more cells than `max_cells`, said before any
+ *         work); ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_volume_mesh(const coons_body *b,
+                                                 const coons_volume_options *opts,
+                                                 const char *name, coons_volume_mesh **out,
+                                                 coons_error *err);
+
+/**
+ * Meshes every body of a model into one conformal mesh, one part per body
+ * in body order (named coons_model_body_name(); cell field `body` is the
+ * body index). Bodies that share a face (the same points, node for node on
+ * their lattices) share its nodes; the face sets of both sides remain.
+ * Bodies whose boxes overlap without sharing a face cannot be meshed
+ * conformally: ::COONS_E_UNSUPPORTED naming both bodies.
+ * @return as coons_body_volume_mesh(), plus ::COONS_E_UNSUPPORTED.
+ */
+COONS_EXPORT coons_status coons_model_volume_mesh(const coons_model *m,
+                                                  const coons_volume_options *opts,
+                                                  coons_volume_mesh **out, coons_error *err);
+
+/** Version of ::coons_volume_quality this header describes. */
+#define COONS_VOLUME_QUALITY_VERSION 1
+
+/**
+ * Cell quality of one part. The scaled Jacobian (Knupp) of a cell is,
+ * over its 8 corners, the minimum of det[e1, e2, e3] of the unit vectors
+ * along the three cell edges from that corner (in the r, s, t directions
+ * of the node order, so > 0 for a valid cell, 1 for a cube). A corner with
+ * an edge of zero length (repeated node: a collapsed cell) has no value and
+ * is skipped; a cell with no corner left has value 0. A cell is inverted
+ * when its value is <= 0 and it is not collapsed; a collapsed cell (one
+ * repeated corner node at least) is counted in `collapsed`, never as
+ * inverted.
+ */
+typedef struct coons_volume_quality {
+    unsigned int version;        /**< ::COONS_VOLUME_QUALITY_VERSION */
+    size_t cells;                /**< cells of the part */
+    size_t nodes;                /**< distinct nodes those cells use */
+    coons_element element;
+    double min_scaled_jacobian;  /**< NaN when there are no cells */
+    double mean_scaled_jacobian; /**< NaN when there are no cells */
+    size_t inverted;             /**< value <= 0, not collapsed */
+    size_t below_0_2;            /**< value < 0.2 (inverted ones included) */
+    size_t collapsed;            /**< cells with a repeated corner node */
+    size_t worst_cell;           /**< index (in the mesh) of the minimum */
+    /** Parameters of the worst cell's centre: the mean of node fields
+     *  `u`, `v`, `w` over its corners (NaN without those fields). */
+    double worst_uvw[3];
+} coons_volume_quality;
+
+#define COONS_VOLUME_QUALITY_INIT {COONS_VOLUME_QUALITY_VERSION, 0u, 0u, COONS_ELEMENT_HEX8, 0.0, 0.0, 0u, 0u, 0u, 0u, {0.0, 0.0, 0.0}}
+
+/** Sets `*q` to ::COONS_VOLUME_QUALITY_INIT; NULL is a harmless no-op. */
+COONS_EXPORT void coons_volume_quality_init(coons_volume_quality *q);
+
+/**
+ * Computes the quality of part `part` from the node coordinates (the
+ * linear hexahedron of each cell's corners).
+ * @param[in,out] q  initialised with ::COONS_VOLUME_QUALITY_INIT
+ * @return ::COONS_OK; ::COONS_E_INVALID (no such part, `q` not
+ *         initialised).
+ */
+COONS_EXPORT coons_status coons_volume_mesh_quality(const coons_volume_mesh *vm, size_t part,
+                                                    coons_volume_quality *q, coons_error *err);
+
+/**
+ * The scaled Jacobian of cell `cell` as defined for ::coons_volume_quality
+ * (NaN when the cell does not exist); `*collapsed` (may be NULL) is set to
+ * 1 when the cell repeats a corner node.
+ */
+COONS_EXPORT double coons_volume_mesh_cell_scaled_jacobian(const coons_volume_mesh *vm,
+                                                           size_t cell, int *collapsed);
+
 #ifdef __cplusplus
 }
 #endif
