@@ -85,7 +85,7 @@ int main(int argc, char **argv)
     uint32_t cells[N * N * N][27];
     int used[M * M * M] = {0};
     int ncell = 0;
-    int part_of[N * N * N];
+    int part_of[N * N * N], lat[N * N * N][3];
     for (int part = 0; part < 2; part++)
         for (int k = 0; k < N; k++)
             for (int j = 0; j < N; j++)
@@ -97,6 +97,7 @@ int main(int argc, char **argv)
                         cells[ncell][n] = (uint32_t)q;
                         used[q] = 1;
                     }
+                    lat[ncell][0] = i, lat[ncell][1] = j, lat[ncell][2] = k;
                     part_of[ncell++] = part;
                 }
     int newid[M * M * M];
@@ -156,9 +157,9 @@ int main(int argc, char **argv)
             size_t np = 0, nnode = 0;
             for (int c = 0; c < ncell; c++) {
                 if (part_of[c] != part) continue;
-                /* the cell's lattice position from its node 0's parameters */
-                double p = ku[axis][cells[c][0]];
-                int on = hi ? fabs(p + 1.0 / N - 1.0) < 1e-12 : p == 0.0;
+                /* the cell's lattice position (not its node 0's parameters:
+                 * a merged node keeps those of the first lattice point) */
+                int on = lat[c][axis] == (hi ? N - 1 : 0);
                 if (!on) continue;
                 pairs[2 * np] = (uint32_t)c;
                 pairs[2 * np + 1] = (uint32_t)f;

@@ -23,6 +23,10 @@ static const coons__format_row ROWS[] = {
      .kind = SURFACE, .write_surface = coons__write_scad, .check_surface = coons__check_scad},
     {.format = COONS_FORMAT_VTK, .name = "vtk", .title = "legacy VTK", .extensions = {".vtk"},
      .kind = VOLUME, .write_volume = coons__write_vtk},
+    {.format = COONS_FORMAT_MSH2, .name = "msh2", .title = "Gmsh MSH 2.2", .aliases = {"msh"},
+     .extensions = {".msh"}, .kind = VOLUME, .write_volume = coons__write_msh2},
+    {.format = COONS_FORMAT_MSH4, .name = "msh4", .title = "Gmsh MSH 4.1", .kind = VOLUME,
+     .write_volume = coons__write_msh4},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 
