@@ -29,7 +29,14 @@ gmsh.open() in a fresh process:
 - the node fields u, v, w come back as views whose values, mapped, give
   each node's position;
 - the gmsh binary checks a file (-check) and converts one (-0) with exit
-  status 0 and no error.
+  status 0 and no error;
+- every example that is one body or conformal (at least nail, spool,
+  body1-density, volume-nurbs), written by coons2stl at --resolution 4 as
+  .msh and -f msh4: every element valid by Gmsh's det J and minJ, the
+  physical names each body and each body face (BODY.FACE; shared faces
+  A+B in body order; none for a face collapsed to a point, the nail's tip);
+- two boxes sharing a face (seat on column) and a left-handed box, hex8 and
+  hex27: valid elements, "seat.w0+column.w1" once, faces outward.
 
 Usage: test_vol_gmsh.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -390,9 +397,134 @@ def main():
             r.check("gmsh FILE -0 -o x.msh: status 0, no error, written",
                     p.returncode == 0 and "Error" not in p.stdout and os.path.exists(out),
                     p.stdout[-1500:])
+        check_examples(r, tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     r.finish()
+
+
+# Examples that must mesh; faces that collapse entirely (no physical surface).
+REQUIRED = ("nail.json", "spool.json", "body1-density.json", "volume-nurbs.json")
+COLLAPSED = {"nail.json": {"nail.w0"}}
+
+
+def check_examples(r, tmp):
+    """Every example that is one body or conformal, at --resolution 4, as
+    MSH 2.2 and 4.1: gmsh reads it, every element is valid (det J > 0 at
+    Gauss points, AnalyseMeshQuality's minJ > 0), and the physical names
+    are each body (dimension 3) and each body face BODY.FACE (dimension 2),
+    faces shared node for node joined as A+B, nothing else."""
+    exdir = os.path.join(r.src, "examples")
+    meshed = set()
+    for name in sorted(os.listdir(exdir)):
+        if not name.endswith(".json"):
+            continue
+        with open(os.path.join(exdir, name)) as f:
+            model = json.load(f)
+        bodies = [b.get("name", "body%d" % i) for i, b in enumerate(model.get("bodies", []))]
+        for fmt in ("msh2", "msh4"):
+            out = os.path.join(tmp, f"ex-{fmt}.msh")
+            args = [os.path.join(exdir, name), "-o", out, "--resolution", "4"]
+            st, _, err = r.run(args + (["-f", "msh4"] if fmt == "msh4" else []))
+            label = f"{name} {fmt}"
+            if st == 3 and "conformal" in err and name not in REQUIRED:
+                print(f"note: {label}: refused as not conformal: {err.strip()}")
+                break
+            if not r.check(f"{label}: coons2stl writes it", st == 0 and os.path.exists(out), err):
+                continue
+            meshed.add(name)
+            try:
+                g = gmsh_read(out)
+            except RuntimeError as e:
+                r.check(f"{label}: gmsh reads it", False, str(e))
+                continue
+            neg = []
+            for ty, j in g["jac"].items():
+                npts = len(j["weights"])
+                for e, tag in enumerate(j["tags"]):
+                    if min(j["det"][e * npts:(e + 1) * npts]) <= 0:
+                        neg.append(tag)
+            nel = sum(len(j["tags"]) for j in g["jac"].values())
+            r.check(f"{label}: Gmsh's det J > 0 at every Gauss point of {nel} elements",
+                    nel > 0 and not neg, f"{neg[:5]}")
+            minj = [line for line in g["log"] if "minJ      =" in line]
+            worst = float(minj[-1].split("=")[1].split(",")[0]) if minj else float("nan")
+            r.check(f"{label}: AnalyseMeshQuality minJ > 0 (worst {worst:.3g})", worst > 0,
+                    f"{minj}")
+            vols = sorted(n for d, _, n, _ in g["physical"] if d == 3)
+            r.check(f"{label}: physical volumes are the bodies", vols == sorted(bodies),
+                    f"{vols} vs {bodies}")
+            faces = [f"{b}.{s}" for b in bodies for s in SIDES]
+            surf = [n for d, _, n, _ in g["physical"] if d == 2]
+            parts = [p for n in surf for p in n.split("+")]
+            missing = set(faces) - set(parts)
+            ok = sorted(parts) == sorted(set(parts)) and set(parts) <= set(faces) and \
+                missing == COLLAPSED.get(name, set())
+            ok = ok and all(faces.index(a) < faces.index(b) for n in surf
+                            for a, b in zip(n.split("+"), n.split("+")[1:]))
+            r.check(f"{label}: physical surfaces are the body faces ({len(surf)}, "
+                    f"{sum('+' in n for n in surf)} shared)", ok,
+                    f"surfaces {surf}\n     missing {sorted(missing)}")
+    for name in REQUIRED:
+        r.check(f"{name} meshes as MSH", name in meshed)
+    check_shared_and_mirrored(r, tmp)
+
+
+def box(lo, hi, name, mirror=False):
+    c = [[hi[0] if (i & 4) != mirror * 4 else lo[0], hi[1] if i & 2 else lo[1],
+          hi[2] if i & 1 else lo[2]] for i in range(8)]
+    return {"type": "body0", "name": name, "corners": c}
+
+
+def check_shared_and_mirrored(r, tmp):
+    """outputs.md's seat on a column: the shared face is one physical
+    surface "seat.w0+column.w1" (body order) facing out of the seat; a
+    left-handed body: valid elements (mirrored) and outward faces."""
+    cases = (("seat-column", [box([0, 0, 1], [1, 1, 2], "seat"), box([0, 0, 0], [1, 1, 1], "column")]),
+             ("lefty", [box([0, 0, 0], [1, 2, 3], "lefty", mirror=True)]))
+    for label, bodies in cases:
+        path = os.path.join(tmp, label + ".json")
+        with open(path, "w") as f:
+            json.dump({"coons": 1, "bodies": bodies}, f)
+        for el in ("hex8", "hex27"):
+            for fmt in ("msh2", "msh4"):
+                out = os.path.join(tmp, f"{label}.msh")
+                st, _, err = r.run([path, "-o", out, "--resolution", "2", "--element", el,
+                                    "-f", fmt])
+                lab = f"{label} {el} {fmt}"
+                if not r.check(f"{lab}: coons2stl writes it", st == 0, err):
+                    continue
+                g = gmsh_read(out)
+                neg = [t for ty, j in g["jac"].items() for e, t in enumerate(j["tags"])
+                       if min(j["det"][e * len(j["weights"]):(e + 1) * len(j["weights"])]) <= 0]
+                r.check(f"{lab}: det J > 0 everywhere", not neg, f"{neg[:5]}")
+                surf = sorted(n for d, _, n, _ in g["physical"] if d == 2)
+                names = [b["name"] + "." + s for b in bodies for s in SIDES]
+                if label == "seat-column":
+                    names.remove("seat.w0")
+                    names.remove("column.w1")
+                    names.append("seat.w0+column.w1")
+                r.check(f"{lab}: physical surfaces", surf == sorted(names), f"{surf}")
+                # outward: from each element's centre, its normal points away
+                # from its own body's centre (the seat's for the shared face)
+                centre = {}
+                for b in bodies:
+                    cs = b["corners"]
+                    centre[b["name"]] = [sum(c[d] for c in cs) / 8 for d in range(3)]
+                inward = []
+                for ty, j in g["jac2"].items():
+                    n = j["n"]
+                    for e, tag in enumerate(j["tags"]):
+                        m = j["jac"][9 * e * n:9 * e * n + 9]
+                        x = j["xyz"][3 * e * n:3 * e * n + 3]
+                        a, b = m[0:3], m[3:6]
+                        nrm = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                               a[0] * b[1] - a[1] * b[0]]
+                        c = centre[g["group_of"][str(tag)].split(".")[0]]
+                        if sum(nrm[d] * (x[d] - c[d]) for d in range(3)) <= 0:
+                            inward.append(tag)
+                r.check(f"{lab}: every surface element faces out of its (first) body", not inward,
+                        f"{inward[:5]}")
 
 
 if __name__ == "__main__":
