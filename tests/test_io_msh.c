@@ -94,7 +94,10 @@ static int type_nodes(int type)
     return 0;
 }
 
-static int type_dim(int type) { return type == 2 || type == 3 || type == 9 || type == 10 || type == 16 ? 2 : 3; }
+static int type_dim(int type)
+{
+    return type == 2 || type == 3 || type == 9 || type == 10 || type == 16 ? 2 : 3;
+}
 
 static long rd_long(const char **s)
 {
@@ -508,7 +511,8 @@ static coons_volume_mesh *two_bodies(void)
     assert_coons_ok(coons_volume_mesh_add_part(vm, "column", NULL, &e), &e);
     assert_coons_ok(coons_volume_mesh_add_cells(vm, seat, 1, 0, NULL, &e), &e);
     assert_coons_ok(coons_volume_mesh_add_cells(vm, column, 1, 1, NULL, &e), &e);
-    static const char *body[2] = {"seat", "column"}, *side[6] = {"u0", "u1", "v0", "v1", "w0", "w1"};
+    static const char *body[2] = {"seat", "column"};
+    static const char *side[6] = {"u0", "u1", "v0", "v1", "w0", "w1"};
     for (uint32_t c = 0; c < 2; c++)
         for (uint32_t f = 0; f < 6; f++) {
             char name[32];
@@ -685,7 +689,10 @@ static coons_volume_mesh *collapsed_cell(int kind, void (*f)(const double *, dou
 }
 
 /* (r, r s, r t): the face r = 0 collapses to the point 0. */
-static void cone(const double p[3], double x[3]) { x[0] = p[0], x[1] = p[0] * p[1], x[2] = p[0] * p[2]; }
+static void cone(const double p[3], double x[3])
+{
+    x[0] = p[0], x[1] = p[0] * p[1], x[2] = p[0] * p[2];
+}
 
 /* Given a cell whose face r = 0 collapsed to a line (apex) or a point
  * (cone), of each kind, when written, then a hex8 cell is a prism (6) or
@@ -722,7 +729,8 @@ static void test_collapsed(void **state)
                         inside[d] += coons_volume_mesh_nodes(vm)[3 * k + (size_t)d] / (double)nd;
                 if (i > 0) {
                     assert_int_equal(h->type, hex[i]);
-                    for (int k = 0; k < kinds[i]; k++) assert_int_equal(h->node[k], (long)cell[k] + 1);
+                    for (int k = 0; k < kinds[i]; k++)
+                        assert_int_equal(h->node[k], (long)cell[k] + 1);
                 } else if (mp == 0) {
                     assert_int_equal(h->type, 6);
                     assert_true(tet(x[0], x[1], x[2], x[3]) > 0);

@@ -322,7 +322,8 @@ def check_file(r, g, el, which, label):
             if el != "hex8" or which != "quad":
                 face = g["group_of"][str(tag)].split(".")[1]
                 for q in range(n):
-                    off = max(off, abs(on_side(which, face, j["xyz"][3 * (e * n + q):3 * (e * n + q) + 3])))
+                    x = j["xyz"][3 * (e * n + q):3 * (e * n + q) + 3]
+                    off = max(off, abs(on_side(which, face, x)))
     nsurf = sum(len(j["tags"]) for j in g["jac2"].values())
     r.check(f"{label}: every surface element outward ({nsurf})", nsurf and not inward,
             f"{inward[:5]}")
@@ -480,7 +481,8 @@ def check_shared_and_mirrored(r, tmp):
     """outputs.md's seat on a column: the shared face is one physical
     surface "seat.w0+column.w1" (body order) facing out of the seat; a
     left-handed body: valid elements (mirrored) and outward faces."""
-    cases = (("seat-column", [box([0, 0, 1], [1, 1, 2], "seat"), box([0, 0, 0], [1, 1, 1], "column")]),
+    cases = (("seat-column", [box([0, 0, 1], [1, 1, 2], "seat"),
+                              box([0, 0, 0], [1, 1, 1], "column")]),
              ("lefty", [box([0, 0, 0], [1, 2, 3], "lefty", mirror=True)]))
     for label, bodies in cases:
         path = os.path.join(tmp, label + ".json")

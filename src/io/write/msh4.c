@@ -17,7 +17,10 @@
 #include "msh_common.h"
 
 /* Index of a cell type within a part's blocks. */
-static int cell_slot(int type) { return type == COONS__MSH_PRISM6 ? 1 : type == COONS__MSH_PYRAMID5 ? 2 : 0; }
+static int cell_slot(int type)
+{
+    return type == COONS__MSH_PRISM6 ? 1 : type == COONS__MSH_PYRAMID5 ? 2 : 0;
+}
 
 typedef struct msh4 {
     coons__msh_plan p;
@@ -80,7 +83,8 @@ static coons_status prepare(msh4 *m, coons__sink *s)
         int type;
         coons__msh_cell(p, c, nodes, &type);
         key[c] = 3 * part[c] + (uint32_t)cell_slot(type);
-        for (size_t k = 0; k < p->npc; k++) box_add(m->vbox[part[c]], xyz + 3 * cells[p->npc * c + k]);
+        for (size_t k = 0; k < p->npc; k++)
+            box_add(m->vbox[part[c]], xyz + 3 * cells[p->npc * c + k]);
     }
     group(key, p->nc, 3 * p->np, m->cstart, m->corder);
     /* Nodes by the part of the first cell using them. */
