@@ -806,6 +806,82 @@ static void test_empty_and_names(void **state)
     coons_volume_mesh_free(vm);
 }
 
+/* Two one-cell parts named a (na bytes) and b (nb bytes) sharing a face
+ * (sets "A.w0" of a and "B.w1" of b), as the shared face's name. */
+static coons_volume_mesh *named_pair(size_t na, size_t nb)
+{
+    char a[300], b[300];
+    memset(a, 'a', na);
+    memcpy(a + na - 3, ".w0", 4);
+    memset(b, 'b', nb);
+    memcpy(b + nb - 3, ".w1", 4);
+    double xyz[12][3];
+    for (int n = 0; n < 12; n++) xyz[n][0] = n % 2, xyz[n][1] = (n / 2) % 2, xyz[n][2] = n / 4;
+    const uint32_t up[8] = {4, 5, 7, 6, 8, 9, 11, 10}, down[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+    coons_volume_mesh *vm = NULL;
+    coons_error e = COONS_ERROR_INIT;
+    assert_coons_ok(coons_volume_mesh_new(COONS_ELEMENT_HEX8, &vm, &e), &e);
+    assert_coons_ok(coons_volume_mesh_add_nodes(vm, &xyz[0][0], 12, NULL, &e), &e);
+    assert_coons_ok(coons_volume_mesh_add_part(vm, "up", NULL, &e), &e);
+    assert_coons_ok(coons_volume_mesh_add_part(vm, "down", NULL, &e), &e);
+    assert_coons_ok(coons_volume_mesh_add_cells(vm, up, 1, 0, NULL, &e), &e);
+    assert_coons_ok(coons_volume_mesh_add_cells(vm, down, 1, 1, NULL, &e), &e);
+    const uint32_t fa[2] = {0, 4}, fb[2] = {1, 5};
+    assert_coons_ok(coons_volume_mesh_add_face_set(vm, a, fa, 1, &e), &e);
+    assert_coons_ok(coons_volume_mesh_add_face_set(vm, b, fb, 1, &e), &e);
+    return vm;
+}
+
+/* Gmsh reads physical names of at most 252 bytes (the rest of the line
+ * goes through fgets() into 256 bytes): given a shared face whose name
+ * "A+B" has 252 bytes, it is written; with 253 bytes (also a part name
+ * of 253 bytes) the write fails with COONS_E_LIMIT naming the length and
+ * leaves the previous file. */
+static void test_long_names(void **state)
+{
+    (void)state;
+    coons_volume_mesh *vm = named_pair(125, 126); /* 125 + 1 + 126 = 252 */
+    for (int v = 0; v < 2; v++) {
+        char *text = write_msh(vm, FORMATS[v]);
+        msh_file m;
+        msh_read(text, &m);
+        assert_int_equal(m.nnames, 3);
+        assert_int_equal(strlen(m.names[2].name), 252);
+        assert_non_null(strchr(m.names[2].name, '+'));
+        msh_free(&m);
+        free(text);
+    }
+    coons_volume_mesh_free(vm);
+    char dir[64], p[128];
+    io_tmpdir(dir, sizeof dir);
+    snprintf(p, sizeof p, "%s/out.msh", dir);
+    for (int k = 0; k < 2; k++) {
+        vm = k ? named_pair(126, 126) : NULL;
+        if (!k) {
+            char name[254];
+            memset(name, 'p', 253);
+            name[253] = '\0';
+            coons_error e = COONS_ERROR_INIT;
+            assert_coons_ok(coons_volume_mesh_new(COONS_ELEMENT_HEX8, &vm, &e), &e);
+            assert_coons_ok(coons_volume_mesh_add_part(vm, name, NULL, &e), &e);
+        }
+        for (int v = 0; v < 2; v++) {
+            io_write_file(p, previous, strlen(previous));
+            coons_error e = COONS_ERROR_INIT;
+            assert_int_equal(coons_volume_mesh_write(vm, p, FORMATS[v], NULL, &e), COONS_E_LIMIT);
+            assert_non_null(strstr(e.message, "253 bytes"));
+            assert_non_null(strstr(e.message, k ? "face set 'aaa" : "part 'ppp"));
+            size_t len;
+            char *got = io_read_file(p, &len);
+            assert_int_equal(len, strlen(previous));
+            free(got);
+            assert_int_equal(io_dir_count(dir), 1);
+        }
+        coons_volume_mesh_free(vm);
+    }
+    io_rmdir(dir);
+}
+
 static int cancel_after(void *ctx)
 {
     int *n = ctx;
@@ -896,6 +972,7 @@ int main(void)
         cmocka_unit_test(test_structure),
         cmocka_unit_test(test_collapsed),
         cmocka_unit_test(test_empty_and_names),
+        cmocka_unit_test(test_long_names),
         cmocka_unit_test(test_failures_leave_previous),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -58,7 +58,9 @@
  *   `A+B` (set order) with the first set's faces. Fields are `$NodeData`
  *   and `$ElementData`. 4.1 adds `$Entities` (a volume per part, a surface
  *   per physical surface) and lists each node once, in the block of the
- *   part of the first cell using it. No header text or units.
+ *   part of the first cell using it. No header text or units. A physical
+ *   name longer than 252 bytes (Gmsh 4.8 reads no more) is refused with
+ *   ::COONS_E_LIMIT before anything is written.
  *
  * Numbers in OFF and SCAD are the shortest decimal text that strtod() reads
  * back to the identical double (-0 stays "-0"); non-finite values are

@@ -36,7 +36,9 @@ gmsh.open() in a fresh process:
   physical names each body and each body face (BODY.FACE; shared faces
   A+B in body order; none for a face collapsed to a point, the nail's tip);
 - two boxes sharing a face (seat on column) and a left-handed box, hex8 and
-  hex27: valid elements, "seat.w0+column.w1" once, faces outward.
+  hex27: valid elements, "seat.w0+column.w1" once, faces outward;
+- a physical name of 252 bytes (Gmsh 4.8's most) reads back whole, one of
+  253 is refused with nothing written.
 
 Usage: test_vol_gmsh.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -469,12 +471,38 @@ def check_examples(r, tmp):
     for name in REQUIRED:
         r.check(f"{name} meshes as MSH", name in meshed)
     check_shared_and_mirrored(r, tmp)
+    check_long_names(r, tmp)
 
 
 def box(lo, hi, name, mirror=False):
     c = [[hi[0] if (i & 4) != mirror * 4 else lo[0], hi[1] if i & 2 else lo[1],
           hi[2] if i & 1 else lo[2]] for i in range(8)]
     return {"type": "body0", "name": name, "corners": c}
+
+
+def check_long_names(r, tmp):
+    """A shared face's name "A.w0+B.w1" of 252 bytes, the most Gmsh 4.8
+    reads (fgets into 256 bytes), comes back whole; one byte more is
+    refused (status 3), nothing written."""
+    for na, ok in ((122, True), (123, False)):
+        path = os.path.join(tmp, "long.json")
+        with open(path, "w") as f:
+            json.dump({"coons": 1, "bodies": [box([0, 0, 1], [1, 1, 2], "a" * na),
+                                              box([0, 0, 0], [1, 1, 1], "b" * 123)]}, f)
+        for fmt in ("msh2", "msh4"):
+            out = os.path.join(tmp, "long.msh")
+            if os.path.exists(out):
+                os.unlink(out)
+            st, _, err = r.run([path, "-o", out, "--resolution", "1", "-f", fmt])
+            n = na + 3 + 1 + 123 + 3
+            if ok:
+                g = gmsh_read(out) if st == 0 else {"physical": []}
+                lens = sorted(len(nm) for _, _, nm, _ in g["physical"])
+                r.check(f"{fmt}: a {n}-byte physical name reads back whole in gmsh",
+                        st == 0 and lens and lens[-1] == n, f"{st} {err} {lens}")
+            else:
+                r.check(f"{fmt}: a {n}-byte physical name is refused, nothing written",
+                        st == 3 and "at most 252" in err and not os.path.exists(out), err)
 
 
 def check_shared_and_mirrored(r, tmp):

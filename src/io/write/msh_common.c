@@ -185,6 +185,36 @@ static coons_status group_sets(coons__msh_plan *p, coons__sink *s)
     return COONS_OK;
 }
 
+/* Gmsh 4.8 reads the rest of a $PhysicalNames line (blank, quoted name,
+ * newline) with fgets() into 256 bytes (GModelIO_MSH2.cpp, _MSH4.cpp): a
+ * longer name loses its closing quote and the file does not load. */
+#define NAME_MAX_GMSH 252
+
+static size_t surface_name_length(const coons__msh_plan *p, size_t k)
+{
+    size_t n = 0;
+    for (size_t set = p->first[k]; set != COONS__MSH_NONE; set = p->next[set])
+        n += (n ? 1 : 0) + strlen(coons_volume_mesh_face_set(p->vm, set, NULL, NULL));
+    return n;
+}
+
+static coons_status check_names(const coons__msh_plan *p, coons__sink *s)
+{
+    for (size_t i = 0; i < p->np + p->nsurf; i++) {
+        const char *name = i < p->np ? coons_volume_mesh_part_name(p->vm, i)
+                                     : coons_volume_mesh_face_set(p->vm, p->first[i - p->np],
+                                                                  NULL, NULL);
+        size_t n = i < p->np ? strlen(name) : surface_name_length(p, i - p->np);
+        if (n > NAME_MAX_GMSH)
+            return s->status = coons__error_set(
+                       s->err, COONS_E_LIMIT,
+                       "the Gmsh physical name of %s '%.40s...' would have %zu bytes: Gmsh "
+                       "reads at most %d",
+                       i < p->np ? "the part" : "the face set", name, n, NAME_MAX_GMSH);
+    }
+    return COONS_OK;
+}
+
 coons_status coons__msh_plan_build(coons__msh_plan *p, const coons_volume_mesh *vm,
                                    coons__sink *s)
 {
@@ -203,7 +233,8 @@ coons_status coons__msh_plan_build(coons__msh_plan *p, const coons_volume_mesh *
     if (!p->first || !p->next || !p->surface_of || !p->surf_count)
         return s->status = coons__error_nomem(s->err);
     for (size_t i = 0; i < p->nsets; i++) p->next[i] = p->surface_of[i] = COONS__MSH_NONE;
-    return group_sets(p, s);
+    if (group_sets(p, s) != COONS_OK) return s->status;
+    return check_names(p, s);
 }
 
 void coons__msh_plan_free(coons__msh_plan *p)

@@ -48,7 +48,9 @@ typedef struct coons__msh_plan {
     size_t nsurfel;          /* all surface elements */
 } coons__msh_plan;
 
-/* Builds the plan; on error records it in s and returns s->status. */
+/* Builds the plan; on error records it in s and returns s->status:
+ * COONS_E_NOMEM, or COONS_E_LIMIT for a physical name longer than the
+ * 252 bytes Gmsh reads. */
 coons_status coons__msh_plan_build(coons__msh_plan *p, const coons_volume_mesh *vm,
                                    coons__sink *s);
 void coons__msh_plan_free(coons__msh_plan *p);
