@@ -55,8 +55,10 @@
  *   outside the cell, triangles (2, 9) where one edge collapsed, nothing
  *   where a face collapsed to a line or point; sets holding the same faces
  *   node for node (a face two bodies share) are one surface named
- *   `A+B` (set order) with the first set's faces. Fields are `$NodeData`
- *   and `$ElementData`. 4.1 adds `$Entities` (a volume per part, a surface
+ *   `A+B` (set order) with the first set's faces. Node fields are
+ *   `$NodeData`; cell fields `$ElementData` in 4.1 only, over every element
+ *   (a face has its cell's values), since meshio 5.0 cannot read them in
+ *   2.2. 4.1 adds `$Entities` (a volume per part, a surface
  *   per physical surface) and lists each node once, in the block of the
  *   part of the first cell using it. No header text or units. A physical
  *   name longer than 252 bytes (Gmsh 4.8 reads no more) is refused with

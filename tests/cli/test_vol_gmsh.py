@@ -27,7 +27,11 @@ gmsh.open() in a fresh process:
   AnalyseMeshQuality plugin's minJ/maxJ is > 0 for every element (0 only
   for the hex20/hex27 cells that stay degenerate at the collapsed face);
 - the node fields u, v, w come back as views whose values, mapped, give
-  each node's position;
+  each node's position; the cell fields body, scaled_jacobian (4.1 only)
+  as views too;
+- meshio reads both versions (its 2.2 reader fails on any $ElementData,
+  which is why 2.2 has none): the same cells, u, v, w at the right
+  points, and in 4.1 each cell's and each face's `body` = its part;
 - the gmsh binary checks a file (-check) and converts one (-0) with exit
   status 0 and no error;
 - every example that is one body or conformal (at least nail, spool,
@@ -334,14 +338,50 @@ def check_file(r, g, el, which, label):
                 f"faces (worst {off:.1e})", off < 1e-12)
     # fields as views
     views = g["views"]
+    cell_fields = ["body", "scaled_jacobian"] if "msh4" in label else []
     r.check(f"{label}: fields as views", sorted(views) ==
-            sorted(["u", "v", "w", "body", "scaled_jacobian"]), f"{sorted(views)}")
+            sorted(["u", "v", "w"] + cell_fields), f"{sorted(views)}")
     if all(k in views for k in "uvw"):
         tags = views["u"][1]
         par = {t: [views[k][2][i] for k in "uvw"] for i, t in enumerate(tags)}
         worst = max(dist(sample_map(which, par[t]), nodes[str(t)]) for t in tags)
         r.check(f"{label}: u, v, w views map onto every node", len(tags) == len(nodes) and
                 worst < 1e-12, f"{worst}")
+
+
+MESHIO = {5: "hexahedron", 17: "hexahedron20", 12: "hexahedron27", 6: "wedge", 7: "pyramid",
+          3: "quad", 16: "quad8", 10: "quad9", 2: "triangle", 9: "triangle6"}
+
+
+def check_meshio(r, path, g, which, label):
+    """meshio reads the file: the element counts gmsh sees, u, v, w at the
+    points, and (4.1) each element's body = its part (lo 0, hi 1)."""
+    import meshio
+    try:
+        m = meshio.read(path)
+    except Exception as e:  # noqa: BLE001 - any failure to read is the finding
+        r.check(f"{label}: meshio reads it", False, repr(e))
+        return
+    counts = {}
+    for c in m.cells:
+        counts[c.type] = counts.get(c.type, 0) + len(c.data)
+    want = {MESHIO[int(t)]: len(v) for t, v in g["elements"].items()}
+    r.check(f"{label}: meshio reads it: {counts}", counts == want, f"{want}")
+    pd = m.point_data
+    worst = max(dist(sample_map(which, [pd["u"][i], pd["v"][i], pd["w"][i]]), m.points[i])
+                for i in range(len(m.points))) if all(k in pd for k in "uvw") else 1.0
+    r.check(f"{label}: meshio's u, v, w map onto its points", worst < 1e-12, f"{worst}")
+    if "msh4" not in label:
+        return
+    name_of = {(int(v[1]), int(v[0])): k for k, v in m.field_data.items()}
+    bad = 0
+    for block, body, phys in zip(m.cells, m.cell_data["body"], m.cell_data["gmsh:physical"]):
+        dim = 3 if block.type in ("hexahedron", "hexahedron20", "hexahedron27", "wedge",
+                                  "pyramid") else 2
+        for b, t in zip(body, phys):
+            part = name_of[(dim, int(t))].split(".")[0]
+            bad += int(b) != ("lo", "hi").index(part)
+    r.check(f"{label}: meshio's cell data body = each element's part", bad == 0, f"{bad}")
 
 
 def main():
@@ -360,6 +400,11 @@ def main():
         has_gmsh = False
     r.check("python3-gmsh is installed", has_gmsh)
     r.check("the gmsh binary is installed", shutil.which("gmsh") is not None)
+    try:
+        import meshio  # noqa: F401
+        r.check("python3-meshio is installed", True)
+    except ImportError:
+        r.check("python3-meshio is installed", False)
     if not has_gmsh:
         r.finish()
     tmp = tempfile.mkdtemp(prefix="coons-gmsh-")
@@ -385,6 +430,7 @@ def main():
                         r.check(f"{label}: gmsh reads it", False, str(e))
                         continue
                     check_file(r, g, el, which, label)
+                    check_meshio(r, path, g, which, label)
                     first = first or path
         if shutil.which("gmsh") and first:
             for name in ("hex27-quad-msh4.msh", "hex8-apex-msh2.msh"):

@@ -2,7 +2,8 @@
 /* Gmsh MSH 2.2 ASCII writer (Gmsh reference manual, "MSH file format",
  * "Legacy formats / MSH file format version 2"): $MeshFormat 2.2 0 8,
  * $PhysicalNames, $Nodes (number x y z), $Elements (number type 2
- * physical elementary nodes...), then $NodeData / $ElementData per field.
+ * physical elementary nodes...), then a $NodeData per node field; cell
+ * fields are left out (below).
  *
  * Node n is number n + 1, cell c element c + 1 (the tag the fields and
  * MSH 4.1 use too), the surface elements follow. Each element carries two
@@ -65,9 +66,13 @@ coons_status coons__write_msh2(const coons_volume_mesh *vm, const coons__wopts *
 {
     (void)o; /* MSH 2.2 has no place for a title or units */
     coons__msh_plan p;
+    /* Node fields only: meshio 5.0 (Debian 12) cannot read an MSH 2.2 file
+     * with any $ElementData (it splits the values by the length of its
+     * (type, cells) tuples, 2); 4.1 carries the cell fields. */
+    const coons__msh_order order = {NULL, 0, NULL, NULL};
     if (coons__msh_plan_build(&p, vm, s) == COONS_OK && coons__msh_put_format(s, "2.2") &&
         coons__msh_put_physical_names(&p, s) && put_nodes(&p, s) && put_elements(&p, s))
-        coons__msh_put_fields(&p, s);
+        coons__msh_put_fields(&p, &order, s);
     coons__msh_plan_free(&p);
     return s->status;
 }

@@ -13,7 +13,8 @@
  * are those of the 2.2 writer (cell c is c + 1, the surface elements
  * follow in face-set order), so fields and tags agree between versions;
  * a block holds one part's cells of one type (hexahedra, prisms,
- * pyramids) or one surface's quadrangles or triangles. */
+ * pyramids) or one surface's quadrangles or triangles. The data sections
+ * list nodes and elements in this file order, not by tag. */
 #include "msh_common.h"
 
 /* Index of a cell type within a part's blocks. */
@@ -260,15 +261,57 @@ static int put_elements(const msh4 *m, coons__sink *s)
     return coons__sink_puts(s, "$EndElements\n");
 }
 
+/* The file's element order (put_elements): the cells block by block, then
+ * each surface's quadrangles and its triangles; only for cell fields. */
+static int element_order(const msh4 *m, coons__msh_order *order, coons__sink *s)
+{
+    const coons__msh_plan *p = &m->p;
+    order->node = m->norder;
+    if (coons_volume_mesh_field_count(p->vm, COONS_FIELD_CELL) == 0) return 1;
+    order->ne = p->nc + p->nsurfel;
+    order->cell = coons__malloc_array(order->ne + 1, sizeof *order->cell);
+    order->tag = coons__malloc_array(order->ne + 1, sizeof *order->tag);
+    if (!order->cell || !order->tag) return s->status = coons__error_nomem(s->err), 0;
+    for (size_t i = 0; i < p->nc; i++) {
+        order->cell[i] = m->corder[i];
+        order->tag[i] = (uint64_t)m->corder[i] + 1;
+    }
+    size_t i = p->nc;
+    uint64_t base = p->nc;
+    for (size_t k = 0; k < p->nsurf; k++) {
+        const uint32_t *pairs;
+        size_t nf;
+        coons_volume_mesh_face_set(p->vm, p->first[k], &pairs, &nf);
+        for (int slot = 0; slot < 2; slot++) {
+            uint64_t tag = base;
+            for (size_t j = 0; j < nf; j++) {
+                uint32_t nodes[9];
+                int type;
+                if (!coons__msh_face(p, pairs[2 * j], pairs[2 * j + 1], nodes, &type)) continue;
+                tag++;
+                if (coons__msh_face_slot(type) != slot) continue;
+                order->cell[i] = pairs[2 * j];
+                order->tag[i++] = tag;
+            }
+        }
+        base += p->surf_count[k][0] + p->surf_count[k][1];
+    }
+    return 1;
+}
+
 coons_status coons__write_msh4(const coons_volume_mesh *vm, const coons__wopts *o, coons__sink *s)
 {
     (void)o; /* MSH 4.1 has no place for a title or units */
     msh4 m;
     memset(&m, 0, sizeof m);
+    coons__msh_order order = {NULL, 0, NULL, NULL};
     if (coons__msh_plan_build(&m.p, vm, s) == COONS_OK && prepare(&m, s) == COONS_OK &&
-        coons__msh_put_format(s, "4.1") && coons__msh_put_physical_names(&m.p, s) &&
-        put_entities(&m, s) && put_nodes(&m, s) && put_elements(&m, s))
-        coons__msh_put_fields(&m.p, s);
+        element_order(&m, &order, s) && coons__msh_put_format(s, "4.1") &&
+        coons__msh_put_physical_names(&m.p, s) && put_entities(&m, s) && put_nodes(&m, s) &&
+        put_elements(&m, s))
+        coons__msh_put_fields(&m.p, &order, s);
+    coons__free(order.cell);
+    coons__free(order.tag);
     release(&m);
     return s->status;
 }

@@ -309,8 +309,28 @@ int coons__msh_put_physical_names(const coons__msh_plan *p, coons__sink *s)
     return coons__sink_puts(s, "$EndPhysicalNames\n");
 }
 
+void coons__msh_surface_cells(const coons__msh_plan *p, uint32_t *out)
+{
+    size_t i = 0;
+    for (size_t k = 0; k < p->nsurf; k++) {
+        const uint32_t *pairs;
+        size_t nf;
+        coons_volume_mesh_face_set(p->vm, p->first[k], &pairs, &nf);
+        for (size_t j = 0; j < nf; j++) {
+            uint32_t nodes[9];
+            int type;
+            if (coons__msh_face(p, pairs[2 * j], pairs[2 * j + 1], nodes, &type))
+                out[i++] = pairs[2 * j];
+        }
+    }
+}
+
+/* One $NodeData or $ElementData: n values, the i-th the value of item[i]
+ * (NULL: i) for the entity tagged tag[i] (NULL: i + 1, or item[i] + 1 for
+ * nodes, whose tags are their indices + 1). */
 static int put_field(coons__sink *s, const char *section, const char *name, coons_field_type type,
-                     const void *values, size_t n)
+                     const void *values, size_t n, const uint32_t *item, const uint64_t *tag,
+                     int nodes)
 {
     /* One string tag (the view's name), one real tag (the time), three
      * integer tags (time step, components, number of values). */
@@ -321,12 +341,13 @@ static int put_field(coons__sink *s, const char *section, const char *name, coon
     for (size_t i = 0; i < n; i++) {
         char *p = coons__sink_room(s, 2 * COONS__FMT_MAX + 2), *p0 = p;
         if (!p) return 0;
-        p += coons__fmt_u64(p, i + 1);
+        size_t at = item ? item[i] : i;
+        p += coons__fmt_u64(p, tag ? tag[i] : (nodes ? at : i) + 1);
         *p++ = ' ';
         if (type == COONS_FIELD_FLOAT64) {
-            p += coons__fmt_double(p, ((const double *)values)[i]);
+            p += coons__fmt_double(p, ((const double *)values)[at]);
         } else {
-            int32_t v = ((const int32_t *)values)[i];
+            int32_t v = ((const int32_t *)values)[at];
             if (v < 0) *p++ = '-';
             p += coons__fmt_u64(p, v < 0 ? (uint64_t)(-(int64_t)v) : (uint64_t)v);
         }
@@ -337,17 +358,21 @@ static int put_field(coons__sink *s, const char *section, const char *name, coon
            coons__sink_puts(s, "\n");
 }
 
-int coons__msh_put_fields(const coons__msh_plan *p, coons__sink *s)
+int coons__msh_put_fields(const coons__msh_plan *p, const coons__msh_order *order,
+                          coons__sink *s)
 {
     for (int loc = 0; loc < 2; loc++) {
         coons_field_location l = loc ? COONS_FIELD_CELL : COONS_FIELD_NODE;
-        size_t n = loc ? p->nc : p->nn;
+        size_t n = loc ? order->ne : p->nn; /* ne 0: no cell fields written */
         if (n == 0) continue;
         for (size_t f = 0; f < coons_volume_mesh_field_count(p->vm, l); f++) {
             coons_field_type type;
             const void *values;
             const char *name = coons_volume_mesh_field(p->vm, l, f, &type, &values);
-            if (!put_field(s, loc ? "ElementData" : "NodeData", name, type, values, n)) return 0;
+            int ok = loc ? put_field(s, "ElementData", name, type, values, n, order->cell,
+                                     order->tag, 0)
+                         : put_field(s, "NodeData", name, type, values, n, order->node, NULL, 1);
+            if (!ok) return 0;
         }
     }
     return 1;

@@ -78,8 +78,25 @@ int coons__msh_put_ints(coons__sink *s, const uint64_t *v, size_t n);
 int coons__msh_put_format(coons__sink *s, const char *version);
 /* "$PhysicalNames" (nothing when there are no groups). */
 int coons__msh_put_physical_names(const coons__msh_plan *p, coons__sink *s);
-/* One $NodeData per node field and one $ElementData per cell field (the
- * volume elements, tags c + 1); identical in both versions. */
-int coons__msh_put_fields(const coons__msh_plan *p, coons__sink *s);
+/* The order of the file's nodes and elements, for the data sections:
+ * node[i] is the i-th node listed (NULL: node i), and the i-th of the ne
+ * elements listed carries the values of cell cell[i] and has tag tag[i]
+ * (NULL: i + 1). A surface element carries the values of the cell whose
+ * face it is. */
+typedef struct coons__msh_order {
+    const uint32_t *node;
+    size_t ne;
+    uint32_t *cell;
+    uint64_t *tag;
+} coons__msh_order;
+/* The cell of each surface element, in the order of the surfaces and of
+ * their faces (p->nsurfel values). */
+void coons__msh_surface_cells(const coons__msh_plan *p, uint32_t *out);
+/* One $NodeData per node field and, when order->ne > 0, one $ElementData
+ * per cell field, each listing its values in the order the file lists the
+ * nodes and elements (meshio's reader ignores the tags there and takes
+ * them in file order). */
+int coons__msh_put_fields(const coons__msh_plan *p, const coons__msh_order *order,
+                          coons__sink *s);
 
 #endif
