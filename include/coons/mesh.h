@@ -252,7 +252,7 @@ typedef struct coons_iso_request {
 /**
  * The name of an isoparametric surface part: `BODY.u=VALUE` (or `.v=`,
  * `.w=`), VALUE the shortest decimal text that reads back to the value
- * ("0.25", "0.1", "1", "0.33333333333333331"), whatever the locale; just
+ * ("0.25", "0.1", "1", "0.3333333333333333"), whatever the locale; just
  * `u=VALUE` when `body` is NULL. The OpenSCAD writer makes module names of
  * such names by turning `.` and `=` into `_` (`BODY_u_0_25`). Written into
  * out[cap] (truncated to fit; cap >= 1).
