@@ -215,9 +215,12 @@ def disc_net(r, z, cx=0.0, cy=0.0, zero=False):
 DISC_W = [[1.0, S2, 1.0], [S2, 0.5, S2], [1.0, S2, 1.0]]
 
 
-def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None):
+def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None, u_factor=None):
     """Body 2 (NURBS faces) of a round solid around the vertical axis through
-    (cx, cy): profile = [(z, r), ...], one disc layer per profile point."""
+    (cx, cy): profile = [(z, r), ...], one disc layer per profile point.
+    u_factor c multiplies the weights of the net's layer i (along u) by c^i:
+    the rational reparametrisation of a Bezier segment, which keeps every
+    face's shape and changes how u runs across the section."""
     net = [[[None] * len(profile) for _ in range(3)] for _ in range(3)]
     wts = [[[None] * len(profile) for _ in range(3)] for _ in range(3)]
     for k, (z, r) in enumerate(profile):
@@ -225,7 +228,7 @@ def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None):
         for i in range(3):
             for j in range(3):
                 net[i][j][k] = d[i][j]
-                wts[i][j][k] = DISC_W[i][j]
+                wts[i][j][k] = DISC_W[i][j] * (u_factor ** i if u_factor else 1)
     knots = None
     if knots_w is not None:
         knots = [[0, 0, 0, 1, 1, 1], [0, 0, 0, 1, 1, 1], knots_w]
@@ -379,6 +382,19 @@ def m_nail():
     kw = [0, 0, 1, 5, 6, 7, 7]
     b, net, _ = revolved(profile, 1, knots_w=kw, name="nail")
     return "nail.json", model([b]), [radius_check(0, profile, 1, knots_w=kw)]
+
+
+def m_nail_density():
+    """The nail's outer shape with another interior parametrisation (the
+    "density" of seed 000 Fig. 4, for Fig. 6): the knots along w give the
+    tip most of the parameter range instead of the shaft, and the section's
+    weights are scaled by 2.5^i along u (same quarter circles, u crowded
+    towards one side). Every face is the nail's face reparametrised, so the
+    boundary is the same surface; the isoparametric surfaces move."""
+    profile = [(0, 0), (2.5, 0.75), (10.5, 0.75), (11, 2.5), (12, 2.5)]
+    kw = [0, 0, 4, 5, 6, 7, 7]
+    b, net, _ = revolved(profile, 1, knots_w=kw, name="nail", u_factor=2.5)
+    return "nail-density.json", model([b]), [radius_check(0, profile, 1, knots_w=kw)]
 
 
 # ---- Fig. 8: union of three bodies 2
@@ -889,6 +905,7 @@ def shift_pts(arr, d):
 
 BUILDERS = [
     m_deformed_cube, m_body1_bspline_edges, m_body1_density, m_spool, m_nail,
+    m_nail_density,
     m_union, m_chair,
     m_curve_line, m_curve_polyline, m_curve_bezier, m_curve_hermite, m_curve_coons_cubic,
     m_curve_coons_cubic_closed, m_curve_clamped_cubic, m_curve_bspline, m_curve_nurbs,

@@ -23,6 +23,11 @@ static const coons__format_row ROWS[] = {
      .kind = SURFACE, .write_surface = coons__write_scad, .check_surface = coons__check_scad},
     {.format = COONS_FORMAT_VTK, .name = "vtk", .title = "legacy VTK", .extensions = {".vtk"},
      .kind = VOLUME, .write_volume = coons__write_vtk},
+    /* TEMPORARY (branch iso): stands in for the VTU row of the volume
+     * writer's branch until the merge, which keeps that row and adds
+     * `.write_surface = coons__write_vtu_surface` to it. */
+    {.format = COONS_FORMAT_VTU, .name = "vtu", .title = "VTK XML UnstructuredGrid",
+     .extensions = {".vtu"}, .kind = VOLUME, .write_surface = coons__write_vtu_surface},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 
