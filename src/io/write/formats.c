@@ -23,6 +23,9 @@ static const coons__format_row ROWS[] = {
      .kind = SURFACE, .write_surface = coons__write_scad, .check_surface = coons__check_scad},
     {.format = COONS_FORMAT_VTK, .name = "vtk", .title = "legacy VTK", .extensions = {".vtk"},
      .kind = VOLUME, .write_volume = coons__write_vtk},
+    {.format = COONS_FORMAT_INP, .name = "inp", .title = "Abaqus/CalculiX input deck",
+     .extensions = {".inp"}, .kind = VOLUME, .write_volume = coons__write_inp,
+     .check_volume = coons__check_inp},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 
