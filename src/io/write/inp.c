@@ -276,8 +276,9 @@ static size_t compact_exponent(char *s, size_t n)
 }
 
 /* A number that fits CalculiX's 20-character field: the shortest
- * round-trip text, or failing that the most digits that fit (15 at least
- * for any double: "-1.23456789012345e-300" is 22 without them). */
+ * round-trip text, or failing that the most digits that fit: 15 for
+ * exponents of one digit ("-1.23456789012346e-5"), 13 at worst
+ * ("-1.234567890123e-300"). */
 static size_t fmt_field(char *out, double v)
 {
     size_t n = coons__fmt_double(out, v);
