@@ -28,6 +28,9 @@ static const coons__format_row ROWS[] = {
      * `.write_surface = coons__write_vtu_surface` to it. */
     {.format = COONS_FORMAT_VTU, .name = "vtu", .title = "VTK XML UnstructuredGrid",
      .extensions = {".vtu"}, .kind = VOLUME, .write_surface = coons__write_vtu_surface},
+    {.format = COONS_FORMAT_INP, .name = "inp", .title = "Abaqus/CalculiX input deck",
+     .extensions = {".inp"}, .kind = VOLUME, .write_volume = coons__write_inp,
+     .check_volume = coons__check_inp},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 

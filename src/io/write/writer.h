@@ -3,7 +3,7 @@
  * sink with a sticky error (sink.c), the format table (formats.c), the
  * atomic file and stream output that serve every format of either mesh
  * kind (atomic.c), and the per-format writers the table names (stl.c,
- * off.c, scad.c: surface; vtk.c: volume). A new format is one writer file,
+ * off.c, scad.c: surface; vtk.c, inp.c: volume). A new format is one writer file,
  * its declaration below, one row of the table and one value of
  * coons_format (coons/io.h). */
 #ifndef COONS_IO_WRITER_H
