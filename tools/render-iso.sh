@@ -8,14 +8,12 @@
 # For each example, `coons2stl EX --iso u=0.25,0.5,0.75 --iso w=0.5
 # --with-boundary -o EX-iso.scad` (the boundary is a transparent `%` part),
 # then OpenSCAD's preview under a virtual X server into examples/img/EX-iso.png.
-# Needs openscad and xvfb-run. A coons2stl that does not write the surfaces
-# yet is replaced by the build's tests/iso_sample (the same library call).
+# Needs openscad and xvfb-run.
 set -eu
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$src/build}
 case $build in /*) ;; *) build=$(pwd)/$build ;; esac
 cli=$build/tools/coons2stl
-sample=$build/tests/iso_sample
 for tool in openscad xvfb-run; do
     command -v "$tool" >/dev/null || { echo "render-iso.sh: $tool is not installed" >&2; exit 1; }
 done
@@ -26,11 +24,6 @@ mkdir -p "$src/examples/img"
 for ex in body1-bspline-edges body1-density nail nail-density; do
     scad=$tmp/$ex-iso.scad
     "$cli" "$src/examples/$ex.json" --iso u=0.25,0.5,0.75 --iso w=0.5 --with-boundary -o "$scad"
-    if ! grep -q '^module .*_w_0_5() {$' "$scad"; then
-        [ -x "$sample" ] || { echo "render-iso.sh: coons2stl wrote no surfaces and there is no $sample" >&2; exit 1; }
-        echo "render-iso.sh: $cli writes no --iso surfaces yet; using $sample" >&2
-        "$sample" "$src/examples/$ex.json" "$scad" -b u=0.25,0.5,0.75 w=0.5
-    fi
     # The preview draws `%` parts transparent; -o FILE.stl would leave them out.
     xvfb-run -a openscad --preview --imgsize=800,600 --autocenter --viewall \
         -o "$src/examples/img/$ex-iso.png" "$scad" >"$tmp/log" 2>&1 ||
