@@ -23,6 +23,10 @@ static const coons__format_row ROWS[] = {
      .kind = SURFACE, .write_surface = coons__write_scad, .check_surface = coons__check_scad},
     {.format = COONS_FORMAT_VTK, .name = "vtk", .title = "legacy VTK", .extensions = {".vtk"},
      .kind = VOLUME, .write_volume = coons__write_vtk},
+    {.format = COONS_FORMAT_VTU, .name = "vtu", .title = "VTK XML", .extensions = {".vtu"},
+     .kind = VOLUME, .write_volume = coons__write_vtu},
+    {.format = COONS_FORMAT_VTU_ASCII, .name = "vtu-ascii", .title = "ASCII VTK XML",
+     .kind = VOLUME, .write_volume = coons__write_vtu_ascii},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 
