@@ -262,8 +262,10 @@ static int put_data_array(coons__sink *s, const array_info *a, int ascii, uint64
            coons__sink_puts(s, "\"/>\n");
 }
 
-/* The header text and units as an XML comment: printable ASCII only, and
- * no "--" (which a comment must not contain) and no '-' at its end. */
+/* The header text and units as an XML comment: control characters become
+ * spaces (as in every writer's header), bytes beyond ASCII '?' (the text
+ * need not be UTF-8, which XML requires), and the comment gets no "--"
+ * and no '-' at its end, which XML forbids inside comments. */
 static int put_comment(const coons__wopts *o, coons__sink *s)
 {
     char t[512];
@@ -271,7 +273,8 @@ static int put_comment(const coons__wopts *o, coons__sink *s)
     const char *parts[3] = {o->header, o->units[0] ? " units=" : "", o->units};
     for (int k = 0; k < 3; k++)
         for (const char *p = parts[k]; *p && n + 1 < sizeof t; p++) {
-            char ch = (*p >= 0x20 && *p < 0x7f) ? *p : '?';
+            unsigned char b = (unsigned char)*p;
+            char ch = b >= 0x80 ? '?' : (b < 0x20 || b == 0x7f) ? ' ' : *p;
             if (ch == '-' && n > 0 && t[n - 1] == '-') ch = ' ';
             t[n++] = ch;
         }
