@@ -27,6 +27,15 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
 
 /* Samples body b (sample.c) and appends it to `mesh` as one part.
  * *triangles receives the part's triangle count. */
+/* The lattice the boundary sampler settles on for body b with options o
+ * (adaptive or fixed, as coons__body_sample_into() would use): t[d] gets
+ * n[d] + 1 increasing values from 0 to 1 per direction d = u, v, w,
+ * allocated with coons__malloc (the caller frees them). `deviation` (may
+ * be NULL) gets the measured deviation of the boundary mesh on it (NaN if
+ * unmeasured). The budget check is the triangle budget of o. */
+coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample_opts *o,
+                                        const char *name, double *t[3], size_t n[3],
+                                        double *deviation, coons_error *err);
 coons_status coons__body_sample_into(const coons_body *b, const coons__sample_opts *o,
                                      const char *name, coons_mesh *mesh, size_t *triangles,
                                      coons_error *err);

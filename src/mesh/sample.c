@@ -794,6 +794,35 @@ coons_status coons__body_sample_into(const coons_body *b, const coons__sample_op
     return st;
 }
 
+coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample_opts *o,
+                                        const char *name, double *t[3], size_t n[3],
+                                        double *deviation, coons_error *err)
+{
+    sampler s;
+    memset(&s, 0, sizeof s);
+    s.body = b;
+    s.o = o;
+    s.name = name ? name : "body";
+    s.err = err;
+    coons_status st = run(&s);
+    free_mesh(&s);
+    for (int d = 0; d < 3; d++) {
+        if (st == COONS_OK) {
+            t[d] = s.t[d];
+            n[d] = s.n[d];
+        } else {
+            t[d] = NULL;
+            n[d] = 0;
+            coons__free(s.t[d]);
+        }
+        coons__free(s.mark[d]);
+    }
+    if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev : NAN;
+    coons__free(s.buf);
+    coons__free(s.bs);
+    return st;
+}
+
 coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__sample_opts *out,
                                         coons_error *err)
 {

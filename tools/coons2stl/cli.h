@@ -28,7 +28,19 @@ typedef struct options {
     coons_format format;  /* resolved from -f, else from the output's extension, else STL */
     const char *body;     /* --body argument or NULL */
     double tolerance;     /* > 0 when given */
-    unsigned resolution;  /* --resolution: 0 = adaptive */
+    unsigned resolution;  /* --resolution N: 0 = adaptive (the first of NU,NV,NW) */
+    unsigned resolution3[3]; /* --resolution N or NU,NV,NW for volume meshes; 0s = adaptive */
+    int resolution_split; /* --resolution gave three numbers */
+    const char *element_arg; /* --element as given, or NULL */
+    coons_element element; /* hex8 unless --element */
+    int allow_inverted;   /* --allow-inverted */
+    int volume_mesh;      /* --volume-mesh (with --info) */
+    int with_boundary;    /* --with-boundary (with --iso) */
+    const char *iso[64];  /* --iso SPEC, in order */
+    size_t niso;
+    int iso_dir[256];     /* the surfaces --iso asks for: direction 0 u, 1 v, 2 w */
+    double iso_value[256];
+    size_t niso_surfaces;
     size_t max_triangles; /* --max-triangles: 0 = the library's default */
     coons_model_load_options load; /* --max-bytes, --max-values, --max-depth, --max-points */
     int eval, jacobian, info, quiet;
@@ -69,6 +81,31 @@ coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_
 int cli_eval(const coons_body *b, int jacobian);
 int cli_info(const coons_model *m, long only, const coons_sample_options *so,
              const options *o);
+/* volume.c: the volume mesh of all bodies (body < 0) or of one, with the
+ * lattice options of `o`; reports nothing. */
+coons_status cli_volume_mesh(const coons_model *m, long body, const options *o,
+                             coons_volume_mesh **out, coons_error *err);
+/* --info's "volume_mesh" object of part `part` (printed after a key). */
+void cli_print_volume_quality(const coons_volume_mesh *vm, size_t part);
+/* -o with a volume format: meshes, refuses inverted cells (unless
+ * --allow-inverted), writes atomically; returns the exit status. */
+int cli_write_volume(const coons_model *m, long body, const options *o);
+/* The same for a mesh already made (--info -o). */
+int cli_write_volume_mesh(const coons_model *m, const coons_volume_mesh *vm, const options *o);
+/* Whether the output format `f` is a volume-mesh format. */
+int cli_is_volume_format(coons_format f);
+
+/* output.c: a volume mesh written to a file atomically, with SIGINT,
+ * SIGTERM and SIGHUP cancelling the write; after it, whether one was
+ * caught, and dying of it as expected. */
+coons_status cli_write_volume_file(const coons_volume_mesh *vm, const char *path,
+                                   coons_format format, const coons_write_options *wopts,
+                                   coons_error *err);
+int cli_caught_signal(void);
+void cli_die_of_caught_signal(coons_status rc, const char *shown);
+/* Whether `output` is the model file `input` (same device and inode). */
+int cli_is_model_file(const char *output, const char *input);
+
 int cli_write_output(const coons_model *m, long body, coons_format format, const char *output,
                      const coons_sample_options *so, int repair, const char *input);
 

@@ -173,7 +173,8 @@ static int info_mesh(const coons_model *m, size_t i, const coons_sample_options 
 /* One entry of "bodies"; *vol receives its volume (relative accuracy
  * `rel`). */
 static int info_body(const coons_model *m, size_t i, int first, double rel,
-                     const coons_sample_options *so, int checks, double *vol)
+                     const coons_sample_options *so, int checks, double *vol,
+                     const coons_volume_mesh *vm, size_t part)
 {
     const coons_body *b = coons_model_body(m, i);
     const char *name = coons_model_body_name(m, i);
@@ -205,6 +206,10 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
     printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
     int rc = info_mesh(m, i, so, checks);
     if (rc) return rc;
+    if (vm) {
+        printf(",\n     \"volume_mesh\": ");
+        cli_print_volume_quality(vm, part);
+    }
     printf("}");
     return 0;
 }
@@ -343,13 +348,25 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     int checks = !o->no_solid && coons_csg_is_available();
     double total = 0.0;
     size_t listed = 0;
+    coons_volume_mesh *vm = NULL;
+    if (o->volume_mesh || (cli_is_volume_format(o->format) && (o->output || o->format_arg))) {
+        coons_error err = COONS_ERROR_INIT;
+        if (cli_volume_mesh(m, only, o, &vm, &err) != COONS_OK) {
+            cli_progress_end();
+            cli_message(0, "volume mesh: %s", err.message);
+            return EXIT_GEOMETRY;
+        }
+    }
     print_model(m, tol, clo, chi);
     printf(",\n  \"bodies\": [");
     for (size_t i = 0; i < n; i++) {
         if (only >= 0 && (size_t)only != i) continue;
         double vol;
-        int rc = info_body(m, i, listed == 0, rel, so, checks, &vol);
-        if (rc) return rc;
+        int rc = info_body(m, i, listed == 0, rel, so, checks, &vol, vm, only >= 0 ? 0 : i);
+        if (rc) {
+            coons_volume_mesh_free(vm);
+            return rc;
+        }
         total += vol;
         listed++;
     }
@@ -360,8 +377,15 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
         printf(",\n  \"solid\": null");
     } else {
         int rc = info_solid(m, only, so, !o->no_repair);
-        if (rc) return rc;
+        if (rc) {
+            coons_volume_mesh_free(vm);
+            return rc;
+        }
     }
     printf("\n}\n");
-    return 0;
+    /* --info -o FILE.vtu: the report, then the mesh written as -o alone would. */
+    int rc = 0;
+    if (vm && !o->volume_mesh) rc = fflush(stdout) != 0 ? EXIT_GEOMETRY : cli_write_volume_mesh(m, vm, o);
+    coons_volume_mesh_free(vm);
+    return rc;
 }

@@ -34,6 +34,16 @@ static int run_mode(const options *o, const coons_model *m, long body)
     coons_sample_options so = sample_options(o, m);
     if (o->eval) return cli_eval(coons_model_body(m, body < 0 ? 0 : (size_t)body), o->jacobian);
     if (o->info) return cli_info(m, body, &so, o);
+    if (cli_is_volume_format(o->format)) {
+        if (o->output && strcmp(o->output, "-") != 0 && strcmp(o->input, "-") != 0 &&
+            cli_is_model_file(o->output, o->input)) {
+            fprintf(stderr, "%s: the output '%s' is the model file '%s'; refusing to "
+                            "overwrite it\n",
+                    PROG, o->output, o->input);
+            return EXIT_USAGE;
+        }
+        return cli_write_volume(m, body, o);
+    }
     return cli_write_output(m, body, o->format, o->output, &so, !o->no_repair, o->input);
 }
 

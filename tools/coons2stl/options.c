@@ -28,7 +28,10 @@ typedef enum value_kind {
     V_TEXT,     /* a string, kept as given */
     V_REAL,     /* a finite number > 0, into a double */
     V_UNSIGNED, /* a whole number from 1 to `max`, into an unsigned */
-    V_SIZE      /* a whole number from 1 to `max`, into a size_t */
+    V_SIZE,     /* a whole number from 1 to `max`, into a size_t */
+    V_LATTICE,  /* N or NU,NV,NW, each from 1 to `max`: into `resolution3` (and N into
+                   the unsigned at `offset` when one number is given) */
+    V_LIST      /* a string, repeatable: appended to `iso` */
 } value_kind;
 
 typedef struct option_row {
@@ -54,17 +57,34 @@ static const option_row OPTIONS[] = {
     {"output", 'o', "FILE", V_TEXT, AT(output),
      "write the mesh to FILE (default: standard output)", NULL, 0, 0, NULL},
     {"format", 'f', "FMT", V_TEXT, AT(format_arg),
-     "stl (binary), stl-ascii, off or scad; by default taken\n"
-     "from the extension of FILE (.stl, .off, .scad), else stl",
+     "surface: stl (binary), stl-ascii, off or scad; volume:\n"
+     "msh (Gmsh 2.2), msh4, vtu, vtu-ascii, inp or vtk; by default\n"
+     "taken from the extension of FILE (.stl, .off, .scad, .msh,\n"
+     ".vtu, .inp, .vtk), else stl",
      NULL, 0, 0, NULL},
     {"tolerance", 't', "D", V_REAL, AT(tolerance),
      "largest distance between mesh and surface (> 0),\n"
      "instead of the model's \"tolerance\"",
      "a number > 0", 0, 0, NULL},
-    {"resolution", 0, "N", V_UNSIGNED, AT(resolution),
+    {"resolution", 0, "N[,N,N]", V_LATTICE, AT(resolution),
      "sample each body on a fixed lattice of N intervals along\n"
-     "u, v and w instead of adapting it to the tolerance",
+     "u, v and w instead of adapting it to the tolerance\n"
+     "(volume meshes: also NU,NV,NW)",
      "a whole number from 1 to {max}", 0, 1u << 20, NULL},
+    {"element", 0, "KIND", V_TEXT, AT(element_arg),
+     "volume meshes: hex8 (default), hex20 or hex27 cells", NULL, 0, 0, NULL},
+    {"allow-inverted", 0, NULL, V_FLAG, AT(allow_inverted),
+     "volume meshes: write them even with inverted cells", NULL, 0, 0, NULL},
+    {"volume-mesh", 0, NULL, V_FLAG, AT(volume_mesh),
+     "with --info, report the volume mesh (\"volume_mesh\")\n"
+     "without writing one",
+     NULL, 0, 0, NULL},
+    {"iso", 0, "D=V[,V...]", V_LIST, 0,
+     "write the surfaces D = V (D: u, v or w; V in [0,1]) of\n"
+     "every body instead of the boundary (repeatable)",
+     NULL, 0, 0, NULL},
+    {"with-boundary", 0, NULL, V_FLAG, AT(with_boundary),
+     "with --iso, write the boundary too", NULL, 0, 0, NULL},
     {"max-triangles", 0, "N", V_SIZE, AT(max_triangles),
      "refuse to make more than N triangles (default {default})", "a whole number > 0",
      COONS_MESH_MAX_TRIANGLES, SIZE_MAX, NULL},
@@ -211,6 +231,8 @@ static int usage_error(const char *fmt, ...)
  * checked after the loop, in the table's order. */
 typedef struct parse_state {
     const char *given[NOPTIONS];
+    const char *list[64]; /* V_LIST values, in order */
+    size_t nlist;
     int only_files; /* after "--" */
 } parse_state;
 
@@ -268,6 +290,11 @@ static int read_option(int argc, char **argv, int *i, parse_state *ps)
         value = argv[++*i];
     }
     if (r->kind == V_ACTION) return r->action();
+    if (r->kind == V_LIST) {
+        if (ps->nlist == sizeof ps->list / sizeof ps->list[0])
+            return usage_error("at most %zu --%s options", ps->nlist, r->name);
+        ps->list[ps->nlist++] = value;
+    }
     ps->given[r - OPTIONS] = value ? value : "";
     return -1;
 }
@@ -324,6 +351,26 @@ static int store_value(const option_row *r, const char *value, options *o)
             *(size_t *)(void *)field = (size_t)v;
         return -1;
     }
+    case V_LATTICE: {
+        unsigned n[3] = {0, 0, 0};
+        int k = 0;
+        const char *p = value;
+        for (;;) {
+            unsigned long long v = strtoull(p, &end, 10);
+            if (*p < '0' || *p > '9' || errno || v < 1 || v > r->max || k == 3)
+                return bad_value(r, value);
+            n[k++] = (unsigned)v;
+            if (*end == '\0') break;
+            if (*end != ',') return bad_value(r, value);
+            p = end + 1;
+        }
+        if (k == 2) return bad_value(r, value);
+        o->resolution_split = k == 3;
+        for (int d = 0; d < 3; d++) o->resolution3[d] = k == 3 ? n[d] : n[0];
+        *(unsigned *)(void *)field = n[0];
+        return -1;
+    }
+    case V_LIST:
     case V_ACTION: break;
     }
     return -1;
@@ -337,6 +384,8 @@ static int store_values(const parse_state *ps, options *o)
         if (rc >= 0) return rc;
     }
     if (o->jacobian) o->eval = 1; /* --jacobian implies --eval */
+    for (size_t i = 0; i < ps->nlist; i++) o->iso[i] = ps->list[i];
+    o->niso = ps->nlist;
     return -1;
 }
 
@@ -354,25 +403,42 @@ static int check_modes(const parse_state *ps, const options *o)
     if (o->eval && (o->no_repair || o->force_progress))
         return usage_error("%s", "--no-repair and --progress are for meshes and --info");
     if (o->no_solid && !o->info) return usage_error("%s", "--no-solid is for --info");
-    if ((o->eval || o->info) && (o->output || o->format_arg))
+    if ((o->eval || (o->info && !cli_is_volume_format(o->format))) &&
+        (o->output || o->format_arg))
         return usage_error("%s", "-o and -f are for meshes: --eval and --info print to "
-                                 "standard output");
+                                 "standard output (--info -o takes a volume-mesh format)");
+    int volume = cli_is_volume_format(o->format) && (o->output || o->format_arg);
+    if (o->volume_mesh && !o->info) return usage_error("%s", "--volume-mesh is for --info");
+    if (o->volume_mesh && volume)
+        return usage_error("%s", "--volume-mesh reports without writing: leave out -o");
+    volume |= o->volume_mesh;
+    if (!volume && (o->element_arg || o->allow_inverted || o->resolution_split))
+        return usage_error("%s", "--element, --allow-inverted and --resolution NU,NV,NW are "
+                                 "for volume meshes (-o FILE.msh, .vtu, .inp, .vtk, or "
+                                 "--info --volume-mesh)");
+    if (o->with_boundary && !o->niso) return usage_error("%s", "--with-boundary is for --iso");
+    if (o->niso && (o->eval || o->info))
+        return usage_error("%s", "--iso is for -o: --eval and --info write no surfaces");
+    if (o->niso && o->format != COONS_FORMAT_OFF && o->format != COONS_FORMAT_SCAD &&
+        o->format != COONS_FORMAT_VTU && o->format != COONS_FORMAT_VTU_ASCII)
+        return usage_error("--iso writes surfaces, which '%s' cannot hold: use .off, .scad "
+                           "or .vtu",
+                           coons_format_name(o->format));
     if (o->eval && strcmp(o->input, "-") == 0)
         return usage_error("%s", "--eval reads parameters from standard input, so the model "
                                  "must come from a file");
     return -1;
 }
 
-/* -f, else the output's extension (the library's names), else binary STL. */
-/* The -f names of the surface formats, from the library's format table, as
- * "stl, stl-ascii, off or scad": a format's name is its extension's stem
- * when -f accepts that (".stl" -> "stl"), else its table name. */
-static void surface_formats(char *out, size_t cap)
+/* The -f names of the formats, from the library's format table, as
+ * "stl, stl-ascii, off, scad, ... or inp": a format's name is its
+ * extension's stem when -f accepts that (".stl" -> "stl"), else its table
+ * name. */
+static void format_names(char *out, size_t cap)
 {
-    const char *names[16];
+    const char *names[32];
     size_t n = 0;
-    for (int f = 1; coons_format_kind((coons_format)f) != COONS_MESH_KIND_NONE && n < 16; f++) {
-        if (coons_format_kind((coons_format)f) != COONS_MESH_KIND_SURFACE) continue;
+    for (int f = 1; coons_format_kind((coons_format)f) != COONS_MESH_KIND_NONE && n < 32; f++) {
         const char *ext = coons_format_extension((coons_format)f);
         coons_format g = COONS_FORMAT_AUTO;
         if (ext && coons_format_from_name(ext + 1, &g, NULL) == COONS_OK && g == (coons_format)f)
@@ -387,10 +453,13 @@ static void surface_formats(char *out, size_t cap)
                                 i == 0 ? "" : (i + 1 == n ? " or " : ", "), names[i]);
 }
 
+int cli_is_volume_format(coons_format f) { return coons_format_kind(f) == COONS_MESH_KIND_VOLUME; }
+
+/* -f, else the output's extension (the library's names), else binary STL. */
 static int resolve_format(options *o)
 {
     char list[256];
-    surface_formats(list, sizeof list);
+    format_names(list, sizeof list);
     if (o->format_arg) {
         if (coons_format_from_name(o->format_arg, &o->format, NULL) != COONS_OK)
             return usage_error("unknown format '%s': expected %s", o->format_arg, list);
@@ -401,9 +470,58 @@ static int resolve_format(options *o)
     } else {
         o->format = COONS_FORMAT_STL_BINARY;
     }
-    if (coons_format_kind(o->format) != COONS_MESH_KIND_SURFACE)
-        return usage_error("'%s' is a volume-mesh format: coons2stl writes surfaces (expected %s)",
-                           coons_format_name(o->format), list);
+    return -1;
+}
+
+/* --element hex8|hex20|hex27; -f inp holds hex8 and hex20 only. */
+static int resolve_element(options *o)
+{
+    o->element = COONS_ELEMENT_HEX8;
+    if (o->element_arg) {
+        if (strcmp(o->element_arg, "hex8") == 0)
+            o->element = COONS_ELEMENT_HEX8;
+        else if (strcmp(o->element_arg, "hex20") == 0)
+            o->element = COONS_ELEMENT_HEX20;
+        else if (strcmp(o->element_arg, "hex27") == 0)
+            o->element = COONS_ELEMENT_HEX27;
+        else
+            return usage_error("--element needs hex8, hex20 or hex27, not '%s'", o->element_arg);
+    }
+    if (o->element == COONS_ELEMENT_HEX27 && o->format == COONS_FORMAT_INP &&
+        (o->output || o->format_arg))
+        return usage_error("%s", "--element hex27 cannot be written to an Abaqus/CalculiX deck "
+                                 "(.inp holds C3D8 and C3D20: use hex8 or hex20)");
+    return -1;
+}
+
+/* --iso D=V[,V...]: D one of u, v, w; every V a number in [0, 1]. */
+static int resolve_iso(options *o)
+{
+    size_t cap = sizeof o->iso_value / sizeof o->iso_value[0];
+    for (size_t i = 0; i < o->niso; i++) {
+        const char *spec = o->iso[i];
+        const char *dirs = "uvw", *d = spec[0] ? strchr(dirs, spec[0]) : NULL;
+        if (!d || spec[1] != '=' || !spec[2])
+            return usage_error("--iso needs D=V[,V...] with D one of u, v, w, not '%s'", spec);
+        const char *p = spec + 2;
+        for (;;) {
+            char *end;
+            errno = 0;
+            double x = strtod(p, &end);
+            if (end == p || (*end && *end != ',') || !isfinite(x))
+                return usage_error("--iso '%s': '%.*s' is not a number", spec,
+                                   (int)strcspn(p, ","), p);
+            if (x < 0 || x > 1)
+                return usage_error("--iso '%s': %c = %g lies outside the parameter range [0, 1]",
+                                   spec, *d, x);
+            if (o->niso_surfaces == cap)
+                return usage_error("--iso: at most %zu surfaces", cap);
+            o->iso_dir[o->niso_surfaces] = (int)(d - dirs);
+            o->iso_value[o->niso_surfaces++] = x;
+            if (!*end) break;
+            p = end + 1;
+        }
+    }
     return -1;
 }
 
@@ -415,6 +533,8 @@ int cli_parse_args(int argc, char **argv, options *o)
     if (rc >= 0) return rc;
     if (!o->input) return usage_error("%s", "no model file given");
     if ((rc = store_values(&ps, o)) >= 0) return rc;
+    if ((rc = resolve_format(o)) >= 0) return rc;
     if ((rc = check_modes(&ps, o)) >= 0) return rc;
-    return resolve_format(o);
+    if ((rc = resolve_element(o)) >= 0) return rc;
+    return resolve_iso(o);
 }

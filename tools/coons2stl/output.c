@@ -63,7 +63,7 @@ static void model_name(const char *path, char *out, size_t cap)
 
 /* Refuses before the (possibly long) meshing; the library checks again at
  * write time. */
-static int is_model_file(const char *output, const char *input)
+int cli_is_model_file(const char *output, const char *input)
 {
     struct stat in_st, out_st;
     return stat(input, &in_st) == 0 && stat(output, &out_st) == 0 &&
@@ -98,10 +98,25 @@ static coons_status write_mesh(coons_mesh *mesh, const char *output, coons_forma
     return rc;
 }
 
+coons_status cli_write_volume_file(const coons_volume_mesh *vm, const char *path,
+                                   coons_format format, const coons_write_options *wopts,
+                                   coons_error *err)
+{
+    coons_write_options w = *wopts;
+    w.cancel = write_cancelled;
+    struct sigaction old[NSIG_HANDLED];
+    catch_signals(old);
+    coons_status rc = coons_volume_mesh_write(vm, path, format, &w, err);
+    restore_signals(old);
+    return rc;
+}
+
+int cli_caught_signal(void) { return caught_signal != 0; }
+
 /* Whatever happened, nothing partial is left: either the write was
  * cancelled (temporary file removed, old output untouched) or it had
  * already completed. Die of the signal as expected. */
-static void die_of_caught_signal(coons_status rc, const char *shown)
+void cli_die_of_caught_signal(coons_status rc, const char *shown)
 {
     if (rc != COONS_OK) fprintf(stderr, "%s: %s: interrupted; nothing was written\n", PROG, shown);
     int sig = caught_signal;
@@ -122,7 +137,7 @@ int cli_write_output(const coons_model *m, long body, coons_format format, const
     int to_stdout = !output || strcmp(output, "-") == 0;
     const char *shown = to_stdout ? "<stdout>" : output;
     int from_file = input && strcmp(input, "-") != 0;
-    if (!to_stdout && from_file && is_model_file(output, input)) {
+    if (!to_stdout && from_file && cli_is_model_file(output, input)) {
         fprintf(stderr, "%s: the output '%s' is the model file '%s'; refusing to overwrite it\n",
                 PROG, output, input);
         return EXIT_USAGE;
@@ -148,7 +163,7 @@ int cli_write_output(const coons_model *m, long body, coons_format format, const
     wopts.protect_path = from_file ? input : NULL;
     wopts.cancel = write_cancelled;
     rc = write_mesh(mesh, to_stdout ? NULL : output, format, &wopts, &err);
-    if (caught_signal) die_of_caught_signal(rc, shown);
+    if (caught_signal) cli_die_of_caught_signal(rc, shown);
     if (rc != COONS_OK) {
         fprintf(stderr, "%s: %s\n", PROG, err.message);
         return EXIT_GEOMETRY;
