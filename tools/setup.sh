@@ -11,6 +11,11 @@ PKGS=(
   openscad mandoc groff-base valgrind
   clang libclang-rt-14-dev
   python3
+  # Volume meshes are checked by the programs that read them (issue 10):
+  # Gmsh (binary and Python module), CalculiX, meshio, VTK's Python module,
+  # and an X server for OpenSCAD's preview renders (xvfb-run).
+  gmsh python3-gmsh calculix-ccx python3-meshio python3-vtk9 python3-numpy
+  xvfb xauth
 )
 
 missing=()
