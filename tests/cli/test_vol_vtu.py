@@ -26,9 +26,21 @@ lattice of (r, s, t) in [0,1]^3 under a known map) for every element
   the same point and cell data (x = map(u, v, w));
 - both encodings give the same data, bit for bit.
 
+And coons2stl's own .vtu files (coons2stl EX -o x.vtu --resolution 4, hex8
+and hex27) of examples/nail.json, spool.json, body1-density.json and
+volume-nurbs.json, read by VTK and meshio: the point data u, v, w, det_j
+and cell data body, scaled_jacobian; a sample of nodes at --eval's point of
+their (u, v, w); vtkCellValidator; and the sum of the hex27 cells' volumes
+(3x3x3 Gauss quadrature of the isoparametric cell, from the nodes, with
+the triquadratic basis at VTK's parametric node positions) within 1e-4
+relative of --info's exact volume at --resolution 6 on body1-density.json
+and volume-nurbs.json.
+
 Usage: test_vol_vtu.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
+import json
 import os
+import subprocess
 import sys
 import tempfile
 
@@ -325,10 +337,166 @@ def same_data(a, b):
     return True
 
 
+# ---- coons2stl's .vtu files ---------------------------------------------------
+
+# vtkTriQuadraticHexahedron's parametric node positions (VTK's class
+# documentation; the first 8 and 20 are vtkHexahedron's and
+# vtkQuadraticHexahedron's).
+VTK_PARAM27 = np.array([
+    (0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1),
+    (.5, 0, 0), (1, .5, 0), (.5, 1, 0), (0, .5, 0), (.5, 0, 1), (1, .5, 1), (.5, 1, 1),
+    (0, .5, 1), (0, 0, .5), (1, 0, .5), (1, 1, .5), (0, 1, .5), (0, .5, .5), (1, .5, .5),
+    (.5, 0, .5), (.5, 1, .5), (.5, .5, 0), (.5, .5, 1), (.5, .5, .5)])
+
+
+def lagrange2(node, x):
+    """The quadratic Lagrange polynomial on nodes 0, 1/2, 1 that is 1 at
+    `node`, and its derivative, at x."""
+    if node == 0:
+        return 2 * (x - 0.5) * (x - 1), 4 * x - 3
+    if node == 1:
+        return 2 * x * (x - 0.5), 4 * x - 1
+    return 4 * x * (1 - x), 4 - 8 * x
+
+
+def gauss_derivatives():
+    """3x3x3 Gauss points on [0,1]^3: weights (27,) and the triquadratic
+    basis' gradients (27 points, 27 nodes, 3)."""
+    g = [0.5 - 0.5 * (0.6 ** 0.5), 0.5, 0.5 + 0.5 * (0.6 ** 0.5)]
+    gw = [5 / 18, 8 / 18, 5 / 18]
+    w, d = [], []
+    for a in range(3):
+        for b in range(3):
+            for c in range(3):
+                x = (g[a], g[b], g[c])
+                w.append(gw[a] * gw[b] * gw[c])
+                rows = []
+                for node in VTK_PARAM27:
+                    l = [lagrange2(node[i], x[i]) for i in range(3)]
+                    rows.append([l[0][1] * l[1][0] * l[2][0], l[0][0] * l[1][1] * l[2][0],
+                                 l[0][0] * l[1][0] * l[2][1]])
+                d.append(rows)
+    return np.array(w), np.array(d)
+
+
+GW, GD = gauss_derivatives()
+
+
+def hex27_volume(nodes):
+    """Sum over cells (nodes: (cells, 27, 3), VTK order) of the quadrature
+    of det J of the isoparametric cell."""
+    jac = np.einsum("cki,gkj->cgij", nodes, GD)
+    return float(np.sum(np.linalg.det(jac) * GW))
+
+
+def cli_info_volume(path):
+    rc, out, err = T.run(["--info", "--no-solid", path])
+    try:
+        return float(json.loads(out)["bodies"][0]["volume"])
+    except (ValueError, KeyError, IndexError, TypeError):
+        T.check(f"{os.path.basename(path)}: --info gives the volume", False, err)
+        return None
+
+
+def cli_write(tmp, path, element, res):
+    out = os.path.join(tmp, f"{os.path.basename(path)}-{element}-{res}.vtu")
+    args = [path, "-o", out, "--resolution", str(res)]
+    if element != "hex8":
+        args += ["--element", element]
+    rc, _, err = T.run(args)
+    if not T.check(f"coons2stl {os.path.basename(path)} -o x.vtu --resolution {res} "
+                   f"--element {element}: written", rc == 0 and os.path.exists(out), err):
+        return None
+    return out
+
+
+def check_cli_file(tmp, path, element):
+    ex = os.path.basename(path)
+    name = f"coons2stl {ex} {element}"
+    out = cli_write(tmp, path, element, 4)
+    if out is None:
+        return
+    rc, g = read_vtk(out)
+    if not T.check(f"{name}: VTK reads it", rc == 0 and g.GetNumberOfPoints() > 0, f"error {rc}"):
+        return
+    types = {g.GetCellType(c) for c in range(g.GetNumberOfCells())}
+    allowed = {12, 13, 14} if element == "hex8" else {29}
+    T.check(f"{name}: 64 cells of VTK types {sorted(types)}",
+            g.GetNumberOfCells() == 64 and types <= allowed, str(types))
+    pd, cd = arrays(g.GetPointData()), arrays(g.GetCellData())
+    T.check(f"{name}: point data u, v, w, det_j (Float64)",
+            [(a, t) for a, t, _ in pd] == [(k, "Float64") for k in ("u", "v", "w", "det_j")],
+            str([(a, t) for a, t, _ in pd]))
+    T.check(f"{name}: cell data body (Int32), scaled_jacobian (Float64)",
+            [(a, t) for a, t, _ in cd] == [("body", "Int32"), ("scaled_jacobian", "Float64")],
+            str([(a, t) for a, t, _ in cd]))
+    x = vtk_to_numpy(g.GetPoints().GetData())
+    uvw = np.stack([a for _, _, a in pd[:3]], axis=1)
+    # Isoparametric: a sample of nodes at --eval's point of their (u, v, w).
+    sel = list(range(0, len(x), max(1, len(x) // 150)))
+    rc, ev, err = T.run(["--eval", path],
+                        stdin="".join("%r %r %r\n" % tuple(uvw[i]) for i in sel))
+    try:
+        got = np.array([[float(t) for t in ln.split()] for ln in ev.splitlines()])
+    except ValueError:
+        got = None
+    scale = float(np.abs(x).max()) or 1.0
+    T.check(f"{name}: {len(sel)} nodes at --eval of their (u, v, w)",
+            rc == 0 and got is not None and got.shape == (len(sel), 3) and
+            float(np.abs(got - x[sel]).max()) <= 1e-12 * scale, err)
+    if element == "hex8":
+        check_quality(name, g)
+    try:
+        m = meshio.read(out)
+    except Exception as exc:  # noqa: BLE001
+        T.check(f"{name}: meshio reads it", False, repr(exc))
+        return
+    same = (np.array_equal(m.points, x) and list(m.point_data) == ["u", "v", "w", "det_j"] and
+            all(np.array_equal(m.point_data[k], a) for k, _, a in pd))
+    T.check(f"{name}: meshio reads VTK's points and point data", same)
+    mine = [sorted(tuple(m.points[i]) for i in row) for b in m.cells for row in b.data]
+    T.check(f"{name}: meshio's cells have VTK's node coordinates", mine == cell_sets(g))
+
+
+def check_cli_volume(tmp, path):
+    ex = os.path.basename(path)
+    exact_v = cli_info_volume(path)
+    if exact_v is None:
+        return
+    errs = {}
+    for res in (4, 6):
+        out = cli_write(tmp, path, "hex27", res)
+        if out is None:
+            return
+        rc, g = read_vtk(out)
+        conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 27)
+        nodes = vtk_to_numpy(g.GetPoints().GetData())[conn]
+        errs[res] = abs(hex27_volume(nodes) - exact_v) / abs(exact_v)
+    T.check(f"{ex}: hex27 cell volumes sum to --info's volume {exact_v:.10g} "
+            f"(relative error {errs[4]:.1e} at --resolution 4, {errs[6]:.1e} at 6)",
+            errs[6] < 1e-4 and errs[6] < errs[4], str(errs))
+
+
+def cli_tests(tmp):
+    if not T.check("coons2stl exists", bool(T.bin) and os.access(T.bin, os.X_OK), str(T.bin)):
+        return
+    # The quadrature itself: the reference cell has volume 1, a stretched
+    # and sheared one its determinant.
+    a = np.array([[2.0, 0.3, 0.0], [0.0, 1.5, 0.2], [0.1, 0.0, 0.5]])
+    T.check("the test's hex27 quadrature: unit cell 1, affine cell det A",
+            abs(hex27_volume(VTK_PARAM27[None]) - 1) < 1e-14 and
+            abs(hex27_volume((VTK_PARAM27 @ a.T)[None]) - np.linalg.det(a)) < 1e-14)
+    ex_dir = os.path.join(T.src, "examples")
+    for ex in ("nail.json", "spool.json", "body1-density.json", "volume-nurbs.json"):
+        for element in ("hex8", "hex27"):
+            check_cli_file(tmp, os.path.join(ex_dir, ex), element)
+    for ex in ("body1-density.json", "volume-nurbs.json"):
+        check_cli_volume(tmp, os.path.join(ex_dir, ex))
+
+
 def main():
     if not T.check("vm_sample exists", os.access(SAMPLE, os.X_OK), SAMPLE):
         T.finish()
-    import subprocess
     with tempfile.TemporaryDirectory() as tmp:
         for element in ELEMENTS:
             for which in MAPS:
@@ -352,6 +520,7 @@ def main():
                 if len(grids) == 2:
                     T.check(f"{element} {which}: vtu and vtu-ascii hold the same data",
                             same_data(grids["vtu"], grids["vtu-ascii"]))
+        cli_tests(tmp)
     T.finish()
 
 
