@@ -375,6 +375,55 @@ static void test_model(void **state)
     coons_volume_mesh_free(vm);
     coons_model_free(m);
 
+    /* Body b is a box whose parameters run along y, -x, z: its face v1 is
+     * a's face u1 with swapped and flipped parameters; the lattices the
+     * sampler picks differ (b is twice as long), yet the shared face gets
+     * one lattice and one set of nodes. */
+    const char *turned = "{\"coons\": 1, \"tolerance\": 0.01, \"bodies\": ["
+                         "{\"type\": \"body0\", \"name\": \"a\", \"corners\": [[0,0,0],[0,0,1],"
+                         "[0,1,0],[0,1,1],[1,0,0],[1,0,1],[1,1,0],[1,1,1]]},"
+                         "{\"type\": \"body0\", \"name\": \"b\", \"corners\": [[3,0,0],[3,0,1],"
+                         "[1,0,0],[1,0,1],[3,1,0],[3,1,1],[1,1,0],[1,1,1]]}]}";
+    m = load(turned);
+    for (int el = 0; el < 2; el++) {
+        coons_volume_options ot = COONS_VOLUME_OPTIONS_INIT;
+        ot.element = el ? COONS_ELEMENT_HEX27 : COONS_ELEMENT_HEX8;
+        assert_coons_ok(coons_model_volume_mesh(m, &ot, &vm, &e), &e);
+        coons_volume_quality qa = COONS_VOLUME_QUALITY_INIT, qb = COONS_VOLUME_QUALITY_INIT;
+        assert_coons_ok(coons_volume_mesh_quality(vm, 0, &qa, &e), &e);
+        assert_coons_ok(coons_volume_mesh_quality(vm, 1, &qb, &e), &e);
+        size_t shared;
+        coons_volume_mesh_node_set(vm, 1, NULL, &shared); /* a.u1 */
+        assert_true(shared > 4);
+        assert_int_equal(coons_volume_mesh_node_count(vm), qa.nodes + qb.nodes - shared);
+        /* every node of a.u1 is one of b.v1's */
+        const uint32_t *na, *nbv;
+        size_t ca, cb;
+        coons_volume_mesh_node_set(vm, 1, &na, &ca);
+        coons_volume_mesh_node_set(vm, 6 + 3, &nbv, &cb);
+        assert_int_equal(ca, cb);
+        for (size_t i = 0; i < ca; i++) {
+            int found = 0;
+            for (size_t j = 0; j < cb; j++) found |= na[i] == nbv[j];
+            assert_true(found);
+        }
+        assert_int_equal(qa.inverted + qb.inverted, 0);
+        if (!el) {
+            /* conformal: interior quadrangles in two cells; the boundary is
+             * the 12 faces' quadrangles but the shared face's, twice */
+            size_t bnd = 0, inner;
+            for (int f = 0; f < 12; f++) {
+                size_t c;
+                coons_volume_mesh_face_set(vm, (size_t)f, NULL, &c);
+                bnd += c;
+            }
+            coons_volume_mesh_face_set(vm, 1, NULL, &inner);
+            check_conformal(vm, bnd - 2 * inner);
+        }
+        coons_volume_mesh_free(vm);
+    }
+    coons_model_free(m);
+
     const char *overlap = "{\"coons\": 1, \"bodies\": ["
                           "{\"type\": \"body0\", \"name\": \"a\", \"corners\": [[0,0,0],[0,0,1],"
                           "[0,1,0],[0,1,1],[1,0,0],[1,0,1],[1,1,0],[1,1,1]]},"

@@ -332,8 +332,11 @@ COONS_EXPORT coons_status coons_body_volume_mesh(const coons_body *b,
 /**
  * Meshes every body of a model into one conformal mesh, one part per body
  * in body order (named coons_model_body_name(); cell field `body` is the
- * body index). Bodies that share a face (the same points, node for node on
- * their lattices) share its nodes; the face sets of both sides remain.
+ * body index). Bodies that share a face (the same map up to one of the 8
+ * symmetries of the unit square, within 1e-9 of the box diagonal, found by
+ * geometry) share its nodes: the directions shared faces connect get one
+ * lattice, the union of the bodies' lattices (each still meets its
+ * tolerance); the face sets of both sides remain.
  * Bodies whose boxes overlap without sharing a face cannot be meshed
  * conformally: ::COONS_E_UNSUPPORTED naming both bodies.
  * @return as coons_body_volume_mesh(), plus ::COONS_E_UNSUPPORTED.

@@ -27,6 +27,29 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
 
 /* Samples body b (sample.c) and appends it to `mesh` as one part.
  * *triangles receives the part's triangle count. */
+/* A face shared by two bodies (shared_faces.c): face[0] of body[0] and
+ * face[1] of body[1] (faces numbered u0 u1 v0 v1 w0 w1) are the same map:
+ * F1(a', b') = F0(a, b), where (a', b') is (a, b), swapped when sym has
+ * COONS__SYM_SWAP, then a' -> 1 - a' with COONS__SYM_FLIP_A and
+ * b' -> 1 - b' with COONS__SYM_FLIP_B. A face's (a, b) are its body's two
+ * other parameters in increasing order (coons__face_axes()). */
+enum { COONS__SYM_SWAP = 1, COONS__SYM_FLIP_A = 2, COONS__SYM_FLIP_B = 4 };
+typedef struct coons__shared_face {
+    size_t body[2];
+    int face[2];
+    int sym;
+} coons__shared_face;
+
+/* The fixed axis and the two parameter axes (a < b) of face f. */
+void coons__face_axes(int f, int *fixed, int *a, int *b);
+
+/* Every pair of faces of different bodies that are the same map within
+ * `tol` (coordinates, each), each face in one pair at most; *out is
+ * allocated with coons__malloc (NULL when *count is 0 may also be). */
+coons_status coons__find_shared_faces(const coons_body *const *bodies, size_t nb, double tol,
+                                      coons__shared_face **out, size_t *count,
+                                      coons_error *err);
+
 /* The lattice the boundary sampler settles on for body b with options o
  * (adaptive or fixed, as coons__body_sample_into() would use): t[d] gets
  * n[d] + 1 increasing values from 0 to 1 per direction d = u, v, w,

@@ -13,6 +13,10 @@
  * the body: a cell's node k is F at the parameters of its reference
  * position (Gmsh order, coons/volume.h).
  *
+ * Bodies that share a face (shared_faces.c) get one lattice along the
+ * directions that face connects (share_lattices()), so the face's points
+ * are evaluated at the same parameters from both sides.
+ *
  * Coincident nodes are one node: only boundary points of a body can
  * coincide with another point (the map of a valid body is injective inside),
  * so the boundary points of every body go into one hash grid of cell size
@@ -28,6 +32,7 @@
  * reference position (1 - r, s, t) of node k), which makes them positive.
  * The `det_j` field keeps the body's own sign. */
 #include <float.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "body_impl.h"
@@ -51,6 +56,7 @@ static const unsigned char FACE_CORNERS[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0,
 typedef struct vbody {
     const coons_body *b;
     const char *name;
+    double *t[3];  /* cell lattice values, n[d] + 1 of them */
     double *L[3];  /* node lattice values, m[d] of them */
     size_t n[3];   /* cell intervals */
     size_t m[3];   /* node lattice points: step * n + 1 */
@@ -76,7 +82,10 @@ typedef struct vbuild {
 static void vbuild_free(vbuild *v)
 {
     for (size_t i = 0; i < v->nb; i++)
-        for (int d = 0; d < 3; d++) coons__free(v->vb[i].L[d]);
+        for (int d = 0; d < 3; d++) {
+            coons__free(v->vb[i].L[d]);
+            coons__free(v->vb[i].t[d]);
+        }
     coons__free(v->vb);
     coons__free(v->pos);
     coons__free(v->uf);
@@ -117,11 +126,11 @@ static coons_status opts_resolve(const coons_volume_options *in, coons_volume_op
     return COONS_OK;
 }
 
-/* The lattice of body i: sampled or uniform; then the node lattice. */
+/* The cell lattice of a body: sampled or uniform. */
 static coons_status body_lattice(vbuild *v, vbody *B, const coons_volume_options *o,
                                  double tolerance)
 {
-    double *t[3] = {NULL, NULL, NULL};
+    double **t = B->t;
     coons_status st = COONS_OK;
     if (o->resolution[0]) {
         for (int d = 0; d < 3 && !st; d++) {
@@ -139,6 +148,15 @@ static coons_status body_lattice(vbuild *v, vbody *B, const coons_volume_options
         so.tolerance = tolerance;
         st = coons__body_sample_lattice(B->b, &so, B->name, t, B->n, NULL, v->err);
     }
+    return st;
+}
+
+/* The node lattice: the cell lattice, with the interval midpoints for
+ * hex20 and hex27. */
+static coons_status node_lattice(vbuild *v, vbody *B)
+{
+    double **t = B->t;
+    coons_status st = COONS_OK;
     for (int d = 0; d < 3 && !st; d++) {
         B->m[d] = (size_t)v->step * B->n[d] + 1;
         B->L[d] = coons__malloc_array(B->m[d], sizeof(double));
@@ -152,7 +170,144 @@ static coons_status body_lattice(vbuild *v, vbody *B, const coons_volume_options
         }
         B->L[d][B->m[d] - 1] = 1.0;
     }
-    for (int d = 0; d < 3; d++) coons__free(t[d]);
+    return st;
+}
+
+/* ---- one lattice along directions that shared faces connect ----------- */
+
+/* Union-find with parity over the 3 nb directions (body i, axis d) = 3i+d:
+ * par[x] = 1 when x runs opposite to its parent (t <-> 1 - t). */
+static size_t dfind(size_t *up, unsigned char *par, size_t x, int *parity)
+{
+    int p = 0;
+    while (up[x] != x) {
+        p ^= par[x];
+        x = up[x];
+    }
+    *parity = p;
+    return x;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Gives every set of directions that shared faces connect (in either
+ * sense) one lattice: the union of the members' values, in each member's
+ * own sense, so each body's lattice is refined, never coarsened (each
+ * still meets its tolerance). Like Gmsh's transfinite constraints
+ * propagating through shared surfaces. */
+static coons_status share_lattices(vbuild *v)
+{
+    if (v->nb < 2) return COONS_OK;
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    const coons_body **bodies = coons__malloc_array(v->nb, sizeof *bodies);
+    if (!bodies) return coons__error_nomem(v->err);
+    for (size_t i = 0; i < v->nb; i++) {
+        double a[3], b[3];
+        coons_body_control_bbox(v->vb[i].b, a, b);
+        bbox_add(lo, hi, a);
+        bbox_add(lo, hi, b);
+        bodies[i] = v->vb[i].b;
+    }
+    coons__shared_face *sf = NULL;
+    size_t nsf = 0;
+    coons_status st =
+        coons__find_shared_faces(bodies, v->nb, 1e-9 * bbox_diag(lo, hi), &sf, &nsf, v->err);
+    coons__free(bodies);
+    if (st || !nsf) {
+        coons__free(sf);
+        return st;
+    }
+    size_t nd = 3 * v->nb;
+    size_t *up = coons__malloc_array(nd, sizeof *up);
+    unsigned char *par = coons__calloc(nd, 1), *sym = coons__calloc(nd, 1);
+    if (!up || !par || !sym) {
+        st = coons__error_nomem(v->err);
+        goto done;
+    }
+    for (size_t x = 0; x < nd; x++) up[x] = x;
+    for (size_t k = 0; k < nsf; k++) {
+        int f0, a0, b0, f1, a1, b1, s = sf[k].sym;
+        coons__face_axes(sf[k].face[0], &f0, &a0, &b0);
+        coons__face_axes(sf[k].face[1], &f1, &a1, &b1);
+        int swap = (s & COONS__SYM_SWAP) != 0;
+        size_t from[2] = {3 * sf[k].body[0] + (size_t)a0, 3 * sf[k].body[0] + (size_t)b0};
+        size_t to[2] = {3 * sf[k].body[1] + (size_t)(swap ? b1 : a1),
+                        3 * sf[k].body[1] + (size_t)(swap ? a1 : b1)};
+        int flip[2] = {(s & (swap ? COONS__SYM_FLIP_B : COONS__SYM_FLIP_A)) != 0,
+                       (s & (swap ? COONS__SYM_FLIP_A : COONS__SYM_FLIP_B)) != 0};
+        for (int e = 0; e < 2; e++) {
+            int pa, pb;
+            size_t ra = dfind(up, par, from[e], &pa), rb = dfind(up, par, to[e], &pb);
+            int rel = pa ^ pb ^ flip[e];
+            if (ra == rb) {
+                if (rel) sym[ra] = 1; /* joined both ways: the lattice is symmetric */
+            } else {
+                up[rb] = ra;
+                par[rb] = (unsigned char)rel;
+                sym[ra] |= sym[rb];
+            }
+        }
+    }
+    /* Per class: the union of its members' values, in the root's sense. */
+    for (size_t r = 0; r < nd && !st; r++) {
+        int pr;
+        if (dfind(up, par, r, &pr) != r) continue;
+        size_t total = 0, members = 0;
+        for (size_t x = 0; x < nd; x++) {
+            int p;
+            if (dfind(up, par, x, &p) == r) total += v->vb[x / 3].n[x % 3] + 1, members++;
+        }
+        if (members < 2 && !sym[r]) continue;
+        double *all = coons__malloc_array(2 * total, sizeof(double));
+        if (!all) {
+            st = coons__error_nomem(v->err);
+            break;
+        }
+        size_t n = 0;
+        for (size_t x = 0; x < nd; x++) {
+            int p;
+            if (dfind(up, par, x, &p) != r) continue;
+            const vbody *B = &v->vb[x / 3];
+            for (size_t i = 0; i <= B->n[x % 3]; i++) {
+                double t = B->t[x % 3][i];
+                all[n++] = p ? 1.0 - t : t;
+                if (sym[r]) all[n++] = p ? t : 1.0 - t;
+            }
+        }
+        qsort(all, n, sizeof(double), cmp_double);
+        size_t m = 0;
+        for (size_t i = 0; i < n; i++)
+            if (m == 0 || all[i] - all[m - 1] > 1e-12) all[m++] = all[i];
+        all[0] = 0.0;
+        all[m - 1] = 1.0;
+        for (size_t x = 0; x < nd && !st; x++) {
+            int p;
+            if (dfind(up, par, x, &p) != r) continue;
+            vbody *B = &v->vb[x / 3];
+            double *t = coons__malloc_array(m, sizeof(double));
+            if (!t) {
+                st = coons__error_nomem(v->err);
+                break;
+            }
+            for (size_t i = 0; i < m; i++) t[i] = p ? 1.0 - all[m - 1 - i] : all[i];
+            t[0] = 0.0;
+            t[m - 1] = 1.0;
+            coons__free(B->t[x % 3]);
+            B->t[x % 3] = t;
+            B->n[x % 3] = m - 1;
+        }
+        coons__free(all);
+    }
+done:
+    coons__free(up);
+    coons__free(par);
+    coons__free(sym);
+    coons__free(sf);
     return st;
 }
 
@@ -579,9 +734,8 @@ static coons_status check_conformal(vbuild *v, const coons_volume_mesh *vm)
             if (!shared)
                 st = coons__error_set(v->err, COONS_E_UNSUPPORTED,
                                       "bodies '%s' and '%s' overlap or touch without sharing "
-                                      "a whole face node for node: a conformal volume mesh "
-                                      "needs bodies that meet only along shared faces sampled "
-                                      "alike (try a fixed --resolution)",
+                                      "a whole face: a conformal volume mesh needs bodies that "
+                                      "meet only along whole shared faces",
                                       A->name, B->name);
         }
     coons__free(mark);
@@ -595,9 +749,11 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
 {
     coons_status st = COONS_OK;
     size_t cells = 0;
+    for (size_t i = 0; i < v->nb && !st; i++) st = body_lattice(v, &v->vb[i], o, tolerance);
+    if (!st) st = share_lattices(v);
     for (size_t i = 0; i < v->nb && !st; i++) {
         vbody *B = &v->vb[i];
-        if ((st = body_lattice(v, B, o, tolerance))) break;
+        if ((st = node_lattice(v, B))) break;
         size_t c = B->n[0] * B->n[1] * B->n[2];
         cells += c;
         if (cells > o->max_cells)
