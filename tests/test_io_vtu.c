@@ -293,8 +293,8 @@ static char *write_to(const coons_volume_mesh *vm, coons_format fmt, const coons
     io_tmpdir(dir, sizeof dir);
     snprintf(p, sizeof p, "%s/m.%s", dir, fmt == COONS_FORMAT_VTU ? "vtu" : "xml");
     coons_error e = COONS_ERROR_INIT;
-    assert_coons_ok(coons_volume_mesh_write(vm, p, fmt == COONS_FORMAT_VTU ? COONS_FORMAT_AUTO : fmt,
-                                            o, &e), &e);
+    coons_format f = fmt == COONS_FORMAT_VTU ? COONS_FORMAT_AUTO : fmt; /* .vtu: by extension */
+    assert_coons_ok(coons_volume_mesh_write(vm, p, f, o, &e), &e);
     char *text = io_read_file(p, len);
     assert_non_null(text);
     io_rmdir(dir);
@@ -532,7 +532,10 @@ static void cross3(const double *a, const double *b, double *o)
     o[1] = a[2] * b[0] - a[0] * b[2];
     o[2] = a[0] * b[1] - a[1] * b[0];
 }
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 /* Given hex8 cells of a unit cube lattice collapsed (by merging nodes) at
  * two parallel edges of a face, at a whole face, and at one edge only,
@@ -677,7 +680,8 @@ static void test_base64_arrays(void **state)
             unsigned char *p = exp + 8;
             if (arr == 0) { /* body: Int32 */
                 for (uint32_t c = 0; c < nc; c++, n += 4)
-                    for (int k = 0; k < 4; k++) p[n + k] = (unsigned char)((uint32_t)body[c] >> (8 * k));
+                    for (int k = 0; k < 4; k++)
+                        p[n + k] = (unsigned char)((uint32_t)body[c] >> (8 * k));
             } else if (arr == 1) { /* points */
                 for (size_t i = 0; i < 3 * nn; i++, n += 8) {
                     uint64_t u;
@@ -755,7 +759,8 @@ static void test_empty(void **state)
         assert_int_equal(f.np + f.nc, 0);
         assert_int_equal(f.na, 4);
         for (size_t i = 0; i < 4; i++) assert_int_equal(f.a[i].n, 0);
-        if (!b) assert_non_null(strstr(text, "_AAAAAAAAAAA=AAAAAAAAAAA=AAAAAAAAAAA=AAAAAAAAAAA=\n"));
+        if (!b) /* four byte counts 0, 8 zero bytes each */
+            assert_non_null(strstr(text, "_AAAAAAAAAAA=AAAAAAAAAAA=AAAAAAAAAAA=AAAAAAAAAAA=\n"));
         vtu_free(&f);
         free(text);
     }

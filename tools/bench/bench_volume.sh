@@ -100,7 +100,7 @@ if [ -x /usr/bin/time ]; then
 fi
 
 echo
-echo "== coons2stl --info --volume-mesh: the same mesh and quality, nothing written (min of $repeat) =="
+echo "== coons2stl --info --volume-mesh: the same mesh, nothing written (min of $repeat) =="
 meshonly=()
 for r in $(seq "$repeat"); do
   t0=$(now)
