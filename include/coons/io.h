@@ -43,6 +43,20 @@
  *   `POINT_DATA` and `CELL_DATA` with every field as `SCALARS NAME double`
  *   or `int`, in the order they were added. Parts and sets are not written:
  *   the legacy format has no place for them.
+ * - ::COONS_FORMAT_VTU (volume, `.vtu`): VTK XML UnstructuredGrid, version
+ *   1.0 (VTK file formats, "XML File Formats"), `header_type="UInt64"`,
+ *   every DataArray appended in one `<AppendedData encoding="base64">`
+ *   section as [UInt64 byte count][little-endian values], base64-encoded
+ *   as one stream, offsets counted in encoded characters. Points Float64,
+ *   connectivity and offsets Int64, types UInt8, then every field as
+ *   Float64 or Int32 point or cell data, in order. Cell types and node
+ *   orders as for ::COONS_FORMAT_VTK; in a hex8 mesh a cell with repeated
+ *   corners is a VTK wedge (13: triangle 0 1 2 with its right-hand normal
+ *   pointing away from 3 4 5) or pyramid (14: base counter-clockwise seen
+ *   from the apex 4) where it collapses so, else a degenerate hexahedron.
+ *   The header text and units are an XML comment. Parts and sets are not
+ *   written. ::COONS_FORMAT_VTU_ASCII (no extension) is the same document
+ *   with `format="ascii"` arrays of shortest round-trip numbers.
  * - ::COONS_FORMAT_INP (volume, `.inp`): Abaqus / CalculiX input deck of
  *   model data only (no material, no step): a `**` header comment,
  *   `*HEADING` (`model=NAME units=UNITS`), `*NODE, NSET=NALL` (ids from 1),

@@ -23,14 +23,14 @@ static const coons__format_row ROWS[] = {
      .kind = SURFACE, .write_surface = coons__write_scad, .check_surface = coons__check_scad},
     {.format = COONS_FORMAT_VTK, .name = "vtk", .title = "legacy VTK", .extensions = {".vtk"},
      .kind = VOLUME, .write_volume = coons__write_vtk},
-    /* TEMPORARY (branch iso): stands in for the VTU row of the volume
-     * writer's branch until the merge, which keeps that row and adds
-     * `.write_surface = coons__write_vtu_surface` to it. */
-    {.format = COONS_FORMAT_VTU, .name = "vtu", .title = "VTK XML UnstructuredGrid",
-     .extensions = {".vtu"}, .kind = VOLUME, .write_surface = coons__write_vtu_surface},
+    {.format = COONS_FORMAT_VTU, .name = "vtu", .title = "VTK XML", .extensions = {".vtu"},
+     .kind = VOLUME, .write_volume = coons__write_vtu, .write_surface = coons__write_vtu_surface},
     {.format = COONS_FORMAT_INP, .name = "inp", .title = "Abaqus/CalculiX input deck",
      .extensions = {".inp"}, .kind = VOLUME, .write_volume = coons__write_inp,
      .check_volume = coons__check_inp},
+    {.format = COONS_FORMAT_VTU_ASCII, .name = "vtu-ascii", .title = "ASCII VTK XML",
+     .kind = VOLUME, .write_volume = coons__write_vtu_ascii,
+     .write_surface = coons__write_vtu_surface},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 

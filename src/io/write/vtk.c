@@ -5,20 +5,18 @@
  * POINT_DATA / CELL_DATA attributes). Read by VTK and ParaView, VisIt,
  * meshio and Gmsh.
  *
- * Cells are stored in Gmsh's node order (coons/volume.h); VTK numbers the
- * same corners alike but its edge and face nodes differently: VTK's
- * vtkQuadraticHexahedron edges are 0-1, 1-2, 3-2, 0-3, 4-5, 5-6, 7-6, 4-7,
- * 0-4, 1-5, 2-6, 3-7 and vtkTriQuadraticHexahedron's face nodes lie on the
- * faces x=0, x=1, y=0, y=1, z=0, z=1 (its parametric coordinates), then the
- * centre. Numbers are the shortest text that reads back exactly. */
+ * Cells are stored in Gmsh's node order (coons/volume.h) and written in
+ * VTK's (vtk_order.h). Numbers are the shortest text that reads back
+ * exactly. */
+#include "vtk_order.h"
 #include "writer.h"
 
-/* VTK node k of a cell is the mesh's (Gmsh) node GMSH_OF_VTK[k]. */
-static const unsigned char GMSH_OF_VTK[27] = {0,  1,  2,  3,  4,  5,  6,  7,  8,
-                                              11, 13, 9,  16, 18, 19, 17, 10, 12,
-                                              14, 15, 22, 23, 21, 24, 20, 25, 26};
-
-static int cell_type(size_t npc) { return npc == 8 ? 12 : npc == 20 ? 25 : 29; }
+static int cell_type(size_t npc)
+{
+    return npc == 8    ? COONS__VTK_HEXAHEDRON
+           : npc == 20 ? COONS__VTK_QUADRATIC_HEXAHEDRON
+                       : COONS__VTK_TRIQUADRATIC_HEXAHEDRON;
+}
 
 /* Writes a, the number n, then b (no newline added). */
 static int put_num(coons__sink *s, const char *a, uint64_t n, const char *b)
@@ -74,7 +72,7 @@ static int put_cells(const coons_volume_mesh *vm, coons__sink *s)
         p += coons__fmt_u64(p, npc);
         for (size_t k = 0; k < npc; k++) {
             *p++ = ' ';
-            p += coons__fmt_u64(p, cell[npc * c + GMSH_OF_VTK[k]]);
+            p += coons__fmt_u64(p, cell[npc * c + COONS__GMSH_OF_VTK[k]]);
         }
         *p++ = '\n';
         s->len += (size_t)(p - p0);
