@@ -6,17 +6,11 @@
  * meshio and Gmsh.
  *
  * Cells are stored in Gmsh's node order (coons/volume.h) and written in
- * VTK's (vtk_order.h). Numbers are the shortest text that reads back
+ * VTK's (vtk_order.h); in a hex8 mesh, cells with repeated corners become
+ * VTK wedges and pyramids where they collapse so (coons__vtk_cell()). Numbers are the shortest text that reads back
  * exactly. */
 #include "vtk_order.h"
 #include "writer.h"
-
-static int cell_type(size_t npc)
-{
-    return npc == 8    ? COONS__VTK_HEXAHEDRON
-           : npc == 20 ? COONS__VTK_QUADRATIC_HEXAHEDRON
-                       : COONS__VTK_TRIQUADRATIC_HEXAHEDRON;
-}
 
 /* Writes a, the number n, then b (no newline added). */
 static int put_num(coons__sink *s, const char *a, uint64_t n, const char *b)
@@ -62,17 +56,21 @@ static int put_cells(const coons_volume_mesh *vm, coons__sink *s)
 {
     size_t nc = coons_volume_mesh_cell_count(vm), npc = coons_volume_mesh_nodes_per_cell(vm);
     const uint32_t *cell = coons_volume_mesh_cells(vm);
+    uint32_t nodes[27];
+    unsigned type;
     /* "CELLS n size": size counts each cell's leading node count too. */
-    if (!put_num(s, "CELLS ", nc, "") || !put_num(s, " ", (uint64_t)nc * (npc + 1), "\n"))
-        return 0;
+    uint64_t size = 0;
+    for (size_t c = 0; c < nc; c++) size += 1 + coons__vtk_cell(cell + npc * c, npc, nodes, &type);
+    if (!put_num(s, "CELLS ", nc, "") || !put_num(s, " ", size, "\n")) return 0;
     for (size_t c = 0; c < nc; c++) {
         /* 27 indices of at most 10 digits: within MAXREC. */
         char *p = coons__sink_room(s, COONS__SINK_MAXREC), *p0 = p;
         if (!p) return 0;
-        p += coons__fmt_u64(p, npc);
-        for (size_t k = 0; k < npc; k++) {
+        unsigned n = coons__vtk_cell(cell + npc * c, npc, nodes, &type);
+        p += coons__fmt_u64(p, n);
+        for (unsigned k = 0; k < n; k++) {
             *p++ = ' ';
-            p += coons__fmt_u64(p, cell[npc * c + COONS__GMSH_OF_VTK[k]]);
+            p += coons__fmt_u64(p, nodes[k]);
         }
         *p++ = '\n';
         s->len += (size_t)(p - p0);
@@ -81,7 +79,8 @@ static int put_cells(const coons_volume_mesh *vm, coons__sink *s)
     for (size_t c = 0; c < nc; c++) {
         char *p = coons__sink_room(s, 8), *p0 = p;
         if (!p) return 0;
-        p += coons__fmt_u64(p, (uint64_t)cell_type(npc));
+        coons__vtk_cell(cell + npc * c, npc, nodes, &type);
+        p += coons__fmt_u64(p, type);
         *p++ = '\n';
         s->len += (size_t)(p - p0);
     }

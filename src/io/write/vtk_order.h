@@ -12,6 +12,8 @@
 #ifndef COONS_IO_VTK_ORDER_H
 #define COONS_IO_VTK_ORDER_H
 
+#include "writer.h"
+
 enum {
     COONS__VTK_HEXAHEDRON = 12,
     COONS__VTK_WEDGE = 13,
@@ -35,5 +37,29 @@ static const unsigned char COONS__GMSH_OF_VTK[27] = {0,  1,  2,  3,  4,  5,  6, 
  * reversed. Pyramids need nothing: Gmsh and VTK both list the base
  * counter-clockwise seen from the apex, then the apex. */
 static const unsigned char COONS__PRISM_OF_VTK_WEDGE[6] = {0, 2, 1, 3, 5, 4};
+
+/* Cell i of a mesh of `npc` nodes per cell (Gmsh order) in VTK's terms:
+ * its VTK nodes into out, its type into *type; returns the node count. A
+ * hex8 cell with repeated corners is a wedge or pyramid where
+ * coons__hex8_shape() finds one, else a degenerate hexahedron. */
+static inline unsigned coons__vtk_cell(const uint32_t *h, size_t npc, uint32_t out[27],
+                                       unsigned *type)
+{
+    if (npc != 8) {
+        for (size_t k = 0; k < npc; k++) out[k] = h[COONS__GMSH_OF_VTK[k]];
+        *type = npc == 20 ? COONS__VTK_QUADRATIC_HEXAHEDRON : COONS__VTK_TRIQUADRATIC_HEXAHEDRON;
+        return (unsigned)npc;
+    }
+    uint32_t g[8];
+    coons__cell_shape sh = coons__hex8_shape(h, g);
+    if (sh == COONS__SHAPE_WEDGE) {
+        for (int k = 0; k < 6; k++) out[k] = g[COONS__PRISM_OF_VTK_WEDGE[k]];
+        *type = COONS__VTK_WEDGE;
+        return 6;
+    }
+    memcpy(out, g, sizeof g);
+    *type = sh == COONS__SHAPE_PYRAMID ? COONS__VTK_PYRAMID : COONS__VTK_HEXAHEDRON;
+    return sh == COONS__SHAPE_PYRAMID ? 5u : 8u;
+}
 
 #endif

@@ -190,13 +190,6 @@ static unsigned nodes_of_type(unsigned t)
     }
 }
 
-static unsigned type_of_shape(coons__cell_shape sh)
-{
-    return sh == COONS__SHAPE_WEDGE     ? COONS__VTK_WEDGE
-           : sh == COONS__SHAPE_PYRAMID ? COONS__VTK_PYRAMID
-                                        : COONS__VTK_HEXAHEDRON;
-}
-
 static unsigned cell_type(const cells *c, size_t i)
 {
     if (c->type) return c->type[i];
@@ -206,19 +199,8 @@ static unsigned cell_type(const cells *c, size_t i)
 /* VTK's nodes of cell i into out; returns how many. */
 static unsigned cell_nodes(const cells *c, size_t i, uint32_t out[27])
 {
-    const uint32_t *h = c->cell + c->npc * i;
-    if (c->npc != 8) {
-        for (size_t k = 0; k < c->npc; k++) out[k] = h[COONS__GMSH_OF_VTK[k]];
-        return (unsigned)c->npc;
-    }
-    uint32_t g[8];
-    coons__cell_shape sh = coons__hex8_shape(h, g);
-    if (sh == COONS__SHAPE_WEDGE) {
-        for (int k = 0; k < 6; k++) out[k] = g[COONS__PRISM_OF_VTK_WEDGE[k]];
-        return 6;
-    }
-    memcpy(out, g, sizeof g);
-    return sh == COONS__SHAPE_PYRAMID ? 5u : 8u;
+    unsigned t;
+    return coons__vtk_cell(c->cell + c->npc * i, c->npc, out, &t);
 }
 
 static coons_status cells_init(const coons_volume_mesh *vm, cells *c, coons__sink *s)
@@ -233,10 +215,10 @@ static coons_status cells_init(const coons_volume_mesh *vm, cells *c, coons__sin
     if (!c->type) return s->status = coons__error_nomem(s->err);
     c->nconn = 0;
     for (size_t i = 0; i < c->nc; i++) {
-        uint32_t g[8];
-        unsigned t = type_of_shape(coons__hex8_shape(c->cell + 8 * i, g));
+        uint32_t g[27];
+        unsigned t;
+        c->nconn += coons__vtk_cell(c->cell + 8 * i, 8, g, &t);
         c->type[i] = (unsigned char)t;
-        c->nconn += nodes_of_type(t);
     }
     return COONS_OK;
 }
