@@ -215,9 +215,12 @@ def disc_net(r, z, cx=0.0, cy=0.0, zero=False):
 DISC_W = [[1.0, S2, 1.0], [S2, 0.5, S2], [1.0, S2, 1.0]]
 
 
-def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None):
+def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None, u_factor=None):
     """Body 2 (NURBS faces) of a round solid around the vertical axis through
-    (cx, cy): profile = [(z, r), ...], one disc layer per profile point."""
+    (cx, cy): profile = [(z, r), ...], one disc layer per profile point.
+    u_factor c multiplies the weights of the net's layer i (along u) by c^i:
+    the rational reparametrisation of a Bezier segment, which keeps every
+    face's shape and changes how u runs across the section."""
     net = [[[None] * len(profile) for _ in range(3)] for _ in range(3)]
     wts = [[[None] * len(profile) for _ in range(3)] for _ in range(3)]
     for k, (z, r) in enumerate(profile):
@@ -225,7 +228,7 @@ def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None):
         for i in range(3):
             for j in range(3):
                 net[i][j][k] = d[i][j]
-                wts[i][j][k] = DISC_W[i][j]
+                wts[i][j][k] = DISC_W[i][j] * (u_factor ** i if u_factor else 1)
     knots = None
     if knots_w is not None:
         knots = [[0, 0, 0, 1, 1, 1], [0, 0, 0, 1, 1, 1], knots_w]
@@ -379,6 +382,19 @@ def m_nail():
     kw = [0, 0, 1, 5, 6, 7, 7]
     b, net, _ = revolved(profile, 1, knots_w=kw, name="nail")
     return "nail.json", model([b]), [radius_check(0, profile, 1, knots_w=kw)]
+
+
+def m_nail_density():
+    """The nail's outer shape with another interior parametrisation (the
+    "density" of seed 000 Fig. 4, for Fig. 6): the knots along w give the
+    tip most of the parameter range instead of the shaft, and the section's
+    weights are scaled by 2.5^i along u (same quarter circles, u crowded
+    towards one side). Every face is the nail's face reparametrised, so the
+    boundary is the same surface; the isoparametric surfaces move."""
+    profile = [(0, 0), (2.5, 0.75), (10.5, 0.75), (11, 2.5), (12, 2.5)]
+    kw = [0, 0, 4, 5, 6, 7, 7]
+    b, net, _ = revolved(profile, 1, knots_w=kw, name="nail", u_factor=2.5)
+    return "nail-density.json", model([b]), [radius_check(0, profile, 1, knots_w=kw)]
 
 
 # ---- Fig. 8: union of three bodies 2
@@ -857,6 +873,73 @@ def m_volume_nurbs():
     return "volume-nurbs.json", model([b]), [closed_form]
 
 
+# Models for the CalculiX validation of the .inp volume meshes
+# (tests/cli/test_vol_ccx_beams.py compares ccx with closed forms).
+CANTILEVER = {"L": 100.0, "h": 10.0, "b": 10.0}
+TUBE = {"a": 10.0, "b": 20.0, "H": 5.0}
+
+
+def m_cantilever():
+    """A cantilever box L x h x b (body 0): u along its length x, v along the
+    height y (the direction of the tip load), w across z."""
+    L, h, b = CANTILEVER["L"], CANTILEVER["h"], CANTILEVER["b"]
+    corners = [P(L * i, h * j, b * k) for i in range(2) for j in range(2) for k in range(2)]
+    body = {"type": "body0", "name": "beam", "corners": corners}
+    return "cantilever.json", model([body]), []
+
+
+def tube_net(radial_mid=None, c=1.0):
+    """A quarter of a thick-walled tube, radii a..b, height H, as one NURBS
+    volume: u radial (linear, or quadratic with its middle control points
+    at radius radial_mid), v angular (rational quadratic quarter circle
+    from the x axis to the y axis, weights 1, c sqrt(1/2), c^2: for any
+    c > 0 the same circle, c != 1 spaces the parameter unevenly), w up."""
+    a, b, H = TUBE["a"], TUBE["b"], TUBE["H"]
+    radii = [a, b] if radial_mid is None else [a, radial_mid, b]
+    arc = [(1, 0), (1, 1), (0, 1)]
+    warc = [1.0, c * S2, c * c]
+    net = [[[P(r * arc[j][0], r * arc[j][1], H * k) for k in range(2)] for j in range(3)]
+           for r in radii]
+    wts = [[[warc[j], warc[j]] for j in range(3)] for _ in radii]
+    return net, wts
+
+
+def tube_check(m):
+    a, b, H = TUBE["a"], TUBE["b"], TUBE["H"]
+    v = m["bodies"][0]
+    worst = 0.0
+    for (s, t, w) in sample3(6):
+        for q, want in (((0, s, t), a), ((1, s, t), b)):
+            p = R.body_eval(v, *q)
+            worst = max(worst, abs(math.hypot(p[0], p[1]) - want))
+        p = R.body_eval(v, s, 0, t)  # v0: the plane y = 0
+        worst = max(worst, abs(p[1]))
+        p = R.body_eval(v, s, 1, t)  # v1: the plane x = 0
+        worst = max(worst, abs(p[0]))
+        for k in (0, 1):
+            p = R.body_eval(v, s, t, k)
+            worst = max(worst, abs(p[2] - H * k))
+        p = R.body_eval(v, s, t, w)
+        r = math.hypot(p[0], p[1])
+        worst = max(worst, max(0.0, a - r, r - b, -p[0], -p[1]))
+    return "faces at r = a, r = b, y = 0, x = 0, z = 0, z = H; points inside", worst, b
+
+
+def m_thick_cylinder():
+    net, wts = tube_net()
+    body = {"type": "bspline-volume", "name": "tube", "degree": [1, 2, 1],
+            "points": net, "weights": tidy_net(wts)}
+    return "thick-cylinder.json", model([body]), [tube_check]
+
+
+def m_thick_cylinder_distorted():
+    a, b = TUBE["a"], TUBE["b"]
+    net, wts = tube_net(radial_mid=a + 0.2 * (b - a), c=1.6)
+    body = {"type": "bspline-volume", "name": "tube", "degree": [2, 2, 1],
+            "points": net, "weights": tidy_net(wts)}
+    return "thick-cylinder-distorted.json", model([body]), [tube_check]
+
+
 def m_blend_cubic():
     """blend "cubic" on a body 0, a body 1 and a body 2, side by side."""
     b0 = {"type": "body0", "name": "body0-cubic", "blend": "cubic",
@@ -889,6 +972,7 @@ def shift_pts(arr, d):
 
 BUILDERS = [
     m_deformed_cube, m_body1_bspline_edges, m_body1_density, m_spool, m_nail,
+    m_nail_density,
     m_union, m_chair,
     m_curve_line, m_curve_polyline, m_curve_bezier, m_curve_hermite, m_curve_coons_cubic,
     m_curve_coons_cubic_closed, m_curve_clamped_cubic, m_curve_bspline, m_curve_nurbs,
@@ -899,6 +983,7 @@ BUILDERS = [
     lambda: m_patch_hermite("cross"),
     m_patch_bezier, m_patch_bspline, m_patch_nurbs,
     m_volume_bezier, m_volume_bspline, m_volume_nurbs, m_blend_cubic,
+    m_cantilever, m_thick_cylinder, m_thick_cylinder_distorted,
 ]
 
 # ================================================================ JSON text

@@ -63,6 +63,40 @@
  *   part of the first cell using it. No header text or units. A physical
  *   name longer than 252 bytes (Gmsh 4.8 reads no more) is refused with
  *   ::COONS_E_LIMIT before anything is written.
+ * - ::COONS_FORMAT_VTU (volume, `.vtu`): VTK XML UnstructuredGrid, version
+ *   1.0 (VTK file formats, "XML File Formats"), `header_type="UInt64"`,
+ *   every DataArray appended in one `<AppendedData encoding="base64">`
+ *   section as [UInt64 byte count][little-endian values], base64-encoded
+ *   as one stream, offsets counted in encoded characters. Points Float64,
+ *   connectivity and offsets Int64, types UInt8, then every field as
+ *   Float64 or Int32 point or cell data, in order. Cell types and node
+ *   orders as for ::COONS_FORMAT_VTK; in a hex8 mesh a cell with repeated
+ *   corners is a VTK wedge (13: triangle 0 1 2 with its right-hand normal
+ *   pointing away from 3 4 5) or pyramid (14: base counter-clockwise seen
+ *   from the apex 4) where it collapses so, else a degenerate hexahedron.
+ *   The header text and units are an XML comment. Parts and sets are not
+ *   written. ::COONS_FORMAT_VTU_ASCII (no extension) is the same document
+ *   with `format="ascii"` arrays of shortest round-trip numbers.
+ * - ::COONS_FORMAT_INP (volume, `.inp`): Abaqus / CalculiX input deck of
+ *   model data only (no material, no step): a `**` header comment,
+ *   `*HEADING` (`model=NAME units=UNITS`), `*NODE, NSET=NALL` (ids from 1),
+ *   `*ELEMENT, TYPE=C3D8` or `C3D20, ELSET=EALL` (element c + 1 is cell c;
+ *   C3D20 nodes 9-12 on the edges 1-2 2-3 3-4 4-1, 13-16 on 5-6 6-7 7-8 8-5,
+ *   17-20 on 1-5 2-6 3-7 4-8), hex8 cells with two collapsed parallel
+ *   edges as `C3D6` wedges in their own block (pyramids and other
+ *   collapsed cells stay C3D8 with repeated nodes: CalculiX has no
+ *   pyramid), `*ELSET` per part and per cell set that does not repeat a
+ *   part, `*NSET` per node set, and per face set element sets `SET_S1` ..
+ *   `SET_S6` (the cells whose face in the set has that label: S1 = t0,
+ *   S2 = t1, S3 = s0, S4 = r1, S5 = s1, S6 = r0) and
+ *   `*SURFACE, NAME=SET_S, TYPE=ELEMENT` naming them with their labels.
+ *   Names are upper-cased, every byte other than A-Z 0-9 _ becoming `_`;
+ *   two that become one name of the same kind are refused
+ *   (::COONS_E_INVALID, naming both), longer than 80 characters too
+ *   (::COONS_E_UNSUPPORTED), as are hex27 meshes. At most 16 entries a
+ *   line (a C3D20 element continues after its 15th node, the line ending
+ *   with a comma); numbers are the shortest round-trip text when it fits
+ *   the 20 characters CalculiX reads, else the most digits that fit.
  *
  * Numbers in OFF and SCAD are the shortest decimal text that strtod() reads
  * back to the identical double (-0 stays "-0"); non-finite values are

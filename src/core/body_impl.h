@@ -90,4 +90,11 @@ typedef void (*coons__edge_fn)(const coons_body *b, int e, double x, double p[3]
 void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
                      const double bv[5], const double bw[5], double out[3], double d[3][3]);
 
+/* det J of b over the tensor grid u x v x w into det[(i*nv + j)*nw + k]:
+ * the type's grid path where it has one, else point by point
+ * (body_volume.c). */
+coons_status coons__body_det_grid(const coons_body *b, const double *u, size_t nu,
+                                  const double *v, size_t nv, const double *w, size_t nw,
+                                  double *det, coons_error *err);
+
 #endif

@@ -51,10 +51,10 @@ static void cell_bounds(const coons_body *b, int d, coons__breaks *B)
     B->n = m + 2;
 }
 
-/* det J over a tensor grid, into det[(i*nv + j)*nw + k]. */
-static coons_status det_grid(const coons_body *b, const double *u, size_t nu, const double *v,
-                             size_t nv, const double *w, size_t nw, double *det,
-                             coons_error *err)
+/* det J over a tensor grid, into det[(i*nv + j)*nw + k] (body_impl.h). */
+coons_status coons__body_det_grid(const coons_body *b, const double *u, size_t nu,
+                                  const double *v, size_t nv, const double *w, size_t nw,
+                                  double *det, coons_error *err)
 {
     if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, det, err);
     for (size_t i = 0; i < nu; i++)
@@ -108,7 +108,8 @@ static coons_status volume_level(const coons_body *b, coons__breaks X[3], unsign
     double acc = 0.0;
     for (size_t i0 = 0; i0 < n[0]; i0 += slab) {
         size_t ni = n[0] - i0 < slab ? n[0] - i0 : slab;
-        coons_status rc = det_grid(b, node[0] + i0, ni, node[1], n[1], node[2], n[2], det, err);
+        coons_status rc =
+            coons__body_det_grid(b, node[0] + i0, ni, node[1], n[1], node[2], n[2], det, err);
         if (rc) {
             coons__free(t);
             return rc;
@@ -183,7 +184,7 @@ coons_status coons_body_min_jacobian(const coons_body *b, unsigned n, double *mi
     double best = INFINITY, at[3] = {0, 0, 0};
     for (size_t i0 = 0; i0 < m; i0 += slab) {
         size_t ni = m - i0 < slab ? m - i0 : slab;
-        coons_status rc = det_grid(b, par + i0, ni, par, m, par, m, det, err);
+        coons_status rc = coons__body_det_grid(b, par + i0, ni, par, m, par, m, det, err);
         if (rc) {
             coons__free(t);
             return rc;

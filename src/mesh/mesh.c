@@ -20,6 +20,7 @@ void coons_mesh_free(coons_mesh *m)
     coons__free(m->parts);
     coons__free(m->xyz);
     coons__free(m->tri);
+    coons__free(m->uvw);
     coons__free(m);
 }
 
@@ -42,6 +43,13 @@ static int grow(void **p, size_t *cap, size_t need, size_t elem)
 coons_status coons_mesh_add_part(coons_mesh *m, const char *name, const double *xyz, size_t nv,
                                  const uint32_t *tri, size_t nt, coons_error *err)
 {
+    return coons__mesh_add_part_uvw(m, name, xyz, NULL, nv, tri, nt, err);
+}
+
+coons_status coons__mesh_add_part_uvw(coons_mesh *m, const char *name, const double *xyz,
+                                      const double *uvw, size_t nv, const uint32_t *tri,
+                                      size_t nt, coons_error *err)
+{
     if (nv > (size_t)UINT32_MAX - m->nv)
         return coons__error_set(err, COONS_E_LIMIT,
                                 "mesh would have more than %u vertices", (unsigned)UINT32_MAX);
@@ -54,6 +62,11 @@ coons_status coons_mesh_add_part(coons_mesh *m, const char *name, const double *
                                     (unsigned)tri[i], nv);
     if (!coons__all_finite(xyz, 3 * nv))
         return coons__error_set(err, COONS_E_INVALID, "a mesh vertex is not finite");
+    if (uvw)
+        for (size_t i = 0; i < 3 * nv; i++)
+            if (!(uvw[i] >= 0.0 && uvw[i] <= 1.0))
+                return coons__error_set(err, COONS_E_DOMAIN,
+                                        "vertex %zu has a parameter outside [0,1]", i / 3);
     char buf[32];
     if (!name) {
         snprintf(buf, sizeof buf, "part%zu", m->nparts);
@@ -69,6 +82,18 @@ coons_status coons_mesh_add_part(coons_mesh *m, const char *name, const double *
         coons__free(nm);
         return coons__error_nomem(err);
     }
+    /* The parameter array exists from the first part that has parameters
+     * on; earlier and later vertices without them read NaN. */
+    if (uvw || m->uvw) {
+        int fresh = !m->uvw;
+        if (!grow((void **)&m->uvw, &m->cap_uvw, 3 * (m->nv + nv), sizeof(double))) {
+            coons__free(nm);
+            return coons__error_nomem(err);
+        }
+        if (fresh)
+            for (size_t i = 0; i < 3 * m->nv; i++) m->uvw[i] = NAN;
+        for (size_t i = 0; i < 3 * nv; i++) m->uvw[3 * m->nv + i] = uvw ? uvw[i] : NAN;
+    }
     if (nv) memcpy(m->xyz + 3 * m->nv, xyz, 3 * nv * sizeof(double));
     uint32_t base = (uint32_t)m->nv;
     for (size_t i = 0; i < 3 * nt; i++) m->tri[3 * m->nt + i] = tri[i] + base;
@@ -83,6 +108,8 @@ coons_status coons_mesh_add_part(coons_mesh *m, const char *name, const double *
     p->deviation = -1.0;
     p->lattice[0] = p->lattice[1] = p->lattice[2] = 0;
     p->glued = 0;
+    p->has_params = uvw != NULL;
+    p->display = COONS_PART_NORMAL;
     m->nv += nv;
     m->nt += nt;
     return COONS_OK;
@@ -118,6 +145,36 @@ int coons_mesh_part_sampling(const coons_mesh *m, size_t i, double *tolerance,
     if (lattice)
         for (int d = 0; d < 3; d++) lattice[d] = sampled ? p->lattice[d] : 0;
     return sampled;
+}
+
+const double *coons_mesh_vertex_parameters(const coons_mesh *m)
+{
+    if (!m->nparts || !m->uvw) return NULL;
+    for (size_t i = 0; i < m->nparts; i++)
+        if (!m->parts[i].has_params) return NULL;
+    return m->uvw;
+}
+
+int coons_mesh_part_has_parameters(const coons_mesh *m, size_t i)
+{
+    return i < m->nparts && m->parts[i].has_params;
+}
+
+coons_status coons_mesh_set_part_display(coons_mesh *m, size_t i, coons_part_display display,
+                                         coons_error *err)
+{
+    if (i >= m->nparts)
+        return coons__error_set(err, COONS_E_INVALID, "no part %zu (the mesh has %zu)", i,
+                                m->nparts);
+    if (display != COONS_PART_NORMAL && display != COONS_PART_BACKGROUND)
+        return coons__error_set(err, COONS_E_INVALID, "unknown part display %d", (int)display);
+    m->parts[i].display = (int)display;
+    return COONS_OK;
+}
+
+coons_part_display coons_mesh_part_display(const coons_mesh *m, size_t i)
+{
+    return i < m->nparts ? (coons_part_display)m->parts[i].display : COONS_PART_NORMAL;
 }
 
 double coons_mesh_deviation(const coons_mesh *m)

@@ -20,6 +20,10 @@ typedef struct coons__sample_opts {
     unsigned flags;
 } coons__sample_opts;
 
+/* Internal flag of coons__sample_opts: coons__body_sample_into() stores
+ * each vertex's (u, v, w) with the part (coons_mesh_vertex_parameters()). */
+#define COONS__SAMPLE_PARAMS (1u << 31)
+
 /* Checks a public options struct (NULL: defaults) and resolves it;
  * tolerance stays <= 0 when the caller must supply the default. */
 coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__sample_opts *out,

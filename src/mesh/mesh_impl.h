@@ -15,6 +15,8 @@ typedef struct coons__mesh_part {
     double tolerance, deviation;
     size_t lattice[3];
     int glued; /* bit d: the body closes on itself along direction d */
+    int has_params; /* m->uvw holds this part's vertex parameters */
+    int display;    /* a coons_part_display value */
 } coons__mesh_part;
 
 struct coons_mesh {
@@ -23,6 +25,16 @@ struct coons_mesh {
     size_t nv, nt, cap_v, cap_t;
     coons__mesh_part *parts;
     size_t nparts, cap_p;
+    /* 3 * nv body parameters (u, v, w) per vertex once a part with them was
+     * added (NaN for the vertices of parts without), else NULL. */
+    double *uvw;
+    size_t cap_uvw;
 };
+
+/* coons_mesh_add_part() with the (u, v, w) of each vertex (uvw: 3 * nv
+ * doubles, or NULL for none). Leaves the mesh unchanged on failure. */
+coons_status coons__mesh_add_part_uvw(coons_mesh *m, const char *name, const double *xyz,
+                                      const double *uvw, size_t nv, const uint32_t *tri,
+                                      size_t nt, coons_error *err);
 
 #endif

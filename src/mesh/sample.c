@@ -739,23 +739,38 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
     uint32_t *map = coons__malloc_array(s->nv, sizeof(uint32_t));
     uint32_t *tri = coons__malloc_array(s->nt, 3 * sizeof(uint32_t));
     double *xyz = coons__malloc_array(s->nv, 3 * sizeof(double));
+    /* Parameters on request (isoparametric output with the boundary). */
+    int params = (s->o->flags & COONS__SAMPLE_PARAMS) != 0;
+    double *uvw = params ? coons__malloc_array(s->nv, 6 * sizeof(double)) : NULL;
     coons_status st = COONS_OK;
-    if (!map || !tri || !xyz) {
+    if (!map || !tri || !xyz || (params && !uvw)) {
         st = coons__error_nomem(s->err);
         goto done;
     }
+    if (params) /* raw vertex parameters in uvw[3 nv ..], then compacted */
+        for (int f = 0; f < 6; f++) {
+            const face_desc *F = &FACES[f];
+            for (size_t ia = 0; ia <= s->n[F->a]; ia++)
+                for (size_t ib = 0; ib <= s->n[F->b]; ib++) {
+                    double *q = uvw + 3 * (s->nv + (size_t)lattice_id(s, f, ia, ib));
+                    q[F->fixed] = F->val;
+                    q[F->a] = s->t[F->a][ia];
+                    q[F->b] = s->t[F->b][ib];
+                }
+        }
     memset(map, 0xff, s->nv * sizeof(uint32_t));
     uint32_t nv = 0;
     for (size_t i = 0; i < 3 * s->nt; i++) {
         uint32_t v = s->tri[i];
         if (map[v] == UINT32_MAX) {
             v3_copy(xyz + 3 * (size_t)nv, s->pos + 3 * (size_t)v);
+            if (params) v3_copy(uvw + 3 * (size_t)nv, uvw + 3 * (s->nv + (size_t)v));
             map[v] = nv++;
         }
         tri[i] = map[v];
     }
     size_t part = mesh->nparts;
-    st = coons_mesh_add_part(mesh, s->name, xyz, nv, tri, s->nt, s->err);
+    st = coons__mesh_add_part_uvw(mesh, s->name, xyz, uvw, nv, tri, s->nt, s->err);
     if (!st) {
         coons__mesh_part *P = &mesh->parts[part];
         P->tolerance = s->o->tolerance;
@@ -769,6 +784,7 @@ done:
     coons__free(map);
     coons__free(tri);
     coons__free(xyz);
+    coons__free(uvw);
     return st;
 }
 

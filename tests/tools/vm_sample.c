@@ -85,7 +85,7 @@ int main(int argc, char **argv)
     uint32_t cells[N * N * N][27];
     int used[M * M * M] = {0};
     int ncell = 0;
-    int part_of[N * N * N], lat[N * N * N][3];
+    int part_of[N * N * N], ijk[N * N * N][3];
     for (int part = 0; part < 2; part++)
         for (int k = 0; k < N; k++)
             for (int j = 0; j < N; j++)
@@ -97,7 +97,7 @@ int main(int argc, char **argv)
                         cells[ncell][n] = (uint32_t)q;
                         used[q] = 1;
                     }
-                    lat[ncell][0] = i, lat[ncell][1] = j, lat[ncell][2] = k;
+                    ijk[ncell][0] = i, ijk[ncell][1] = j, ijk[ncell][2] = k;
                     part_of[ncell++] = part;
                 }
     int newid[M * M * M];
@@ -143,7 +143,8 @@ int main(int argc, char **argv)
         st = coons_volume_mesh_add_field(vm, COONS_FIELD_CELL, "scaled_jacobian",
                                          COONS_FIELD_FLOAT64, sj, &e);
     /* Sets: per part, its cells, and its cells' faces on the cube's sides
-     * (local face f lies on side f when the cell touches it). */
+     * (local face f lies on side f when the cell's lattice position touches
+     * it; at a collapsed side the face is there, with repeated nodes). */
     for (int part = 0; part < 2 && !st; part++) {
         uint32_t items[N * N * N];
         size_t n = 0;
@@ -157,9 +158,7 @@ int main(int argc, char **argv)
             size_t np = 0, nnode = 0;
             for (int c = 0; c < ncell; c++) {
                 if (part_of[c] != part) continue;
-                /* the cell's lattice position (not its node 0's parameters:
-                 * a merged node keeps those of the first lattice point) */
-                int on = lat[c][axis] == (hi ? N - 1 : 0);
+                int on = ijk[c][axis] == (hi ? N - 1 : 0);
                 if (!on) continue;
                 pairs[2 * np] = (uint32_t)c;
                 pairs[2 * np + 1] = (uint32_t)f;

@@ -106,6 +106,14 @@ void cli_die_of_caught_signal(coons_status rc, const char *shown);
 /* Whether `output` is the model file `input` (same device and inode). */
 int cli_is_model_file(const char *output, const char *input);
 
+/* iso.c: --iso, the isoparametric surfaces written to -o; the status. */
+int cli_write_iso(const coons_model *m, long body, const options *o,
+                  const coons_sample_options *so);
+/* output.c: writes a surface mesh made elsewhere (and frees it) as -o
+ * writes the solid; `shown` names the output in messages. */
+int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
+                      const char *shown);
+
 int cli_write_output(const coons_model *m, long body, coons_format format, const char *output,
                      const coons_sample_options *so, int repair, const char *input);
 

@@ -34,6 +34,7 @@ static int run_mode(const options *o, const coons_model *m, long body)
     coons_sample_options so = sample_options(o, m);
     if (o->eval) return cli_eval(coons_model_body(m, body < 0 ? 0 : (size_t)body), o->jacobian);
     if (o->info) return cli_info(m, body, &so, o);
+    if (o->niso) return cli_write_iso(m, body, o, &so);
     if (cli_is_volume_format(o->format)) {
         if (o->output && strcmp(o->output, "-") != 0 && strcmp(o->input, "-") != 0 &&
             cli_is_model_file(o->output, o->input)) {

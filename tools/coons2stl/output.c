@@ -124,6 +124,9 @@ void cli_die_of_caught_signal(coons_status rc, const char *shown)
     raise(sig);
 }
 
+static int write_named(const coons_model *m, coons_mesh *mesh, coons_format format,
+                       const char *output, const char *input, const char *shown);
+
 /*
  * Writes the boundary mesh of the model (all bodies, or only body `body`
  * when >= 0) to `output` (NULL or "-": standard output) in `format`,
@@ -154,7 +157,25 @@ int cli_write_output(const coons_model *m, long body, coons_format format, const
         return EXIT_GEOMETRY;
     }
     mesh_warnings(&rep);
+    return write_named(m, mesh, format, to_stdout ? NULL : output, input, shown);
+}
 
+int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
+                      const char *shown)
+{
+    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
+    return write_named(m, mesh, o->format, to_stdout ? NULL : o->output, o->input, shown);
+}
+
+/* Writes `mesh` (and frees it) to `output` (NULL: standard output), named
+ * after the output file or else the model file. */
+static int write_named(const coons_model *m, coons_mesh *mesh, coons_format format,
+                       const char *output, const char *input, const char *shown)
+{
+    coons_error err = COONS_ERROR_INIT;
+    int to_stdout = output == NULL;
+    int from_file = input && strcmp(input, "-") != 0;
+    coons_status rc;
     char name[256];
     model_name(to_stdout ? input : output, name, sizeof name);
     coons_write_options wopts = COONS_WRITE_OPTIONS_INIT;

@@ -63,9 +63,28 @@ void cli_print_volume_quality(const coons_volume_mesh *vm, size_t part)
     printf("]}");
 }
 
+/* Whether the mesher's cell field scaled_jacobian (the value
+ * coons_volume_mesh_quality() computes) has a value <= 0: only then can a
+ * cell be inverted, and the quality report is worth its second pass. */
+static int may_be_inverted(const coons_volume_mesh *vm)
+{
+    for (size_t i = 0; i < coons_volume_mesh_field_count(vm, COONS_FIELD_CELL); i++) {
+        coons_field_type type;
+        const void *values;
+        const char *name = coons_volume_mesh_field(vm, COONS_FIELD_CELL, i, &type, &values);
+        if (strcmp(name, "scaled_jacobian") != 0 || type != COONS_FIELD_FLOAT64) continue;
+        const double *sj = values;
+        for (size_t c = 0; c < coons_volume_mesh_cell_count(vm); c++)
+            if (!(sj[c] > 0)) return 1;
+        return 0;
+    }
+    return 1;
+}
+
 /* Exit 3 (reported) when a part has an inverted cell, else 0. */
 static int refuse_inverted(const coons_volume_mesh *vm, const char *shown)
 {
+    if (!may_be_inverted(vm)) return 0;
     for (size_t p = 0; p < coons_volume_mesh_part_count(vm); p++) {
         coons_volume_quality q = COONS_VOLUME_QUALITY_INIT;
         if (coons_volume_mesh_quality(vm, p, &q, NULL) != COONS_OK || !q.inverted) continue;

@@ -40,7 +40,10 @@ coons_status coons__write_prepare(coons__write_job *job, int mesh_given, coons_f
     job->row = coons__format_row_of(format);
     if (!job->row)
         return coons__error_set(err, COONS_E_INVALID, "invalid output format %d", (int)format);
-    if (job->row->kind != kind)
+    /* A volume format may also hold triangle meshes (VTU): its row then
+     * names a surface writer. */
+    int surface_too = kind == COONS_MESH_KIND_SURFACE && job->row->write_surface;
+    if (job->row->kind != kind && !surface_too)
         return coons__error_set(err, COONS_E_INVALID,
                                 kind == COONS_MESH_KIND_SURFACE
                                     ? "the format '%s' holds volume meshes, not a triangle mesh "
@@ -64,9 +67,8 @@ coons_status coons__write_resolve(const char *path, coons_format *format, coons_
 static coons_status run_writer(const coons__write_job *job, coons__sink *s)
 {
     const coons__format_row *r = job->row;
-    if (r->kind == COONS_MESH_KIND_SURFACE && r->write_surface)
-        return r->write_surface(job->surface, &job->o, s);
-    if (r->kind == COONS_MESH_KIND_VOLUME && r->write_volume)
+    if (job->surface && r->write_surface) return r->write_surface(job->surface, &job->o, s);
+    if (job->volume && r->write_volume)
         return r->write_volume(job->volume, &job->o, s);
     return s->status = coons__error_set(s->err, COONS_E_INTERNAL, "no writer for the format '%s'",
                                         r->name);

@@ -27,6 +27,14 @@ static const coons__format_row ROWS[] = {
      .extensions = {".msh"}, .kind = VOLUME, .write_volume = coons__write_msh2},
     {.format = COONS_FORMAT_MSH4, .name = "msh4", .title = "Gmsh MSH 4.1", .kind = VOLUME,
      .write_volume = coons__write_msh4},
+    {.format = COONS_FORMAT_VTU, .name = "vtu", .title = "VTK XML", .extensions = {".vtu"},
+     .kind = VOLUME, .write_volume = coons__write_vtu, .write_surface = coons__write_vtu_surface},
+    {.format = COONS_FORMAT_INP, .name = "inp", .title = "Abaqus/CalculiX input deck",
+     .extensions = {".inp"}, .kind = VOLUME, .write_volume = coons__write_inp,
+     .check_volume = coons__check_inp},
+    {.format = COONS_FORMAT_VTU_ASCII, .name = "vtu-ascii", .title = "ASCII VTK XML",
+     .kind = VOLUME, .write_volume = coons__write_vtu_ascii,
+     .write_surface = coons__write_vtu_surface},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 

@@ -9,7 +9,9 @@
  * indices are shifted to the part's first vertex. Module names must be
  * OpenSCAD identifiers ([A-Za-z_][A-Za-z0-9_]*) and must not shadow a
  * keyword or a built-in module: a user module called `hull` or `cube`
- * would replace the built-in in every file that uses ours. */
+ * would replace the built-in in every file that uses ours. Parts marked
+ * COONS_PART_BACKGROUND are called with the background modifier `%`
+ * (OpenSCAD manual, "Modifier Characters"). */
 #include "writer.h"
 
 #include "coons/version.h"
@@ -172,7 +174,11 @@ coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons
     coons__sink_puts(s, names[np]);
     coons__sink_puts(s, "() {\n");
     for (size_t i = 0; i < np; i++) {
-        coons__sink_puts(s, "  ");
+        /* Background parts (context such as a body's boundary around its
+         * isoparametric surfaces): OpenSCAD's `%` modifier draws them
+         * transparent in the preview and leaves them out of renders. */
+        int bg = !whole && coons_mesh_part_display(m, i) == COONS_PART_BACKGROUND;
+        coons__sink_puts(s, bg ? "  %" : "  ");
         coons__sink_puts(s, names[i]);
         coons__sink_puts(s, "();\n");
     }

@@ -5,20 +5,12 @@
  * POINT_DATA / CELL_DATA attributes). Read by VTK and ParaView, VisIt,
  * meshio and Gmsh.
  *
- * Cells are stored in Gmsh's node order (coons/volume.h); VTK numbers the
- * same corners alike but its edge and face nodes differently: VTK's
- * vtkQuadraticHexahedron edges are 0-1, 1-2, 3-2, 0-3, 4-5, 5-6, 7-6, 4-7,
- * 0-4, 1-5, 2-6, 3-7 and vtkTriQuadraticHexahedron's face nodes lie on the
- * faces x=0, x=1, y=0, y=1, z=0, z=1 (its parametric coordinates), then the
- * centre. Numbers are the shortest text that reads back exactly. */
+ * Cells are stored in Gmsh's node order (coons/volume.h) and written in
+ * VTK's (vtk_order.h); in a hex8 mesh, cells with repeated corners become
+ * VTK wedges and pyramids where they collapse so (coons__vtk_cell()). Numbers are the shortest text that reads back
+ * exactly. */
+#include "vtk_order.h"
 #include "writer.h"
-
-/* VTK node k of a cell is the mesh's (Gmsh) node GMSH_OF_VTK[k]. */
-static const unsigned char GMSH_OF_VTK[27] = {0,  1,  2,  3,  4,  5,  6,  7,  8,
-                                              11, 13, 9,  16, 18, 19, 17, 10, 12,
-                                              14, 15, 22, 23, 21, 24, 20, 25, 26};
-
-static int cell_type(size_t npc) { return npc == 8 ? 12 : npc == 20 ? 25 : 29; }
 
 /* Writes a, the number n, then b (no newline added). */
 static int put_num(coons__sink *s, const char *a, uint64_t n, const char *b)
@@ -64,17 +56,21 @@ static int put_cells(const coons_volume_mesh *vm, coons__sink *s)
 {
     size_t nc = coons_volume_mesh_cell_count(vm), npc = coons_volume_mesh_nodes_per_cell(vm);
     const uint32_t *cell = coons_volume_mesh_cells(vm);
+    uint32_t nodes[27];
+    unsigned type;
     /* "CELLS n size": size counts each cell's leading node count too. */
-    if (!put_num(s, "CELLS ", nc, "") || !put_num(s, " ", (uint64_t)nc * (npc + 1), "\n"))
-        return 0;
+    uint64_t size = 0;
+    for (size_t c = 0; c < nc; c++) size += 1 + coons__vtk_cell(cell + npc * c, npc, nodes, &type);
+    if (!put_num(s, "CELLS ", nc, "") || !put_num(s, " ", size, "\n")) return 0;
     for (size_t c = 0; c < nc; c++) {
         /* 27 indices of at most 10 digits: within MAXREC. */
         char *p = coons__sink_room(s, COONS__SINK_MAXREC), *p0 = p;
         if (!p) return 0;
-        p += coons__fmt_u64(p, npc);
-        for (size_t k = 0; k < npc; k++) {
+        unsigned n = coons__vtk_cell(cell + npc * c, npc, nodes, &type);
+        p += coons__fmt_u64(p, n);
+        for (unsigned k = 0; k < n; k++) {
             *p++ = ' ';
-            p += coons__fmt_u64(p, cell[npc * c + GMSH_OF_VTK[k]]);
+            p += coons__fmt_u64(p, nodes[k]);
         }
         *p++ = '\n';
         s->len += (size_t)(p - p0);
@@ -83,7 +79,8 @@ static int put_cells(const coons_volume_mesh *vm, coons__sink *s)
     for (size_t c = 0; c < nc; c++) {
         char *p = coons__sink_room(s, 8), *p0 = p;
         if (!p) return 0;
-        p += coons__fmt_u64(p, (uint64_t)cell_type(npc));
+        coons__vtk_cell(cell + npc * c, npc, nodes, &type);
+        p += coons__fmt_u64(p, type);
         *p++ = '\n';
         s->len += (size_t)(p - p0);
     }

@@ -3,7 +3,7 @@
  * sink with a sticky error (sink.c), the format table (formats.c), the
  * atomic file and stream output that serve every format of either mesh
  * kind (atomic.c), and the per-format writers the table names (stl.c,
- * off.c, scad.c: surface; vtk.c: volume). A new format is one writer file,
+ * off.c, scad.c: surface; vtk.c, inp.c: volume). A new format is one writer file,
  * its declaration below, one row of the table and one value of
  * coons_format (coons/io.h). */
 #ifndef COONS_IO_WRITER_H
@@ -89,7 +89,7 @@ typedef struct coons__format_row {
     const char *extensions[3];   /* ".stl", ...: what the format means; NULL-terminated */
     coons_mesh_kind kind;
     uint64_t max_triangles;      /* surface: a count field's limit; 0: none */
-    coons__surface_writer write_surface; /* kind SURFACE */
+    coons__surface_writer write_surface; /* kind SURFACE; a VOLUME row may have one too */
     coons__surface_check check_surface;
     coons__volume_writer write_volume;   /* kind VOLUME */
     coons__volume_check check_volume;
@@ -112,6 +112,10 @@ coons_status coons__write_msh4(const coons_volume_mesh *m, const coons__wopts *o
 coons_status coons__write_vtu(const coons_volume_mesh *m, const coons__wopts *o, coons__sink *s);
 coons_status coons__write_vtu_ascii(const coons_volume_mesh *m, const coons__wopts *o,
                                     coons__sink *s);
+/* Triangle meshes as VTK XML UnstructuredGrid (vtu_surface.c), for a VTU
+ * row's write_surface. */
+coons_status coons__write_vtu_surface(const coons_mesh *m, const coons__wopts *o,
+                                      coons__sink *s);
 coons_status coons__write_inp(const coons_volume_mesh *m, const coons__wopts *o, coons__sink *s);
 coons_status coons__check_inp(const coons_volume_mesh *m, coons_error *err);
 

@@ -499,29 +499,43 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
         coons__free(det);
         return coons__error_nomem(v->err);
     }
-    for (size_t i = 0; i < v->nb; i++) {
+    coons_status st = COONS_OK;
+    for (size_t i = 0; i < v->nb && !st; i++) {
         vbody *B = &v->vb[i];
         long sign = 0;
-        for (size_t a = 0; a < B->m[0]; a++)
-            for (size_t b = 0; b < B->m[1]; b++)
-                for (size_t c = 0; c < B->m[2]; c++) {
-                    size_t r = raw_id(B, a, b, c);
-                    if (!needed(v, a, b, c) || v->uf[r] != r) continue;
-                    uint32_t n = v->id[r];
-                    double p[3], jac[3][3];
-                    double u = B->L[0][a], w1 = B->L[1][b], w2 = B->L[2][c];
-                    double d = coons_body_eval_jacobian(B->b, u, w1, w2, p, jac);
-                    v3_copy(xyz + 3 * (size_t)n, v->pos + 3 * r);
-                    par[3 * (size_t)n] = u;
-                    par[3 * (size_t)n + 1] = w1;
-                    par[3 * (size_t)n + 2] = w2;
-                    det[n] = isfinite(d) ? d : 0.0;
-                    sign += d > 0 ? 1 : d < 0 ? -1 : 0;
-                }
+        /* det J on the node lattice in slabs of u (one grid call each: the
+         * types' grid paths are many times faster than point by point). */
+        size_t plane = B->m[1] * B->m[2], slab = plane ? ((size_t)1 << 18) / plane : 1;
+        if (slab < 1) slab = 1;
+        double *dg = coons__malloc_array(slab * plane, sizeof(double));
+        if (!dg) {
+            st = coons__error_nomem(v->err);
+            break;
+        }
+        for (size_t a0 = 0; a0 < B->m[0] && !st; a0 += slab) {
+            size_t na = B->m[0] - a0 < slab ? B->m[0] - a0 : slab;
+            st = coons__body_det_grid(B->b, B->L[0] + a0, na, B->L[1], B->m[1], B->L[2], B->m[2],
+                                      dg, v->err);
+            for (size_t a = a0; a < a0 + na && !st; a++)
+                for (size_t b = 0; b < B->m[1]; b++)
+                    for (size_t c = 0; c < B->m[2]; c++) {
+                        size_t r = raw_id(B, a, b, c);
+                        if (!needed(v, a, b, c) || v->uf[r] != r) continue;
+                        uint32_t n = v->id[r];
+                        double d = dg[((a - a0) * B->m[1] + b) * B->m[2] + c];
+                        v3_copy(xyz + 3 * (size_t)n, v->pos + 3 * r);
+                        par[3 * (size_t)n] = B->L[0][a];
+                        par[3 * (size_t)n + 1] = B->L[1][b];
+                        par[3 * (size_t)n + 2] = B->L[2][c];
+                        det[n] = isfinite(d) ? d : 0.0;
+                        sign += d > 0 ? 1 : d < 0 ? -1 : 0;
+                    }
+        }
+        coons__free(dg);
         B->left = sign < 0;
     }
     v->nn = nn;
-    coons_status st = coons_volume_mesh_add_nodes(vm, xyz, nn, NULL, v->err);
+    if (!st) st = coons_volume_mesh_add_nodes(vm, xyz, nn, NULL, v->err);
     coons__free(xyz);
     if (st) {
         coons__free(par);

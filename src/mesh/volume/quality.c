@@ -12,35 +12,50 @@
 /* From each corner (Gmsh order), its neighbours along +r, +s, +t of the
  * reference cell, so det[e1,e2,e3] > 0 for a valid cell: at corner 0 the
  * edges to 1, 3, 4; at the others the same right-handed triple turned. */
-static const unsigned char NB[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
-                                       {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
+/*     corner  0: 1 3 4   1: 2 0 5   2: 3 1 6   3: 0 2 7
+ *             4: 7 5 0   5: 4 6 1   6: 5 7 2   7: 6 4 3 */
+
+/* The 12 edges of the hexahedron (Gmsh corners), and for each corner its
+ * three edges to the neighbours above, with the sign of the edge's direction
+ * seen from the corner. */
+static const unsigned char EDGES[12][2] = {{0, 1}, {3, 2}, {4, 5}, {7, 6}, {0, 3}, {1, 2},
+                                           {4, 7}, {5, 6}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+static const signed char CORNER_EDGE[8][3][2] = {
+    {{0, 1}, {4, 1}, {8, 1}},
+    {{5, 1}, {0, -1}, {9, 1}},
+    {{1, -1}, {5, -1}, {10, 1}},
+    {{4, -1}, {1, 1}, {11, 1}},
+    {{6, 1}, {2, 1}, {8, -1}},
+    {{2, -1}, {7, 1}, {9, -1}},
+    {{7, -1}, {3, -1}, {10, -1}},
+    {{3, 1}, {6, -1}, {11, -1}}};
 
 static double cell_sj(const coons_volume_mesh *vm, size_t c, int *collapsed)
 {
     const uint32_t *h = vm->cell + vm->npc * c;
     int rep = 0, any = 0;
-    double best = INFINITY;
     for (int i = 0; i < 8; i++)
         for (int j = i + 1; j < 8; j++) rep |= h[i] == h[j];
+    /* Unit edge vectors (0 where an edge has no length). */
+    double e[12][3];
+    unsigned char zero[12];
+    for (int k = 0; k < 12; k++) {
+        const double *a = vm->xyz + 3 * (size_t)h[EDGES[k][0]];
+        const double *b = vm->xyz + 3 * (size_t)h[EDGES[k][1]];
+        double l = 0;
+        for (int d = 0; d < 3; d++) e[k][d] = b[d] - a[d], l += e[k][d] * e[k][d];
+        zero[k] = !(l > 0) || h[EDGES[k][0]] == h[EDGES[k][1]];
+        double inv = zero[k] ? 0.0 : 1.0 / sqrt(l);
+        for (int d = 0; d < 3; d++) e[k][d] *= inv;
+    }
+    double best = INFINITY;
     for (int i = 0; i < 8; i++) {
-        const double *o = vm->xyz + 3 * (size_t)h[i];
-        double e[3][3];
-        int degenerate = 0;
-        for (int k = 0; k < 3; k++) {
-            const double *q = vm->xyz + 3 * (size_t)h[NB[i][k]];
-            double l = 0;
-            for (int d = 0; d < 3; d++) e[k][d] = q[d] - o[d], l += e[k][d] * e[k][d];
-            l = sqrt(l);
-            if (!(l > 0) || h[NB[i][k]] == h[i]) {
-                degenerate = 1;
-                break;
-            }
-            for (int d = 0; d < 3; d++) e[k][d] /= l;
-        }
-        if (degenerate) continue;
-        double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+        int e0 = CORNER_EDGE[i][0][0], e1 = CORNER_EDGE[i][1][0], e2 = CORNER_EDGE[i][2][0];
+        if (zero[e0] || zero[e1] || zero[e2]) continue;
+        const double *x = e[e0], *y = e[e1], *z = e[e2];
+        double det = x[0] * (y[1] * z[2] - y[2] * z[1]) - x[1] * (y[0] * z[2] - y[2] * z[0]) +
+                     x[2] * (y[0] * z[1] - y[1] * z[0]);
+        det *= CORNER_EDGE[i][0][1] * CORNER_EDGE[i][1][1] * CORNER_EDGE[i][2][1];
         if (det < best) best = det;
         any = 1;
     }

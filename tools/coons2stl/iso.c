@@ -1,0 +1,65 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * --iso: the isoparametric surfaces u, v or w = const of the bodies (seed
+ * 000 section 2.1, Fig. 2-6: the interior "density" of a body), each its own
+ * part, with --with-boundary each body's boundary too (in SCAD a
+ * transparent % part), written atomically like every output
+ * (coons_model_iso_surfaces(), coons_body_iso_surface()).
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+static coons_status one_body(const coons_model *m, size_t body, const coons_iso_request *req,
+                             size_t n, const coons_sample_options *so, int with_boundary,
+                             coons_mesh **out, coons_error *err)
+{
+    const coons_body *b = coons_model_body(m, body);
+    const char *name = coons_model_body_name(m, body);
+    coons_mesh *mesh = NULL;
+    coons_status st = COONS_OK;
+    if (with_boundary) {
+        st = coons_body_sample(b, so, name, &mesh, err);
+        if (!st) st = coons_mesh_set_part_display(mesh, 0, COONS_PART_BACKGROUND, err);
+    } else {
+        st = coons_mesh_new(&mesh, err);
+    }
+    for (size_t i = 0; i < n && !st; i++) {
+        char part[COONS_ISO_NAME_MAX];
+        coons_iso_surface_name(name, req[i].direction, req[i].value, part, sizeof part);
+        st = coons_body_iso_surface(b, req[i].direction, req[i].value, so, part, mesh, err);
+    }
+    if (st) {
+        coons_mesh_free(mesh);
+        return st;
+    }
+    *out = mesh;
+    return COONS_OK;
+}
+
+int cli_write_iso(const coons_model *m, long body, const options *o,
+                  const coons_sample_options *so)
+{
+    coons_error err = COONS_ERROR_INIT;
+    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : o->output;
+    coons_iso_request req[sizeof o->iso_value / sizeof o->iso_value[0]];
+    for (size_t i = 0; i < o->niso_surfaces; i++) {
+        req[i].direction = o->iso_dir[i];
+        req[i].value = o->iso_value[i];
+    }
+    coons_mesh *mesh = NULL;
+    coons_status rc =
+        body < 0 ? coons_model_iso_surfaces(m, req, o->niso_surfaces, so,
+                                            o->with_boundary ? COONS_ISO_WITH_BOUNDARY : 0u,
+                                            &mesh, &err)
+                 : one_body(m, (size_t)body, req, o->niso_surfaces, so, o->with_boundary,
+                            &mesh, &err);
+    cli_progress_end();
+    if (rc != COONS_OK) {
+        cli_message(0, "%s: %s; nothing was written", shown, err.message);
+        return EXIT_GEOMETRY;
+    }
+    return cli_write_surface(m, mesh, o, shown);
+}
