@@ -2,7 +2,7 @@
 /**
  * @file coons/io.h
  * @brief Writing meshes: binary and ASCII STL, OFF and OpenSCAD source
- *        (triangle meshes), legacy VTK (volume meshes).
+ *        (triangle meshes), legacy VTK and Gmsh MSH (volume meshes).
  *
  * Each format holds one kind of mesh (coons_format_kind()): the surface
  * formats a ::coons_mesh (coons/mesh.h), written by coons_mesh_write(), the
@@ -43,6 +43,26 @@
  *   `POINT_DATA` and `CELL_DATA` with every field as `SCALARS NAME double`
  *   or `int`, in the order they were added. Parts and sets are not written:
  *   the legacy format has no place for them.
+ * - ::COONS_FORMAT_MSH2 (what `.msh` means) and ::COONS_FORMAT_MSH4
+ *   (volume): Gmsh MSH 2.2 and 4.1 ASCII (Gmsh reference manual, "MSH file
+ *   format"). Node n is node n + 1, cell c element c + 1, as a Gmsh
+ *   hexahedron (type 5, 17, 12 for hex8, hex20, hex27) in Gmsh's order, the
+ *   mesh's own; a hex8 cell at a collapsed edge becomes a prism (6), one at
+ *   a face collapsed to a point a pyramid (7); other collapsed cells stay
+ *   degenerate hexahedra. Part i is physical volume i + 1, named after it.
+ *   Each face set with faces is a physical surface (tags after the parts')
+ *   of its faces as quadrangles (3, 16, 10), counter-clockwise seen from
+ *   outside the cell, triangles (2, 9) where one edge collapsed, nothing
+ *   where a face collapsed to a line or point; sets holding the same faces
+ *   node for node (a face two bodies share) are one surface named
+ *   `A+B` (set order) with the first set's faces. Node fields are
+ *   `$NodeData`; cell fields `$ElementData` in 4.1 only, over every element
+ *   (a face has its cell's values), since meshio 5.0 cannot read them in
+ *   2.2. 4.1 adds `$Entities` (a volume per part, a surface
+ *   per physical surface) and lists each node once, in the block of the
+ *   part of the first cell using it. No header text or units. A physical
+ *   name longer than 252 bytes (Gmsh 4.8 reads no more) is refused with
+ *   ::COONS_E_LIMIT before anything is written.
  * - ::COONS_FORMAT_VTU (volume, `.vtu`): VTK XML UnstructuredGrid, version
  *   1.0 (VTK file formats, "XML File Formats"), `header_type="UInt64"`,
  *   every DataArray appended in one `<AppendedData encoding="base64">`
