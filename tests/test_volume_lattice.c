@@ -334,6 +334,16 @@ static void test_closed_tube(void **state)
     assert_coons_ok(coons_body_volume_mesh(b, &o, NULL, &vm, &e), &e);
     size_t raw = 9 * 9 * 3;
     assert_true(coons_volume_mesh_node_count(vm) < raw);
+    /* The seam's two faces are inside the body: exactly one direction has
+     * both face sets empty, and the other faces keep theirs. */
+    int empty_pairs = 0;
+    for (int ax = 0; ax < 3; ax++) {
+        size_t c0, c1;
+        coons_volume_mesh_face_set(vm, (size_t)(2 * ax), NULL, &c0);
+        coons_volume_mesh_face_set(vm, (size_t)(2 * ax + 1), NULL, &c1);
+        empty_pairs += c0 == 0 && c1 == 0;
+    }
+    assert_int_equal(empty_pairs, 1);
     coons_volume_quality q = COONS_VOLUME_QUALITY_INIT;
     assert_coons_ok(coons_volume_mesh_quality(vm, 0, &q, &e), &e);
     assert_int_equal(q.inverted, 0);

@@ -459,7 +459,9 @@ REQUIRED = ("nail.json", "spool.json", "body1-density.json", "volume-nurbs.json"
 def collapsed_faces(r, path, model, names):
     """Body faces with no area, which have no quadrangle to write (the
     nail's tip): coons2stl --eval on a 5 x 5 grid of each face, and the
-    face collapsed where no two grid steps span a parallelogram."""
+    face collapsed where no two grid steps span a parallelogram; and the
+    two faces of a closed body's seam (each the same points as the opposite
+    face), which are inside the body."""
     out = set()
     ts = [k / 4 for k in range(5)]
     for i, name in enumerate(names):
@@ -486,6 +488,11 @@ def collapsed_faces(r, path, model, names):
                     area += dist([u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
                                   u[0] * v[1] - u[1] * v[0]], [0, 0, 0])
             if area <= 1e-12 * scale * scale:
+                out.add(f"{name}.{side}")
+            # A closed body's seam: the face coincides point for point with
+            # the opposite one, and both are inside the body.
+            h = pts[25 * (f ^ 1):25 * (f ^ 1) + 25]
+            if max(dist(p, q) for p, q in zip(g, h)) <= 1e-9 * scale:
                 out.add(f"{name}.{side}")
     return out
 

@@ -653,6 +653,23 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
         for (size_t q = 0; q < nc; q++) kept += keep[base + q];
         for (size_t q = 0; q < kept; q++) items[q] = (uint32_t)(cell0 + q);
         st = coons_volume_mesh_add_cell_set(vm, B->name, items, kept, v->err);
+        /* A closed body's two faces along a direction that coincide point
+         * for point (a tube's seam) are inside it: their sets stay empty. */
+        int glued[3];
+        for (int ax = 0; ax < 3; ax++) {
+            glued[ax] = 1;
+            size_t m0 = B->m[(ax + 1) % 3], m1 = B->m[(ax + 2) % 3];
+            for (size_t x = 0; x < m0 && glued[ax]; x++)
+                for (size_t y = 0; y < m1 && glued[ax]; y++) {
+                    size_t p[3], q[3];
+                    p[ax] = 0;
+                    q[ax] = B->m[ax] - 1;
+                    p[(ax + 1) % 3] = q[(ax + 1) % 3] = x;
+                    p[(ax + 2) % 3] = q[(ax + 2) % 3] = y;
+                    if (!needed(v, p[0], p[1], p[2])) continue;
+                    glued[ax] = node_at(v, B, p[0], p[1], p[2]) == node_at(v, B, q[0], q[1], q[2]);
+                }
+        }
         for (int f = 0; f < 6 && !st; f++) {
             int ax = f / 2, hi = f % 2;
             int lf = (B->left && ax == 0) ? 1 - hi : f; /* local face of the cell */
@@ -667,7 +684,7 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
                         if (!keep[base + q]) continue;
                         size_t idx[3] = {a, b, c};
                         size_t cell = cell0 + k++;
-                        if (idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
+                        if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
                         cell_nodes(v, B, a, b, c, row);
                         uint32_t fc[4];
                         for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
@@ -688,7 +705,7 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
             tag++;
             size_t nn = 0;
             size_t m0 = B->m[(ax + 1) % 3], m1 = B->m[(ax + 2) % 3];
-            for (size_t x = 0; x < m0; x++)
+            for (size_t x = 0; x < m0 && !glued[ax]; x++)
                 for (size_t y = 0; y < m1; y++) {
                     size_t p[3];
                     p[ax] = hi ? B->m[ax] - 1 : 0;
