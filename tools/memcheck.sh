@@ -69,6 +69,9 @@ if [ -x "$build/tools/coons2stl" ]; then
   for t in "$here"/tests/cli/test_cli_*.py; do
     steps+=("cli_$(basename "$t" .py)|env COONS_TEST_UNDER_VALGRIND=1 python3 $t --bin $wrap --src $here --build $build")
   done
+  # The volume-mesh command paths (mesher, every volume writer through
+  # VTK's reader), with Debian's Python, which sees python3-vtk9.
+  steps+=("cli_test_vol_cli|env COONS_TEST_UNDER_VALGRIND=1 /usr/bin/python3 $here/tests/cli/test_vol_cli.py --bin $wrap --src $here --build $build")
 fi
 
 run_one() {
