@@ -29,7 +29,7 @@ lattice of (r, s, t) in [0,1]^3 under a known map) for every element
 And coons2stl's own .vtu files (coons2stl EX -o x.vtu --resolution 4, hex8
 and hex27) of every example that meshes conformally (at least nail.json,
 spool.json, body1-density.json and
-volume-nurbs.json, read by VTK and meshio: the point data u, v, w, det_j
+volume-nurbs.json), read by VTK and meshio: the point data u, v, w, det_j
 and cell data body, scaled_jacobian; a sample of nodes at --eval's point of
 their (u, v, w); vtkCellValidator; and the sum of the hex27 cells' volumes
 (3x3x3 Gauss quadrature of the isoparametric cell, from the nodes, with
