@@ -166,7 +166,7 @@ CASES = {
     "cycle": (HEAD + '"define": {"a": {"ref": "b"},\n'
               '"b": {"ref": "a"}},\n'
               '"bodies": [{"ref": "a"}]}\n',
-              3, 14, "/define/b", ["a cycle of references: a -> b -> a",
+              3, 14, "/define/b/ref", ["a cycle of references: a -> b -> a",
                                    'in definition "b" referenced at /define/a',
                                    'in "a" referenced at /bodies/0']),
     # line 4 `"transform": [[1, 0, 0, 0], [0, 1, 0, 0], [2, 2, 0, 0]]}]}`: '[' at 14

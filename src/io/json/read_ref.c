@@ -139,15 +139,18 @@ coons_status coons__ld_defines(coons__ld *L, size_t tok)
     return rc;
 }
 
-/* The definition named by string token tok, or ndefs. */
+/* Out of memory in lookup(). */
+#define NOMEM_DEF ((size_t)-1)
+
+/* The definition named by string token tok, or ndefs, or NOMEM_DEF. */
 static size_t lookup(const coons__ld *L, size_t tok)
 {
     size_t lo = 0, hi = L->ndefs;
-    char probe[2];
-    size_t len = coons__json_string(L->j, tok, probe, sizeof probe);
-    char *s = coons__malloc(len + 1);
-    if (!s) return L->ndefs;
-    coons__json_string(L->j, tok, s, len + 1);
+    char small[256];
+    size_t len = coons__json_string(L->j, tok, small, sizeof small);
+    char *s = len < sizeof small ? small : coons__malloc(len + 1);
+    if (!s) return NOMEM_DEF;
+    if (s != small) coons__json_string(L->j, tok, s, len + 1);
     size_t found = L->ndefs;
     while (lo < hi) {
         size_t mid = lo + (hi - lo) / 2;
@@ -162,7 +165,7 @@ static size_t lookup(const coons__ld *L, size_t tok)
             lo = mid + 1;
     }
     int nul = strlen(s) != len; /* names hold no U+0000 */
-    coons__free(s);
+    if (s != small) coons__free(s);
     return nul ? L->ndefs : found;
 }
 
@@ -179,14 +182,14 @@ static int kind_of_def(coons__ld *L, size_t d)
         }
         size_t r = coons__ld_member(L, L->defs[e].tok, "ref");
         if (coons__json_type_of(L->j, r) != COONS__JSON_STRING) break;
-        if ((e = lookup(L, r)) == L->ndefs) break;
+        if ((e = lookup(L, r)) >= L->ndefs) break;
     }
     /* Cache the answer along the chain, so that every chain is walked once. */
     for (size_t steps = 0; steps <= L->ndefs && L->defs[d].kind < 0; steps++) {
         L->defs[d].kind = kind;
         size_t r = coons__ld_member(L, L->defs[d].tok, "ref");
         if (coons__json_type_of(L->j, r) != COONS__JSON_STRING) break;
-        if ((d = lookup(L, r)) == L->ndefs) break;
+        if ((d = lookup(L, r)) >= L->ndefs) break;
     }
     return kind;
 }
@@ -261,26 +264,31 @@ static coons_status read_def(coons__ld *L, size_t d, int kind, void **built)
 static coons_status follow(coons__ld *L, size_t tok, size_t d, int kind, const double *m,
                            void **built)
 {
+    /* The errors of the reference itself are at its "ref". */
+    size_t old = coons__ld_push_key(L, "ref");
+    coons_status rc = COONS_OK;
     if (L->defs[d].state == 1) {
         char cyc[256];
         cycle_text(L, d, cyc, sizeof cyc);
-        return coons__ld_fail(L, tok, COONS_E_INVALID, "a cycle of references: %s", cyc);
-    }
-    if (L->depth >= MAX_REF_DEPTH)
-        return coons__ld_fail(L, tok, COONS_E_LIMIT,
-                              "references nest more than %d deep (a reference inside a "
-                              "definition reached by a reference ...)",
-                              MAX_REF_DEPTH);
-    if (!L->build) {
+        rc = coons__ld_fail(L, tok, COONS_E_INVALID, "a cycle of references: %s", cyc);
+    } else if (L->depth >= MAX_REF_DEPTH) {
+        rc = coons__ld_fail(L, tok, COONS_E_LIMIT,
+                            "references nest more than %d deep (a reference inside a "
+                            "definition reached by a reference ...)",
+                            MAX_REF_DEPTH);
+    } else if (!L->build) {
         size_t n = coons__json_next(L->j, L->defs[d].tok) - L->defs[d].tok;
         if (n > L->max_values - L->expanded)
-            return coons__ld_fail(L, tok, COONS_E_LIMIT,
-                                  "the references expand the model to more than %zu JSON "
-                                  "values, the limit (raise max_values; coons2stl "
-                                  "--max-values N)",
-                                  L->max_values);
-        L->expanded += n;
+            rc = coons__ld_fail(L, tok, COONS_E_LIMIT,
+                                "the references expand the model to more than %zu JSON "
+                                "values, the limit (raise max_values; coons2stl "
+                                "--max-values N)",
+                                L->max_values);
+        else
+            L->expanded += n;
     }
+    coons__ld_pop(L, old);
+    if (rc) return rc;
     char *path = coons__memdup(L->path, L->plen + 1, 1);
     if (!path) return coons__ld_fail(L, tok, COONS_E_NOMEM, "out of memory");
     L->via[L->depth].def = d;
@@ -296,7 +304,7 @@ static coons_status follow(coons__ld *L, size_t tok, size_t d, int kind, const d
             memcpy(L->xf, m, sizeof L->xf);
         L->xf_on = 1;
     }
-    coons_status rc = read_def(L, d, kind, built);
+    rc = read_def(L, d, kind, built);
     memcpy(L->xf, xf, sizeof xf);
     L->xf_on = on;
     L->depth--;
@@ -475,7 +483,9 @@ coons_status coons__ld_ref(coons__ld *L, size_t obj, int kind, size_t index, voi
     size_t old = coons__ld_push_key(L, "ref");
     rc = coons__ld_expect(L, v[0], COONS__JSON_STRING, "a string naming a definition");
     size_t d = L->ndefs;
-    if (!rc && (d = lookup(L, v[0])) == L->ndefs) {
+    if (!rc && (d = lookup(L, v[0])) == NOMEM_DEF)
+        rc = coons__ld_fail(L, v[0], COONS_E_NOMEM, "out of memory");
+    else if (!rc && d == L->ndefs) {
         char nm[64];
         coons__ld_text_of(L, v[0], nm, sizeof nm);
         rc = coons__ld_fail(L, v[0], COONS_E_INVALID, "unknown definition \"%s\"%s", nm,
