@@ -12,6 +12,8 @@
  *   read_curve.c    the table of curve readers, one read_curve_*.c each
  *   read_patch.c    the table of patch readers, one read_patch_*.c each
  *   read_body.c     the table of body readers, one read_body*.c each
+ *   read_ref.c      "define" and references {"ref": NAME, modifiers}, which
+ *                   coons__ld_curve/_patch/_body hand over to it
  *   read_model.c    the top level and the two passes
  *   load.c          the entry points coons_model_load_file/_memory
  *
