@@ -658,6 +658,12 @@ static void test_load_errors(void **state)
          "\"bodies\":[{\"type\":\"body0\",\"corners\":[[0,0,0],[0,0,1],[0,1,0],[0,1,1],[1,0,0],[1,0,1],[1,1,0],[1,1,1]]}]}",
          COONS_E_INCOMPATIBLE, &e);
     assert_non_null(strstr(e.path, "/define/p/boundary"));
+    /* and its values, as when used */
+    load("{\"coons\":1,\"define\":{\"x\":{\"type\":\"line\",\"points\":[[0,0]]}},"
+         "\"bodies\":[{\"type\":\"body0\",\"corners\":[[0,0,0],[0,0,1],[0,1,0],[0,1,1],[1,0,0],[1,0,1],[1,1,0],[1,1,1]]}]}",
+         COONS_E_INVALID, &e);
+    assert_string_equal(e.path, "/define/x/points");
+    assert_null(strstr(e.message, "referenced at"));
     /* an error inside a definition: its path, and the references' in the message */
     load("{\"coons\":1,\"define\":{\"c\":{\"type\":\"body0\",\"corners\":[[0,0,0]]},"
          "\"b\":{\"ref\":\"c\",\"transform\":[[2,0,0,0],[0,1,0,0],[0,0,1,0]]}},"

@@ -215,6 +215,11 @@ CASES = {
     "definition-type": (HEAD + '"define": {"a": {"type": "foo"}},\n'
                         '"bodies": [{"type": "body0", "corners": ' + json.dumps(CUBE) + '}]}\n',
                         2, 26, "/define/a/type", ['unknown type "foo" for a definition']),
+    # an unused definition is checked: line 2 `"define": {"x": {"type": "line", "points": [[0, 0]]}},`
+    # `"points": ` ends at 43: the array at 44
+    "unused-definition": (HEAD + '"define": {"x": {"type": "line", "points": [[0, 0]]}},\n'
+                          '"bodies": [{"type": "body0", "corners": ' + json.dumps(CUBE) + '}]}\n',
+                          2, 44, "/define/x/points", ["2 points"]),
     # line 3: the second "a" key at 1
     "definition-twice": (HEAD + '"define": {"a": ' + CUBE_S + ',\n'
                          '"a": ' + CUBE_S + '},\n'
