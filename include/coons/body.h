@@ -113,14 +113,15 @@ COONS_EXPORT coons_status coons_body_new_bspline(const int degree[3], const doub
  * type (coons_body_get_type()) is b's. Copies b: the caller keeps b and
  * frees the result with coons_body_free().
  * @param[in]  b   the body
- * @param[in]  m   the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],[g,h,i,tz]]
+ * @param[in]  m   12 doubles, the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],
+ *                 [g,h,i,tz]] (a `double m[12]`, or `m[0]` of a `double m[3][4]`)
  *                 of y = M x + t: 12 finite numbers with M regular
  *                 (|det M| > 1e-12 x the product of M's row norms).
  * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument, an entry not
  *         finite, or M singular: the message gives the determinant),
  *         ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_body_new_transformed(const coons_body *b, const double m[12],
+COONS_EXPORT coons_status coons_body_new_transformed(const coons_body *b, const double *m,
                                                      coons_body **out, coons_error *err);
 
 /** Deep copy. */

@@ -115,7 +115,8 @@ COONS_EXPORT coons_status coons_curve_copy(const coons_curve *c, coons_curve **o
  * Copies c (coons_curve_copy()): the caller keeps c and frees the result
  * with coons_curve_free().
  * @param[in]  c   the curve
- * @param[in]  m   the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],[g,h,i,tz]]
+ * @param[in]  m   12 doubles, the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],
+ *                 [g,h,i,tz]] (a `double m[12]`, or `m[0]` of a `double m[3][4]`)
  *                 of y = M x + t: 12 finite numbers with M regular
  *                 (|det M| > 1e-12 x the product of M's row norms).
  * @param[out] out the new curve
@@ -123,7 +124,7 @@ COONS_EXPORT coons_status coons_curve_copy(const coons_curve *c, coons_curve **o
  *         finite, or M singular: the message gives the determinant),
  *         ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_curve_new_transformed(const coons_curve *c, const double m[12],
+COONS_EXPORT coons_status coons_curve_new_transformed(const coons_curve *c, const double *m,
                                                       coons_curve **out, coons_error *err);
 
 /**

@@ -3,7 +3,7 @@
  * affine.h): the regularity check, boxes and composition. */
 #include "affine.h"
 
-void coons__affine_bbox(const double m[12], const double lo[3], const double hi[3],
+void coons__affine_bbox(const double *m, const double lo[3], const double hi[3],
                         double olo[3], double ohi[3])
 {
     bbox_empty(olo, ohi);

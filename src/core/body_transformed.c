@@ -58,7 +58,7 @@ const coons__body_kind coons__body_transformed_kind = {
     eval, grid, det_grid, breaks, copy, release,
 };
 
-coons_status coons_body_new_transformed(const coons_body *b, const double m[12],
+coons_status coons_body_new_transformed(const coons_body *b, const double *m,
                                         coons_body **out, coons_error *err)
 {
     if (!out) return coons__error_set(err, COONS_E_INVALID, "body transform: out is NULL");

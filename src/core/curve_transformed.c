@@ -79,7 +79,7 @@ const coons__curve_kind coons__curve_transformed_kind = {
     eval, bezier, breaks, coons__curve_wrap_copy, coons__curve_wrap_free,
 };
 
-coons_status coons_curve_new_transformed(const coons_curve *c, const double m[12],
+coons_status coons_curve_new_transformed(const coons_curve *c, const double *m,
                                          coons_curve **out, coons_error *err)
 {
     if (!out) return coons__error_set(err, COONS_E_INVALID, "curve transform: out is NULL");

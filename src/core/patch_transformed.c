@@ -71,7 +71,7 @@ const coons__patch_kind coons__patch_transformed_kind = {
     coons__patch_wrap_copy, coons__patch_wrap_free,
 };
 
-coons_status coons_patch_new_transformed(const coons_patch *p, const double m[12],
+coons_status coons_patch_new_transformed(const coons_patch *p, const double *m,
                                          coons_patch **out, coons_error *err)
 {
     if (!out) return coons__error_set(err, COONS_E_INVALID, "patch transform: out is NULL");
