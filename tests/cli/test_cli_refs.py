@@ -169,6 +169,10 @@ CASES = {
               3, 14, "/define/b/ref", ["a cycle of references: a -> b -> a",
                                    'in definition "b" referenced at /define/a',
                                    'in "a" referenced at /bodies/0']),
+    # an unused definition that references itself: line 2 `"define": {"a": {"ref": "a"}},`, "a" at 25
+    "self-cycle": (HEAD + '"define": {"a": {"ref": "a"}},\n'
+                   '"bodies": [{"type": "body0", "corners": ' + json.dumps(CUBE) + '}]}\n',
+                   2, 25, "/define/a/ref", ["a cycle of references: a -> a"]),
     # line 4 `"transform": [[1, 0, 0, 0], [0, 1, 0, 0], [2, 2, 0, 0]]}]}`: '[' at 14
     "singular": (HEAD + '"define": {"c": ' + CUBE_S + '},\n'
                  '"bodies": [{"ref": "c",\n'

@@ -216,20 +216,29 @@ void coons__ld_via_text(const coons__ld *L, char *out, size_t cap)
     }
 }
 
-/* "a -> b -> a": the definitions being read from d on, and d again. */
+/* Appends " -> name of definition k" (no arrow first) to out at *o. */
+static void cycle_add(const coons__ld *L, size_t k, char *out, size_t cap, size_t *o)
+{
+    char nm[64];
+    coons__ld_copy_trunc(nm, sizeof nm, L->defs[k].name);
+    coons__ld_sanitize(nm);
+    int n = *o < cap ? snprintf(out + *o, cap - *o, "%s%s", *o ? " -> " : "", nm) : -1;
+    if (n > 0) *o += (size_t)n;
+}
+
+/* "a -> b -> a": the definitions being read from d on, and d again (d is
+ * not on the stack when it is an unused definition read for itself). */
 static void cycle_text(const coons__ld *L, size_t d, char *out, size_t cap)
 {
     size_t i = 0, o = 0;
     while (i < L->depth && L->via[i].def != d) i++;
     out[0] = '\0';
-    for (; i <= L->depth && o < cap; i++) {
-        char nm[64];
-        coons__ld_copy_trunc(nm, sizeof nm, L->defs[i < L->depth ? L->via[i].def : d].name);
-        coons__ld_sanitize(nm);
-        int n = snprintf(out + o, cap - o, "%s%s", o ? " -> " : "", nm);
-        if (n < 0) break;
-        o += (size_t)n;
+    if (i == L->depth) {
+        cycle_add(L, d, out, cap, &o);
+        i = 0;
     }
+    for (; i < L->depth; i++) cycle_add(L, L->via[i].def, out, cap, &o);
+    cycle_add(L, d, out, cap, &o);
 }
 
 /* Reads definition d as an object of kind at its own path (pass 2: into
