@@ -186,11 +186,20 @@ static void test_data_ok(void **state)
     run_dir(COONS_SOURCE_DIR "/tests/data/ok", 1);
 }
 
+/* The same for models with references (coons-model(5), "Definitions and
+ * references"): definitions built once, copied and wrapped per reference. */
+static void test_data_refs(void **state)
+{
+    (void)state;
+    run_dir(COONS_SOURCE_DIR "/tests/data/refs", 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_examples),
         cmocka_unit_test(test_data_ok),
+        cmocka_unit_test(test_data_refs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -104,6 +104,26 @@ COONS_EXPORT coons_status coons_body_new_bspline(const int degree[3], const doub
                                                  const double *weights, coons_body **out,
                                                  coons_error *err);
 
+/**
+ * The affine image G = M F + t of a body (coons-model(5), "Definitions and
+ * references", "transform"): points map by M x + t, the Jacobian by M
+ * (J_G = M J_F, det J_G = det M det J_F), exact for every type. With
+ * det M < 0 the body is mirrored: left-handed, and still meshed outward.
+ * The control box is the box of the 8 mapped corners of b's. The result's
+ * type (coons_body_get_type()) is b's. Copies b: the caller keeps b and
+ * frees the result with coons_body_free().
+ * @param[in]  b   the body
+ * @param[in]  m   12 doubles, the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],
+ *                 [g,h,i,tz]] (a `double m[12]`, or `m[0]` of a `double m[3][4]`)
+ *                 of y = M x + t: 12 finite numbers with M regular
+ *                 (|det M| > 1e-12 x the product of M's row norms).
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument, an entry not
+ *         finite, or M singular: the message gives the determinant),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_new_transformed(const coons_body *b, const double *m,
+                                                     coons_body **out, coons_error *err);
+
 /** Deep copy. */
 COONS_EXPORT coons_status coons_body_copy(const coons_body *b, coons_body **out,
                                           coons_error *err);
@@ -111,6 +131,8 @@ COONS_EXPORT coons_status coons_body_copy(const coons_body *b, coons_body **out,
 /** Releases a body; NULL is a harmless no-op. */
 COONS_EXPORT void coons_body_free(coons_body *b);
 
+/** The type the body was built as (of a transformed body: the type of the
+ * body it was made from). */
 COONS_EXPORT coons_body_type coons_body_get_type(const coons_body *b);
 
 /** Point F(u,v,w), parameters clamped to [0,1]. */

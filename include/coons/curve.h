@@ -105,10 +105,42 @@ COONS_EXPORT coons_status coons_curve_new_bspline(int degree, const double *poin
 COONS_EXPORT coons_status coons_curve_copy(const coons_curve *c, coons_curve **out,
                                            coons_error *err);
 
+/**
+ * The affine image y(t) = M c(t) + t of a curve (coons-model(5),
+ * "Definitions and references", "transform"). Exact for every type, NURBS
+ * included (affine maps commute with rational evaluation): points map by
+ * M x + t, derivatives by M alone. The control box is that of c's control
+ * points mapped. coons_curve_get_type() of the result is c's type.
+ *
+ * Copies c (coons_curve_copy()): the caller keeps c and frees the result
+ * with coons_curve_free().
+ * @param[in]  c   the curve
+ * @param[in]  m   12 doubles, the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],
+ *                 [g,h,i,tz]] (a `double m[12]`, or `m[0]` of a `double m[3][4]`)
+ *                 of y = M x + t: 12 finite numbers with M regular
+ *                 (|det M| > 1e-12 x the product of M's row norms).
+ * @param[out] out the new curve
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument, an entry not
+ *         finite, or M singular: the message gives the determinant),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_curve_new_transformed(const coons_curve *c, const double *m,
+                                                      coons_curve **out, coons_error *err);
+
+/**
+ * The reversed curve y(t) = c(1 - t), y'(t) = -c'(1 - t) ("reverse"); its
+ * Bezier segments are c's in the opposite order. Copies c; the result's
+ * type is c's. @return ::COONS_OK, ::COONS_E_INVALID (NULL argument),
+ * ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_curve_new_reversed(const coons_curve *c, coons_curve **out,
+                                                   coons_error *err);
+
 /** Releases a curve; NULL is a harmless no-op. */
 COONS_EXPORT void coons_curve_free(coons_curve *c);
 
-/** The type the curve was built as. */
+/** The type the curve was built as (of a transformed or reversed curve: the
+ * type of the curve it was made from). */
 COONS_EXPORT coons_curve_type coons_curve_get_type(const coons_curve *c);
 
 /** Point at t (t is clamped to [0,1]; a NaN t counts as 0). */

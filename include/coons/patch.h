@@ -165,6 +165,36 @@ COONS_EXPORT coons_status coons_patch_new_bspline(int ps, int pt, const double *
                                                   const double *knots_t, const double *weights,
                                                   coons_patch **out, coons_error *err);
 
+/**
+ * The affine image y(s,t) = M x(s,t) + t of a patch (coons-model(5),
+ * "Definitions and references", "transform"): points map by M x + t, every
+ * partial by M alone, exact for every type. The control box is the box of
+ * the 8 mapped corners of p's control box. coons_patch_get_type() of the
+ * result is p's type. Copies p: the caller keeps p and frees the result
+ * with coons_patch_free().
+ * @param[in]  p   the patch
+ * @param[in]  m   12 doubles, the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],
+ *                 [g,h,i,tz]] (a `double m[12]`, or `m[0]` of a `double m[3][4]`)
+ *                 of y = M x + t: 12 finite numbers with M regular
+ *                 (|det M| > 1e-12 x the product of M's row norms).
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument, an entry not
+ *         finite, or M singular: the message gives the determinant),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_patch_new_transformed(const coons_patch *p, const double *m,
+                                                      coons_patch **out, coons_error *err);
+
+/**
+ * The patch y(s,t) = x(a,b) with (a,b) = swap ? (t,s) : (s,t), then
+ * a -> 1 - a if flip_s, b -> 1 - b if flip_t ("swap", "flip_s", "flip_t");
+ * partials follow by the chain rule, breakpoints are remapped. Any non-zero
+ * int is true. Copies p; the result's type is p's; its control box is p's.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument), ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_patch_new_reparametrized(const coons_patch *p, int swap,
+                                                         int flip_s, int flip_t,
+                                                         coons_patch **out, coons_error *err);
+
 /** Deep copy. */
 COONS_EXPORT coons_status coons_patch_copy(const coons_patch *p, coons_patch **out,
                                            coons_error *err);
@@ -172,6 +202,8 @@ COONS_EXPORT coons_status coons_patch_copy(const coons_patch *p, coons_patch **o
 /** Releases a patch; NULL is a harmless no-op. */
 COONS_EXPORT void coons_patch_free(coons_patch *p);
 
+/** The type the patch was built as (of a transformed or reparametrised
+ * patch: the type of the patch it was made from). */
 COONS_EXPORT coons_patch_type coons_patch_get_type(const coons_patch *p);
 
 /** Point at (s,t), parameters clamped to [0,1] (NaN counts as 0). */

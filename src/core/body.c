@@ -27,7 +27,12 @@ void coons_body_free(coons_body *b)
     coons__free(b);
 }
 
-coons_body_type coons_body_get_type(const coons_body *b) { return b->kind->type; }
+/* A wrapper reports the type of the body it wraps (body.h). */
+coons_body_type coons_body_get_type(const coons_body *b)
+{
+    while (b->inner) b = b->inner;
+    return b->kind->type;
+}
 
 coons_status coons_body_copy(const coons_body *b, coons_body **out, coons_error *err)
 {

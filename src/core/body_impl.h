@@ -32,6 +32,11 @@ struct coons_body {
     double *knots[3]; /* n[d] + deg[d] + 1 values each */
     double *w;        /* weights or NULL */
     double lo[3], hi[3]; /* control box */
+    /* The affine wrapper (body_transformed.c): the wrapped body, the map
+     * and its determinant. */
+    coons_body *inner;
+    double xf[12];
+    double xf_det;
 };
 
 /* Allocates a zeroed record of the given kind, with an empty control box. */

@@ -24,7 +24,12 @@ void coons_curve_free(coons_curve *c)
     coons__free(c);
 }
 
-coons_curve_type coons_curve_get_type(const coons_curve *c) { return c->kind->type; }
+/* A wrapper reports the type of the curve it wraps (curve.h). */
+coons_curve_type coons_curve_get_type(const coons_curve *c)
+{
+    while (c->inner) c = c->inner;
+    return c->kind->type;
+}
 
 coons_status coons_curve_copy(const coons_curve *c, coons_curve **out, coons_error *err)
 {

@@ -14,7 +14,19 @@ struct coons_curve {
     double *knots; /* n + degree + 1 values; NULL for the Coons cubic */
     double *w;     /* n weights, or NULL */
     int closed;    /* Coons cubic only */
+    /* Wrappers (curve_transformed.c, curve_reversed.c): the wrapped curve
+     * and the map; pts then holds the inner control points as mapped. */
+    coons_curve *inner;
+    double xf[12];
 };
+
+/* A wrapper record of kind over a copy of c, with pts the inner control
+ * points mapped by xf (NULL: unchanged) (curve_transformed.c). */
+coons_status coons__curve_wrap(const coons__curve_kind *kind, const coons_curve *c,
+                               const double *xf, coons_curve **out, coons_error *err);
+/* copy and free of the wrapper rows. */
+coons_status coons__curve_wrap_copy(const coons_curve *c, coons_curve *d, coons_error *err);
+void coons__curve_wrap_free(coons_curve *c);
 
 /* Allocates a zeroed record of the given kind. */
 coons_status coons__curve_alloc(const coons__curve_kind *kind, coons_curve **out,

@@ -4,7 +4,9 @@
  * the public type enum, with the type's model-format name (coons-model(5)),
  * the one place those names are spelled; the loader, coons2stl and the
  * tests take them from here (coons_*_type_name, coons_*_type_from_name).
- * Names of edges, faces and sides are in names.c.
+ * Names of edges, faces and sides are in names.c. The wrappers of
+ * kinds.h (transformed, reversed, reparametrised) are rows without a table
+ * entry: they are not types of the format, and report the wrapped type.
  */
 #include <string.h>
 

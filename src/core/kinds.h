@@ -108,4 +108,12 @@ extern const coons__body_kind coons__body2_kind;                 /* body2.c */
 extern const coons__body_kind coons__bezier_volume_kind,
     coons__bspline_volume_kind;                                  /* tensor_volume.c */
 
+/* Wrappers of another object (coons-model(5), "Definitions and
+ * references"); not in the tables: they report the wrapped type. */
+extern const coons__curve_kind coons__curve_transformed_kind; /* curve_transformed.c */
+extern const coons__curve_kind coons__curve_reversed_kind;    /* curve_reversed.c */
+extern const coons__patch_kind coons__patch_transformed_kind; /* patch_transformed.c */
+extern const coons__patch_kind coons__patch_reparam_kind;     /* patch_reparam.c */
+extern const coons__body_kind coons__body_transformed_kind;   /* body_transformed.c */
+
 #endif

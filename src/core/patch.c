@@ -26,7 +26,12 @@ void coons_patch_free(coons_patch *p)
     coons__free(p);
 }
 
-coons_patch_type coons_patch_get_type(const coons_patch *p) { return p->kind->type; }
+/* A wrapper reports the type of the patch it wraps (patch.h). */
+coons_patch_type coons_patch_get_type(const coons_patch *p)
+{
+    while (p->inner) p = p->inner;
+    return p->kind->type;
+}
 
 coons_status coons_patch_copy(const coons_patch *p, coons_patch **out, coons_error *err)
 {

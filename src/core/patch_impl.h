@@ -45,7 +45,24 @@ struct coons_patch {
     double *w;               /* ns*nt weights or NULL */
     double *pw;              /* 4*ns*nt homogeneous (w x, w y, w z, w), or NULL */
     double *ks, *kt;         /* knot vectors, NULL for Bezier */
+
+    /* Wrappers (patch_transformed.c, patch_reparam.c): the wrapped patch,
+     * the map, the reparametrisation; lo/hi the control box. */
+    coons_patch *inner;
+    double xf[12];
+    int swap, flip_s, flip_t;
+    double lo[3], hi[3];
 };
+
+/* A wrapper record of kind over a copy of p with control box [lo, hi]
+ * (patch_transformed.c). */
+coons_status coons__patch_wrap(const coons__patch_kind *kind, const coons_patch *p,
+                               const double lo[3], const double hi[3], coons_patch **out,
+                               coons_error *err);
+/* control_bbox, copy and free of the wrapper rows. */
+void coons__patch_wrap_bbox(const coons_patch *p, double lo[3], double hi[3]);
+coons_status coons__patch_wrap_copy(const coons_patch *p, coons_patch *d, coons_error *err);
+void coons__patch_wrap_free(coons_patch *p);
 
 /* Vector m of derivative order d of a line. */
 static inline double *coons__lv(coons__pline *L, int d, int m) { return L->v[d] + 3 * m; }

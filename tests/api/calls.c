@@ -80,6 +80,21 @@ static void curves(void)
     check("bezier segments",
           coons_curve_bezier_segments(c[5], seg, 64, &nseg, &deg, &err) == COONS_OK &&
               nseg == 2 && deg == 3);
+    /* transforms: a flat double[12], or m[0] of a double[3][4] */
+    double mflat[12] = {1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0};
+    double mrows[3][4] = {{0, -1, 0, 0}, {1, 0, 0, 0}, {0, 0, 1, 0}};
+    coons_curve *xc[3] = {0};
+    check("curve transformed flat",
+          coons_curve_new_transformed(c[0], mflat, &xc[0], &err) == COONS_OK);
+    check("curve transformed rows",
+          coons_curve_new_transformed(c[0], mrows[0], &xc[1], &err) == COONS_OK);
+    check("curve reversed", coons_curve_new_reversed(c[0], &xc[2], &err) == COONS_OK);
+    coons_curve_eval(xc[0], 0.5, d[0]);
+    coons_curve_eval(xc[1], 0.5, d[1]);
+    coons_curve_eval(xc[2], 0.25, d[2]);
+    check("transformed and reversed points",
+          near3(d[0], 6, 0, 0) && near3(d[1], 0, 1, 0) && near3(d[2], 1.5, 0, 0));
+    for (int k = 0; k < 3; k++) coons_curve_free(xc[k]);
     for (int k = 0; k < 8; k++) coons_curve_free(c[k]);
 }
 
@@ -121,6 +136,16 @@ static void patches(void)
     check("net box", near3(lo, 0, 0, 0) && near3(hi, 1, 1, 1));
     check("grid", coons_patch_eval_grid(p[1], s, 2, s, 2, grid, &err) == COONS_OK &&
                       near3(grid + 9, 1, 1, 1));
+    double pm[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 2}};
+    coons_patch *xp[2] = {0};
+    check("patch transformed", coons_patch_new_transformed(p[0], pm[0], &xp[0], &err) == COONS_OK);
+    check("patch reparametrized",
+          coons_patch_new_reparametrized(p[0], 1, 0, 0, &xp[1], &err) == COONS_OK);
+    coons_patch_eval(xp[0], 0.5, 0.5, d[0]);
+    coons_patch_eval(xp[1], 0.5, 0.5, d[1]);
+    check("transformed and swapped patch points",
+          near3(d[0], 0.5, 0.5, 2.25) && near3(d[1], 0.5, 0.5, 0.25));
+    for (int k = 0; k < 2; k++) coons_patch_free(xp[k]);
     for (int k = 0; k < 8; k++) coons_patch_free(p[k]);
     for (int k = 0; k < 4; k++) coons_curve_free(side[k]);
 }
@@ -191,6 +216,12 @@ static void bodies(void)
     size_t lattice[3];
     check("sampling", coons_mesh_part_sampling(m, 0, &tol, &dev, lattice) && lattice[0] == 2);
     coons_mesh_free(m);
+    double bm[12] = {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    coons_body *xb = NULL;
+    check("body transformed", coons_body_new_transformed(b[2], bm, &xb, &err) == COONS_OK &&
+                                  coons_body_volume(xb, 1e-12, &vol, &err) == COONS_OK &&
+                                  vol < -0.999999 && vol > -1.000001);
+    coons_body_free(xb);
     for (int k = 0; k < 7; k++) coons_body_free(b[k]);
     for (int f = 0; f < 6; f++) coons_patch_free(face[f]);
     for (int e = 0; e < 12; e++) coons_curve_free(edge[e]);

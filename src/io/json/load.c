@@ -67,6 +67,7 @@ coons_status coons_model_load_memory(const char *data, size_t size, const char *
     L.file = file;
     L.err = err;
     L.max_points = o.max_points;
+    L.max_values = o.max_values;
     L.op = COONS_OP_UNION;
 
     coons__json *j = NULL;
@@ -86,6 +87,7 @@ coons_status coons_model_load_memory(const char *data, size_t size, const char *
         for (size_t i = 0; i < nb; i++) coons__free(L.names[i].name);
         coons__free(L.names);
     }
+    coons__ld_defs_free(&L);
     coons__json_free(j);
     return rc;
 }

@@ -12,6 +12,8 @@
  *   read_curve.c    the table of curve readers, one read_curve_*.c each
  *   read_patch.c    the table of patch readers, one read_patch_*.c each
  *   read_body.c     the table of body readers, one read_body*.c each
+ *   read_ref.c      "define" and references {"ref": NAME, modifiers}, which
+ *                   coons__ld_curve/_patch/_body hand over to it
  *   read_model.c    the top level and the two passes
  *   load.c          the entry points coons_model_load_file/_memory
  *
@@ -39,6 +41,23 @@ typedef struct coons__ld_name {
     size_t tok;
 } coons__ld_name;
 
+/* A definition of "define" (read_ref.c). */
+typedef struct coons__ld_def {
+    char *name;  /* the key, decoded */
+    size_t tok;  /* the value */
+    int kind;    /* COONS__LD_KIND_*, or -1 not known yet */
+    int state;   /* 0 not reached, 1 being read (a cycle if reached again), 2 read */
+    void *built; /* pass 2: the definition built once (its kind's object) */
+} coons__ld_def;
+
+enum { COONS__LD_KIND_NONE, COONS__LD_KIND_CURVE, COONS__LD_KIND_PATCH, COONS__LD_KIND_BODY };
+
+/* A reference being followed: the definition and the reference's path. */
+typedef struct coons__ld_via {
+    size_t def;
+    char *path;
+} coons__ld_via;
+
 /* The state of one load. */
 typedef struct coons__ld {
     const coons__json *j;
@@ -59,6 +78,15 @@ typedef struct coons__ld {
     int op;
     size_t units_tok;
     coons__ld_name *names; /* one per body */
+    /* definitions and references (read_ref.c) */
+    size_t define_tok;
+    coons__ld_def *defs; /* sorted by name */
+    size_t ndefs;
+    coons__ld_via *via;  /* the references being followed, outermost first */
+    size_t depth;
+    double xf[12];       /* pass 1: the composed transform of the references followed */
+    int xf_on;
+    size_t expanded, max_values; /* JSON values read through references, and the limit */
 } coons__ld;
 
 /* ---- errors and positions (toolkit.c) -------------------------------------- */
@@ -258,6 +286,24 @@ coons_status coons__ld_body_parts(coons__ld *L, coons__ld_obj *o, size_t val, in
 /* The constructor's own refusal after the readers' checks passed. */
 coons_status coons__ld_body_built(coons__ld *L, coons__ld_obj *o, size_t val, const char *key,
                                   coons_status r, const coons_error *e);
+
+ /* ---- definitions and references (read_ref.c) ----------------------------- */
+
+/* Reads "define" (pass 1): the names, sorted, each once. */
+coons_status coons__ld_defines(coons__ld *L, size_t tok);
+/* Is obj an object with a "ref"? */
+int coons__ld_is_ref(const coons__ld *L, size_t obj);
+/* The reference obj where an object of kind (COONS__LD_KIND_*) stands;
+ * index: the body's index in "bodies" (bodies at the top level only, else
+ * (size_t)-1). *out (NULL in pass 1) gets a new object. */
+coons_status coons__ld_ref(coons__ld *L, size_t obj, int kind, size_t index, void **out);
+/* After the bodies: the definitions no body reached, read (pass 1, outside
+ * the box) or built and dropped (pass 2). */
+coons_status coons__ld_unused_defs(coons__ld *L);
+/* " (in definition ..., referenced at ...)" for an error inside a
+ * definition, or "". */
+void coons__ld_via_text(const coons__ld *L, char *out, size_t cap);
+void coons__ld_defs_free(coons__ld *L);
 
 /* ---- the model (read_model.c) -------------------------------------------- */
 

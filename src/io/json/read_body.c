@@ -20,6 +20,12 @@ enum { NBODIES = sizeof BODIES / sizeof BODIES[0] };
 
 coons_status coons__ld_body(coons__ld *L, size_t obj, size_t index, coons_body **out)
 {
+    if (coons__ld_is_ref(L, obj)) {
+        void *r = NULL;
+        coons_status st = coons__ld_ref(L, obj, COONS__LD_KIND_BODY, index, out ? &r : NULL);
+        if (out) *out = r;
+        return st;
+    }
     const char *names[NBODIES + 1];
     for (int i = 0; i < NBODIES; i++) names[i] = coons_body_type_name(BODIES[i].type);
     names[NBODIES] = NULL;

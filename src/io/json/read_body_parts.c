@@ -39,7 +39,15 @@ coons_status coons__ld_body_keys(coons__ld *L, coons__ld_obj *o, const char *con
                                  size_t *val)
 {
     coons_status rc = coons__ld_keys(L, o, keys, val);
-    if (!rc && val[1] && !L->build) rc = body_name(L, val[1], o->index);
+    if (!rc && val[1] && !L->build) {
+        if (o->index != (size_t)-1)
+            rc = body_name(L, val[1], o->index);
+        else { /* a definition: its instances are named by the references */
+            size_t old = coons__ld_push_key(L, "name");
+            rc = coons__ld_expect(L, val[1], COONS__JSON_STRING, "a string (the body's name)");
+            coons__ld_pop(L, old);
+        }
+    }
     return rc;
 }
 

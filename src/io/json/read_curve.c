@@ -21,6 +21,12 @@ enum { NCURVES = sizeof CURVES / sizeof CURVES[0] };
 
 coons_status coons__ld_curve(coons__ld *L, size_t obj, coons_curve **out)
 {
+    if (coons__ld_is_ref(L, obj)) {
+        void *r = NULL;
+        coons_status st = coons__ld_ref(L, obj, COONS__LD_KIND_CURVE, (size_t)-1, out ? &r : NULL);
+        if (out) *out = r;
+        return st;
+    }
     const char *names[NCURVES + 1];
     for (int i = 0; i < NCURVES; i++) names[i] = coons_curve_type_name(CURVES[i].type);
     names[NCURVES] = NULL;

@@ -13,7 +13,7 @@
 #include "io/json/loader.h"
 
 static const char *const TOP_KEYS[] = {"coons", "units", "tolerance", "operation", "bodies",
-                                       NULL};
+                                       "define", NULL};
 
 /* ---- the top level (pass 1) ---------------------------------------------- */
 
@@ -85,13 +85,14 @@ static coons_status operation(coons__ld *L, size_t tok)
 /* Version, keys, settings; the bodies follow. */
 static coons_status top(coons__ld *L)
 {
-    size_t root = 0, v[5];
+    size_t root = 0, v[6];
     coons_status rc;
     if ((rc = version(L))) return rc;
     if ((rc = coons__ld_members(L, root, "the model", TOP_KEYS, v, NULL))) return rc;
     if (v[1] && (rc = units(L, v[1]))) return rc;
     if (v[2] && (rc = tolerance(L, v[2]))) return rc;
     if (v[3] && (rc = operation(L, v[3]))) return rc;
+    if (v[5] && (rc = coons__ld_defines(L, v[5]))) return rc;
     if ((rc = coons__ld_need(L, root, v[4], "bodies",
                              "a model needs \"bodies\": an array of one or more bodies")))
         return rc;
@@ -161,11 +162,17 @@ static coons_status unique_names(coons__ld *L, size_t nb)
     coons__json_line_col(L->buf, L->len, coons__json_start(L->j, first), &line, &col);
     size_t old = coons__ld_push_key(L, "bodies");
     coons__ld_push_index(L, bi);
-    coons__ld_push_key(L, "name");
+    size_t bt = L->bodies_tok + 1;
+    for (size_t i = 0; i < bi; i++) bt = coons__json_next(L->j, bt);
+    /* A reference without "name" is named after its definition (read_ref.c). */
+    int named = coons__ld_member(L, bt, "name") == bad;
+    coons__ld_push_key(L, named ? "name" : "ref");
     rc = coons__ld_fail(L, bad, COONS_E_INVALID,
                         "body name \"%s\" is already used by body %zu (line %d, column %d): "
-                        "names must be unique",
-                        nm, fi, line, col);
+                        "names must be unique%s",
+                        nm, fi, line, col,
+                        named ? "" : " (a reference is named after its definition: give it "
+                                     "a \"name\")");
     coons__ld_pop(L, old);
     return rc;
 }
@@ -249,6 +256,7 @@ coons_status coons__ld_model(coons__ld *L, coons_model **out)
     bbox_empty(L->lo, L->hi);
     L->bbox_on = 1;
     if ((rc = bodies(L, NULL))) return rc;
+    if ((rc = coons__ld_unused_defs(L))) return rc;
     if ((rc = unique_names(L, nb))) return rc;
     double tol;
     if ((rc = tolerances(L, &tol))) return rc;
@@ -257,6 +265,7 @@ coons_status coons__ld_model(coons__ld *L, coons_model **out)
     if (!rc) {
         L->build = 1;
         rc = bodies(L, m);
+        if (!rc) rc = coons__ld_unused_defs(L);
     }
     if (rc) {
         coons_model_free(m);

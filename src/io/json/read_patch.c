@@ -20,6 +20,12 @@ enum { NPATCHES = sizeof PATCHES / sizeof PATCHES[0] };
 
 coons_status coons__ld_patch(coons__ld *L, size_t obj, coons_patch **out)
 {
+    if (coons__ld_is_ref(L, obj)) {
+        void *r = NULL;
+        coons_status st = coons__ld_ref(L, obj, COONS__LD_KIND_PATCH, (size_t)-1, out ? &r : NULL);
+        if (out) *out = r;
+        return st;
+    }
     const char *names[NPATCHES + 1];
     for (int i = 0; i < NPATCHES; i++) names[i] = coons_patch_type_name(PATCHES[i].type);
     names[NPATCHES] = NULL;

@@ -39,9 +39,12 @@ coons_status coons__ld_fail_at(coons__ld *L, size_t offset, coons_status code, c
     e->line = line;
     e->column = col;
     coons__ld_copy_trunc(e->path, sizeof e->path, L->path);
+    /* Inside a definition: also the references that lead there. */
+    char via[COONS_ERROR_MESSAGE_MAX];
+    coons__ld_via_text(L, via, sizeof via);
     /* The message repeats the position so that it can be printed alone. */
-    if (snprintf(e->message, sizeof e->message, "%s:%d:%d: %s: %s", L->file, line, col,
-                 L->path[0] ? L->path : "(root)", msg) < 0)
+    if (snprintf(e->message, sizeof e->message, "%s:%d:%d: %s: %s%s", L->file, line, col,
+                 L->path[0] ? L->path : "(root)", msg, via) < 0)
         e->message[0] = '\0';
     return code;
 }

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "affine.h"
 #include "io/json/loader.h"
 
 coons_status coons__ld_number(coons__ld *L, size_t tok, double *v)
@@ -67,7 +68,13 @@ coons_status coons__ld_vec(coons__ld *L, size_t tok, int leaf, double out[3])
         coons__ld_pop(L, old);
         if (rc) return rc;
     }
-    if (leaf == COONS__LD_POINT && L->bbox_on && !L->build) bbox_add(L->lo, L->hi, out);
+    if (leaf == COONS__LD_POINT && L->bbox_on && !L->build) {
+        /* the point as instanced: under the transforms of the references (read_ref.c) */
+        double p[3];
+        v3_copy(p, out);
+        if (L->xf_on) coons__affine_point(L->xf, p, p);
+        bbox_add(L->lo, L->hi, p);
+    }
     return COONS_OK;
 }
 
