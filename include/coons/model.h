@@ -120,6 +120,43 @@ COONS_EXPORT coons_operation coons_model_operation(const coons_model *m);
 /** Box of all control points of the model. */
 COONS_EXPORT void coons_model_control_bbox(const coons_model *m, double lo[3], double hi[3]);
 
+/**
+ * A face shared by two bodies (coons-model(5), "Bodies that share faces":
+ * the same map up to one of the 8 symmetries of the unit square, within
+ * 1e-9 of the model's control box diagonal, found by geometry), with the
+ * continuity across it.
+ */
+typedef struct coons_interface {
+    size_t body[2];  /**< body indices, body[0] < body[1] */
+    int face[2];     /**< their faces, 0..5 = u0 u1 v0 v1 w0 w1 */
+    /** How face[1]'s parameters (a', b') follow face[0]'s (a, b) (each face's
+     *  two other parameters in increasing order): swapped if bit 1, then
+     *  a' -> 1 - a' if bit 2, b' -> 1 - b' if bit 4. */
+    int orientation;
+    /** Largest |dB/dn - dA/dn| over a 9 x 9 grid of the face, relative to
+     *  the larger of the two; dA/dn, dB/dn are the two bodies' derivatives
+     *  along their parameter across the face, both pointing from body[0]
+     *  into body[1]. 0: the bodies join C1 in their parameters. */
+    double c1_defect;
+    /** Largest angle, in degrees, over the same points and both face
+     *  parameter lines, between the two bodies' tangent planes along the
+     *  line: the plane of the line's tangent and dA/dn against the plane of
+     *  the tangent and dB/dn. 0: the bodies join G1. */
+    double g1_angle;
+} coons_interface;
+
+/**
+ * The faces shared by the model's bodies, in the order found. `*out` is
+ * freed with coons_interfaces_free(); NULL with `*count` 0 when there are
+ * none.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL arguments), ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_model_interfaces(const coons_model *m, coons_interface **out,
+                                                 size_t *count, coons_error *err);
+
+/** Frees a list from coons_model_interfaces(); NULL is a harmless no-op. */
+COONS_EXPORT void coons_interfaces_free(coons_interface *list);
+
 #ifdef __cplusplus
 }
 #endif

@@ -229,6 +229,14 @@ else:
     ok = False
 T.check("two boxes on lattices sampled to the tolerance: the shared face's nodes are the "
         "same nodes from both sides, each once", ok, err)
+# --info "interfaces": a is 1 long, b 2: across x = 1 the cross derivatives
+# are 1 and 2 (c1_defect 1/2), parallel (g1_angle 0).
+rc, j, err = info([two])
+itf = j and j.get("interfaces")
+T.check("--info interfaces: the shared face a.u1 / b.u0, c1_defect 0.5, g1_angle 0",
+        rc == 0 and itf and len(itf) == 1 and itf[0]["bodies"] == ["a", "b"] and
+        itf[0]["faces"] == ["u1", "u0"] and abs(itf[0]["c1_defect"] - 0.5) < 1e-12 and
+        itf[0]["g1_angle"] < 1e-9, f"{itf} {err}")
 over = model([box([0, 0, 0], [1, 1, 1], "a"), box([0.5, 0, 0], [2, 1, 1], "b")], "over.json")
 rc, _, err = T.run(["--resolution", "2", "-o", os.path.join(work, "over.vtk"), over])
 T.check("overlapping bodies: exit 3 naming both, nothing written",

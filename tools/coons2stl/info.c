@@ -319,6 +319,44 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     return 0;
 }
 
+/* ---- faces shared by two bodies ----------------------------------------- */
+
+/* "interfaces": one entry per shared face (all bodies, or those of --body's
+ * body), with the continuity across it. Returns non-zero on failure
+ * (reported). */
+static int print_interfaces(const coons_model *m, long only)
+{
+    coons_interface *list = NULL;
+    size_t n = 0;
+    coons_error err = COONS_ERROR_INIT;
+    if (coons_model_interfaces(m, &list, &n, &err) != COONS_OK) {
+        cli_message(0, "interfaces: %s", err.message);
+        return 1;
+    }
+    printf(",\n  \"interfaces\": [");
+    int first = 1;
+    for (size_t k = 0; k < n; k++) {
+        const coons_interface *I = &list[k];
+        if (only >= 0 && I->body[0] != (size_t)only && I->body[1] != (size_t)only) continue;
+        printf("%s\n    {\"bodies\": [", first ? "" : ",");
+        json_string(coons_model_body_name(m, I->body[0]));
+        printf(", ");
+        json_string(coons_model_body_name(m, I->body[1]));
+        printf("], \"body_indices\": [%zu, %zu], \"faces\": [\"%s\", \"%s\"], "
+               "\"orientation\": %d,\n     \"c1_defect\": ",
+               I->body[0], I->body[1], coons_body_face_name(I->face[0]),
+               coons_body_face_name(I->face[1]), I->orientation);
+        json_number(I->c1_defect);
+        printf(", \"g1_angle\": ");
+        json_number(I->g1_angle);
+        printf("}");
+        first = 0;
+    }
+    printf("%s]", first ? "" : "\n  ");
+    coons_interfaces_free(list);
+    return 0;
+}
+
 /* ---- the model -------------------------------------------------------- */
 
 static void print_model(const coons_model *m, double tol, const double clo[3],
@@ -373,6 +411,10 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     cli_progress_end();
     printf("\n  ],\n  \"body_count\": %zu,\n  \"total_volume\": ", listed);
     json_number(total);
+    if (print_interfaces(m, only)) {
+        coons_volume_mesh_free(vm);
+        return EXIT_GEOMETRY;
+    }
     if (o->no_solid) {
         printf(",\n  \"solid\": null");
     } else {
