@@ -235,12 +235,65 @@ static void test_deterministic(void **state)
     coons_mesh_free(m);
 }
 
+/* The facet normal is the one of the stored float32 vertices: a thin
+ * triangle near x = 1000, where float32's step is 6.1e-5, whose vertex
+ * x = 1000.00003 rounds to 1000, turns by about 17 degrees. Binary and
+ * ASCII alike (the writers share the normal). */
+static void test_normal_of_float_vertices(void **state)
+{
+    (void)state;
+    const double xyz[9] = {1000, 0, 0, 1000.00003, 1e-4, 0, 1000, 0, 1e-4};
+    const uint32_t tri[3] = {0, 1, 2};
+    coons_mesh *m;
+    coons_error e = COONS_ERROR_INIT;
+    assert_coons_ok(coons_mesh_new(&m, &e), &e);
+    assert_coons_ok(coons_mesh_add_part(m, "thin", xyz, 3, tri, 1, &e), &e);
+    size_t len;
+    unsigned char *d = write_bin(m, NULL, &len);
+    float *t = NULL, *ta = NULL;
+    assert_int_equal(io_parse_stl_binary(d, len, &t), 1);
+    char *text = write_text(m, COONS_FORMAT_STL_ASCII, NULL), *name;
+    assert_int_equal(io_parse_stl_ascii(text, &ta, &name), 1);
+    for (int pass = 0; pass < 2; pass++) {
+        const float *f = pass ? ta : t;
+        /* the normal of the stored vertices, in double */
+        double e1[3], e2[3], n[3], nd[3];
+        for (int c = 0; c < 3; c++) {
+            e1[c] = (double)f[6 + c] - f[3 + c];
+            e2[c] = (double)f[9 + c] - f[3 + c];
+        }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        double ln = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int c = 0; c < 3; c++) assert_near(f[c], n[c] / ln, 1e-6);
+        /* ... which is not the double vertices' (so this test can fail) */
+        for (int c = 0; c < 3; c++) {
+            e1[c] = xyz[3 + c] - xyz[c];
+            e2[c] = xyz[6 + c] - xyz[c];
+        }
+        nd[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        nd[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        nd[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        double lnd = sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
+        double cosang = (f[0] * nd[0] + f[1] * nd[1] + f[2] * nd[2]) / lnd;
+        assert_true(cosang < cos(10 * 3.14159265358979 / 180));
+    }
+    free(t);
+    free(ta);
+    free(name);
+    free(text);
+    free(d);
+    coons_mesh_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_binary_matches_mesh), cmocka_unit_test(test_header_never_solid),
         cmocka_unit_test(test_ascii_matches_binary), cmocka_unit_test(test_empty),
         cmocka_unit_test(test_triangle_limit),      cmocka_unit_test(test_deterministic),
+        cmocka_unit_test(test_normal_of_float_vertices),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -18,7 +18,10 @@
  *   never starts with "solid" (it carries the header text and the units),
  *   a little-endian uint32 triangle count, then per triangle the unit facet
  *   normal and the three vertices as little-endian IEEE float32 and a zero
- *   attribute word. Vertices are rounded to float32 by the format; a mesh of
+ *   attribute word. Vertices are rounded to float32 by the format, and the
+ *   normal is that of the rounded (stored) vertices, so that it agrees with
+ *   the facet a reader sees (0 0 0 where rounding makes the facet
+ *   degenerate); a mesh of
  *   2^32 or more triangles, or with a coordinate beyond the float32 range,
  *   is refused (::COONS_E_LIMIT).
  * - ::COONS_FORMAT_STL_ASCII: `solid NAME` ... `endsolid NAME`. The numbers

@@ -32,12 +32,28 @@ static inline unsigned char *put_f32(unsigned char *p, double v)
     return put_u32(p, u);
 }
 
-/* Unit normal of (a, b, c), or 0 for a degenerate triangle. */
+/* x rounded to float32, as the file stores it. Through a volatile: GCC 12
+ * at -O3 vectorises (double)(float)x over a vertex's coordinates and drops
+ * the rounding of all but the last (seen in this file's object code). */
+static double as_f32(double x)
+{
+    volatile float f = (float)x;
+    return (double)f;
+}
+
+/* Unit normal of (a, b, c) as the file stores them, float32 (outputs.md:
+ * "STL facet normals are computed from the stored float32 vertices"; a
+ * normal from the double vertices disagrees with the stored facet where
+ * rounding turns a thin triangle, which admesh then "fixes"), in double,
+ * or 0 for a triangle degenerate in float32. */
 static void facet_normal(double n[3], const double *a, const double *b, const double *c)
 {
     double e1[3], e2[3];
-    v3_sub(e1, b, a);
-    v3_sub(e2, c, a);
+    for (int k = 0; k < 3; k++) {
+        double fa = as_f32(a[k]);
+        e1[k] = as_f32(b[k]) - fa;
+        e2[k] = as_f32(c[k]) - fa;
+    }
     v3_cross(n, e1, e2);
     double len = v3_norm(n);
     if (len > 0.0 && isfinite(len))
