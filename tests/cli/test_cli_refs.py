@@ -24,7 +24,6 @@ import os
 import shutil
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import clitest  # noqa: E402
@@ -251,13 +250,12 @@ body = {"type": "body2", "faces": {k: {"ref": "p"} for k in ("u0", "u1", "v0", "
 model = {"coons": 1, "define": {"big": big, "p": patch, "b": body},
          "bodies": [{"ref": "b", "name": f"b{i}"} for i in range(400)]}
 p = write("blowup.json", json.dumps(model))
-t0 = time.monotonic()
+# The work is bounded by the count of values read (not by a clock: the
+# tests time nothing, and this one also runs under valgrind).
 rc, out, err = T.run([p, "--info", "--no-solid"])
-dt = time.monotonic() - t0
 T.check("references that expand beyond max_values: refused with the limit named",
         rc == 1 and "expand the model to more than 8388608 JSON values" in err
         and "--max-values" in err, f"rc={rc} {err}")
-T.check(f"... and quickly ({dt:.2f} s < 10 s)", dt < 10)
 rc, out, err = T.run([p, "--info", "--no-solid", "--max-values", "1000000"])
 T.check("... the limit follows --max-values",
         rc == 1 and "more than 1000000 JSON values" in err, err)
