@@ -16,6 +16,9 @@ PKGS=(
   # and an X server for OpenSCAD's preview renders (xvfb-run).
   gmsh python3-gmsh calculix-ccx python3-meshio python3-vtk9 python3-numpy
   xvfb xauth
+  # For the people who print (issue 16): slicing and mesh checks by the
+  # programs users run, the 3MF library, and ccache for faster rebuilds.
+  prusa-slicer admesh lib3mf-dev ccache
 )
 
 missing=()
