@@ -141,6 +141,38 @@ def main():
             nn, nj = on_face(read_stl(out)), on_face(read_stl(joined))
             r.check(f"operation none keeps the shared face ({nn} triangles on it), "
                     f"the union leaves it out ({nj})", nn > 0 and nj == 0)
+        # A lattice that also overlaps another body: the joined part and the
+        # box go to the Boolean union (CGAL), the shared faces never do.
+        with open(os.path.join(ex, "lattice-l-bracket.json")) as f:
+            m = json.load(f)
+        box = [[x, y, z] for x in (20, 30) for y in (4, 12) for z in (4, 16)]
+        m["bodies"].append({"type": "body0", "name": "box", "corners": box})
+        over = os.path.join(tmp, "over.json")
+        with open(over, "w") as f:
+            json.dump(m, f)
+        out = os.path.join(tmp, "over.stl")
+        st, js, err = r.run(["--info", over])
+        info = json.loads(js) if st == 0 else {}
+        solid = info.get("solid")
+        st, _, err = r.run(["-o", out, over])
+        if solid is None or solid.get("csg") is None:  # no CGAL: refused, named
+            r.check("lattice + overlapping box without CGAL: refused (exit 3), naming the box",
+                    st == 3 and "box" in err, err)
+        elif r.check("lattice + overlapping box: united", st == 0, err):
+            c = solid["csg"]
+            r.check("lattice + overlapping box: 2 parts in (the lattice joined), a Boolean ran",
+                    c["parts_in"] == 2 and c["fast_unions"] + c["fallbacks"] >= 1, json.dumps(c))
+            tris = read_stl(out)
+            closed, oriented, chi = topology(tris)
+            r.check("lattice + overlapping box: closed, oriented, one sphere",
+                    closed and oriented and chi == 2, f"{chi}")
+            # box 10 x 8 x 12 = 960, of which [20,30] x [4,8] x [4,12] = 320
+            # lies inside the flat part of arm-x
+            lattice = sum(abs(b["volume"]) for b in info["bodies"][:3])
+            want = lattice + 960 - 320
+            v = volume(tris)
+            r.check(f"lattice + overlapping box: volume {v:.7g} = {want:.7g}",
+                    abs(v - want) <= info["tolerance"] * area(tris), f"{v} {want}")
     r.finish()
 
 
