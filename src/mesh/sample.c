@@ -100,6 +100,8 @@ static coons_status eval_face(sampler *s, int f, const double *av, size_t na, co
     c[F->b] = nb;
     coons_status st = coons_body_eval_grid(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out, s->err);
     if (st) return st;
+    if (s->scale != 1.0)
+        for (size_t i = 0; i < 3 * na * nb; i++) out[i] *= s->scale;
     if (!coons__all_finite(out, 3 * na * nb))
         return coons__error_set(s->err, COONS_E_INVALID,
                                 "body '%s' evaluates to a non-finite point on face %s", s->name,
@@ -757,21 +759,21 @@ static coons_status run(sampler *s)
     }
     for (int round = 0; round < MAX_ROUNDS; round++) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
-        if ((st = scan(s, 2, LOOP_FRACTION * s->o->tolerance))) return st;
+        if ((st = scan(s, 2, LOOP_FRACTION * s->tol))) return st;
         size_t split;
         if ((st = refine(s, &split))) return st;
         if (split) continue;
         /* The coarse estimate is satisfied: measure on the finer samples. */
-        if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->o->tolerance))) return st;
+        if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->tol))) return st;
         s->measured = 1;
-        if (s->dev <= ACCEPT_FRACTION * s->o->tolerance) return COONS_OK;
+        if (s->dev <= ACCEPT_FRACTION * s->tol) return COONS_OK;
         if ((st = refine(s, &split))) return st;
         if (!split) break;
     }
     return coons__error_set(s->err, COONS_E_LIMIT,
                             "body '%s': cannot reach tolerance %g (deviation %g remains where "
                             "the parameter step is already %g)",
-                            s->name, s->o->tolerance, s->dev, MIN_WIDTH);
+                            s->name, s->o->tolerance, s->dev / s->scale, MIN_WIDTH);
 }
 
 static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
@@ -808,7 +810,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
     for (size_t i = 0; i < 3 * s->nt; i++) {
         uint32_t v = s->tri[i];
         if (map[v] == UINT32_MAX) {
-            v3_copy(xyz + 3 * (size_t)nv, s->pos + 3 * (size_t)v);
+            coons__sampler_unscaled(s, v, xyz + 3 * (size_t)nv);
             if (params) v3_copy(uvw + 3 * (size_t)nv, uvw + 3 * (s->nv + (size_t)v));
             map[v] = nv++;
         }
@@ -820,7 +822,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
         coons__mesh_part *P = &mesh->parts[part];
         P->tolerance = s->o->tolerance;
         P->sampled = 1;
-        P->deviation = s->measured ? s->dev : NAN;
+        P->deviation = s->measured ? s->dev / s->scale : NAN;
         for (int d = 0; d < 3; d++) P->lattice[d] = s->n[d];
         P->glued = s->glued;
         if (triangles) *triangles = s->nt;
@@ -842,6 +844,12 @@ void coons__sampler_init(sampler *s, const coons_body *b, const coons__sample_op
     s->name = name ? name : "body";
     s->err = err;
     s->sign = 1;
+    /* A power of two near 1 / the body's extent (control box). */
+    double lo[3], hi[3], ext = 0;
+    coons_body_control_bbox(b, lo, hi);
+    for (int d = 0; d < 3; d++) ext = fmax(ext, hi[d] - lo[d]);
+    s->scale = ext > 0 && isfinite(ext) ? ldexp(1.0, -ilogb(ext)) : 1.0;
+    s->tol = o->tolerance * s->scale;
 }
 
 coons_status coons__sampler_run(sampler *s)
@@ -903,7 +911,7 @@ coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample
             n[d] = 0;
         }
     }
-    if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev : NAN;
+    if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev / s.scale : NAN;
     coons__sampler_free(&s);
     return st;
 }
