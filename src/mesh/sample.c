@@ -223,6 +223,19 @@ static coons_status init_lattices(sampler *s)
         }
         return alloc_lattices(s);
     }
+    if (s->skip == 63 && !s->o->resolution) {
+        /* Every face shared (a cell inside a lattice): no boundary of its
+         * own; its lattice comes from its neighbours', its points only
+         * join theirs (sample_lattice.c). */
+        for (int d = 0; d < 3; d++) {
+            s->n[d] = 1;
+            s->t[d] = coons__malloc_array(2, sizeof(double));
+            if (!s->t[d]) return coons__error_nomem(s->err);
+            s->t[d][0] = 0.0;
+            s->t[d][1] = 1.0;
+        }
+        return alloc_lattices(s);
+    }
     if (s->o->resolution) {
         for (int d = 0; d < 3; d++) s->n[d] = s->o->resolution;
     } else if ((st = start_counts(s))) {
@@ -750,7 +763,7 @@ static coons_status run(sampler *s)
 {
     coons_status st = init_lattices(s);
     if (st) return st;
-    if (s->skip && (st = coarse_sign(s))) return st;
+    if (s->skip && s->skip != 63 && (st = coarse_sign(s))) return st;
     if (s->o->resolution) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
         if (s->o->flags & COONS_SAMPLE_UNMEASURED) return COONS_OK;
