@@ -1225,14 +1225,29 @@ coons_status describe_failure(coons_error *err, const std::exception &e,
 }
 
 const char unknown_text[] = "unknown exception in the CGAL layer";
-const coons::guard_text self_int_text = {COONS_E_CSG, "self-intersection test failed: ",
-                                         unknown_text};
+
+
+// A failure of the self-intersection test in words: what failed, CGAL's
+// own reason (its explanation or expression, not the whole assertion
+// text), and what to try.
+coons_status describe_self_int(coons_error *err, const std::exception &e) noexcept
+{
+    const char *text = e.what();
+    int len = (int)std::strlen(text);
+    if (const CGAL::Failure_exception *c = dynamic_cast<const CGAL::Failure_exception *>(&e))
+        cgal_reason(c->what(), &text, &len);
+    return coons__error_set(err, COONS_E_CSG,
+                            "the exact self-intersection test of the mesh could not complete "
+                            "(CGAL: %.*s); try a coarser tolerance (-t) or write it with "
+                            "--no-repair",
+                            len, text);
+}
 
 coons_status self_int(const char *entry, const coons_mesh *m, size_t *pairs, bool to_float,
                       coons_error *err) noexcept
 {
     *pairs = 0;
-    return coons::guard(entry, err, self_int_text, [&]() -> coons_status {
+    return coons::guard(entry, err, unknown_text, [&]() -> coons_status {
         size_t nv = coons_mesh_vertex_count(m);
         const double *xyz = coons_mesh_vertices(m);
         std::vector<double> f(xyz, xyz + 3 * nv);
@@ -1252,7 +1267,7 @@ coons_status self_int(const char *entry, const coons_mesh *m, size_t *pairs, boo
         *pairs = count_self_intersections(xyz, nv, coons_mesh_triangles(m),
                                           coons_mesh_triangle_count(m));
         return COONS_OK;
-    });
+    }, [](coons_error *e, const std::exception &x) noexcept { return describe_self_int(e, x); });
 }
 
 } // namespace
