@@ -275,8 +275,9 @@ static void test_bad_alloc(void **state)
 #endif /* COONS_TEST_LIB3MF */
 
 /* Given an existing output, when a mesh 3MF cannot hold is written over it
- * (a part with one triangle missing, one with a triangle turned over, an
- * empty mesh, units 3MF has no name for), then COONS_E_UNSUPPORTED (or
+ * (a part with one triangle missing, one with a triangle turned over, a
+ * closed box with a degenerate triangle across it, an empty mesh, units
+ * 3MF has no name for), then COONS_E_UNSUPPORTED (or
  * COONS_E_INVALID for no part) with a message naming the part or the
  * units, and the old file is unchanged with no temporary file left. In a
  * build without lib3mf every write is refused so. */
@@ -291,7 +292,18 @@ static void test_refusals(void **state)
     double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     const uint32_t open_t[3][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}};
     const uint32_t flip_t[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 3, 2}};
-    coons_mesh *open, *flip, *empty, *good = box_and_tetra();
+    /* A unit box (io_box's triangles) and the degenerate triangle 0 0 7
+     * across it, whose edges 0-7 and 7-0 pair up with each other. */
+    double bv[8][3];
+    for (int i = 0; i < 8; i++)
+        for (int k = 0; k < 3; k++) bv[i][k] = (i >> k) & 1;
+    const uint32_t degen_t[13][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4},
+                                     {1, 5, 4}, {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6},
+                                     {1, 3, 5}, {3, 7, 5}, {0, 0, 7}};
+    coons_mesh *open, *flip, *empty, *degen, *good = box_and_tetra();
+    assert_coons_ok(coons_mesh_new(&degen, &e), &e);
+    assert_coons_ok(coons_mesh_add_part(degen, "sliver", &bv[0][0], 8, &degen_t[0][0], 13, &e),
+                    &e);
     assert_coons_ok(coons_mesh_new(&open, &e), &e);
     assert_coons_ok(coons_mesh_add_part(open, "lid-less", &v[0][0], 4, &open_t[0][0], 3, &e), &e);
     assert_coons_ok(coons_mesh_new(&flip, &e), &e);
@@ -306,6 +318,10 @@ static void test_refusals(void **state)
     assert_int_equal(coons_mesh_write(flip, p, COONS_FORMAT_AUTO, NULL, &e), COONS_E_UNSUPPORTED);
     assert_non_null(strstr(e.message, "'turned'"));
     assert_untouched(dir, p, 1);
+    assert_int_equal(coons_mesh_write(degen, p, COONS_FORMAT_AUTO, NULL, &e),
+                     COONS_E_UNSUPPORTED);
+    assert_non_null(strstr(e.message, "'sliver'"));
+    assert_untouched(dir, p, 1);
     assert_int_equal(coons_mesh_write(empty, p, COONS_FORMAT_AUTO, NULL, &e), COONS_E_INVALID);
     assert_untouched(dir, p, 1);
     coons_write_options o = COONS_WRITE_OPTIONS_INIT;
@@ -315,8 +331,8 @@ static void test_refusals(void **state)
     assert_non_null(strstr(e.message, "millimeter"));
     assert_untouched(dir, p, 1);
 #else
-    coons_mesh *all[4] = {open, flip, empty, good};
-    for (int i = 0; i < 4; i++) {
+    coons_mesh *all[5] = {open, flip, empty, degen, good};
+    for (int i = 0; i < 5; i++) {
         assert_int_equal(coons_mesh_write(all[i], p, COONS_FORMAT_AUTO, NULL, &e),
                          COONS_E_UNSUPPORTED);
         assert_non_null(strstr(e.message, "without lib3mf"));
@@ -338,6 +354,7 @@ static void test_refusals(void **state)
     coons_mesh_free(open);
     coons_mesh_free(flip);
     coons_mesh_free(empty);
+    coons_mesh_free(degen);
     coons_mesh_free(good);
     io_rmdir(dir);
 }

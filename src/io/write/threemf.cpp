@@ -138,28 +138,28 @@ int unit_of(const char *units)
 
 /* Edges of part i that are not run exactly once each way by its
  * triangles (boundary, non-manifold or misoriented), counted on directed
- * vertex pairs: 0 for a closed, oriented 2-manifold shell. */
+ * vertex pairs, plus the edges of degenerate triangles: 0 for a closed,
+ * oriented shell whose every edge has two triangles. */
 size_t bad_edges(const coons_mesh *m, size_t i)
 {
     size_t tf, tc, vf, vc;
     coons_mesh_part_range(m, i, &tf, &tc, &vf, &vc);
     const uint32_t *t = coons_mesh_triangles(m) + 3 * tf;
-    std::vector<uint64_t> fwd, rev;
+    std::vector<uint64_t> fwd;
     fwd.reserve(3 * tc);
-    rev.reserve(3 * tc);
+    size_t bad = 0;
     for (size_t k = 0; k < tc; k++)
         for (int e = 0; e < 3; e++) {
             uint64_t a = t[3 * k + (size_t)e], b = t[3 * k + (size_t)(e + 1) % 3];
+            bad += a == b; /* a degenerate triangle */
             fwd.push_back(a << 32 | b);
-            rev.push_back(b << 32 | a);
         }
     std::sort(fwd.begin(), fwd.end());
-    std::sort(rev.begin(), rev.end());
-    size_t bad = 0;
     for (size_t k = 0; k < fwd.size(); k++) {
+        uint64_t rev = fwd[k] << 32 | fwd[k] >> 32;
         bool repeated = (k > 0 && fwd[k] == fwd[k - 1]) ||
                         (k + 1 < fwd.size() && fwd[k] == fwd[k + 1]);
-        if (repeated || !std::binary_search(rev.begin(), rev.end(), fwd[k])) bad++;
+        if (repeated || !std::binary_search(fwd.begin(), fwd.end(), rev)) bad++;
     }
     return bad;
 }
