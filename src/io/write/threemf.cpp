@@ -9,13 +9,15 @@
  * - 3.4 <model unit="...">: micron, millimeter, centimeter, inch, foot,
  *   meter; from the model's `units`, millimeter (the spec's default) when
  *   none. Any other unit is refused rather than silently rescaled.
- * - 4.1 <object type="model">: one mesh object per part, named after it;
- *   a model object must be a closed, consistently oriented 2-manifold
- *   (4.1.1 "manifold"), so open parts (isoparametric surfaces) are refused
- *   before any output exists.
- * - 4.1.4 triangles counter-clockwise seen from outside (the mesh's own
- *   order), vertex indices local to the object (the part's vertex range).
- * - 3.4.2 <build>: one <item> per object, no transform.
+ * - 4 and 4.1 (Meshes) <object type="model">: one mesh object per part,
+ *   named after it; a model object must be a closed, consistently oriented
+ *   2-manifold, so open parts (isoparametric surfaces) are refused before
+ *   any output exists. Triangles are counter-clockwise seen from outside
+ *   (the mesh's own order), vertex indices local to the object (the
+ *   part's vertex range).
+ * - 3.4.1 metadata "Title": the model name.
+ * - 3.4.3 (Build Instructions) <build>: one <item> per object, no
+ *   transform.
  * lib3mf stores float32 coordinates, the precision STL readers see, and
  * prints them cut (not rounded) to 6 decimals: at most 1e-6 off.
  *
@@ -181,7 +183,8 @@ coons_status check(const coons_mesh *m, coons_error *err)
         size_t bad = tc ? bad_edges(m, i) : 0;
         if (tc == 0 || bad)
             return coons__error_set(err, COONS_E_UNSUPPORTED,
-                                    "3MF objects are closed solids (3MF core specification 4.1); "
+                                    "3MF objects are closed solids (3MF core specification "
+                                    "4.1, Meshes); "
                                     "part '%s' is %s (write it as .off, .vtu or .scad)",
                                     coons_mesh_part_name(m, i),
                                     tc ? "not a closed, oriented surface" : "empty");
