@@ -133,6 +133,20 @@ COONS_EXPORT coons_status coons_body_new_shell(const coons_patch *surface, doubl
                                                coons_error *err);
 
 /**
+ * The seams of every network patch of a body (coons_patch_network_seams()):
+ * the faces of a body 2 in face order, the surface of a shell, as the body
+ * is instanced (through transforms, which change lengths and angles), each
+ * entry's `face` saying which. Bodies of other types have none.
+ * @param[out] seams NULL (count only) or room for cap entries
+ * @param[out] n     the number of seams
+ * @return ::COONS_OK (at most cap written), ::COONS_E_INVALID (NULL b or n),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_network_seams(const coons_body *b,
+                                                   coons_network_seam *seams, size_t cap,
+                                                   size_t *n, coons_error *err);
+
+/**
  * The affine image G = M F + t of a body (coons-model(5), "Definitions and
  * references", "transform"): points map by M x + t, the Jacobian by M
  * (J_G = M J_F, det J_G = det M det J_F), exact for every type. With

@@ -256,6 +256,8 @@ typedef struct coons_network_seam {
     double c1_defect; /**< largest |B - A| of the cross derivative over the seam, relative
                            to the larger of |A|, |B| (A, B: the two sides' one-sided values) */
     double g1_angle;  /**< largest angle in degrees between the two sides' tangent planes */
+    int face;         /**< coons_body_network_seams(): the body 2 face (::COONS_FACE_U0 ..)
+                           that is the network, or -1 (a shell's surface); else -1 */
 } coons_network_seam;
 
 /**

@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "agree.h"
+#include "body_impl.h"
 #include "curve_impl.h"
 #include "patch_impl.h"
 
@@ -603,8 +604,65 @@ coons_status coons_patch_network_seams(const coons_patch *p, coons_network_seam 
             S->param = flip ? 1.0 - x : x;
             S->c1_defect = defect;
             S->g1_angle = angle;
+            S->face = -1;
         }
     }
     *n = count;
     return COONS_OK;
+}
+
+/* ---- the networks of a body ------------------------------------------------ */
+
+/* Seams of patch f (a network or not) seen through the linear map A (NULL:
+ * none), appended at seams[*w] as face `face`. */
+static coons_status face_seams(const coons_patch *f, const double *A, int face,
+                               coons_network_seam *seams, size_t cap, size_t *w,
+                               coons_error *err)
+{
+    view V;
+    if (!unwrap(f, &V)) return COONS_OK;
+    coons_patch *g = NULL;
+    coons_status rc = A ? coons_patch_new_transformed(f, A, &g, err) : COONS_OK;
+    if (rc) return rc;
+    const coons_patch *q = g ? g : f;
+    size_t n = 0;
+    rc = coons_patch_network_seams(q, NULL, 0, &n, err);
+    coons_network_seam *tmp = rc ? NULL : coons__malloc_array(n ? n : 1, sizeof *tmp);
+    if (!rc && !tmp) rc = coons__error_nomem(err);
+    if (!rc) rc = coons_patch_network_seams(q, tmp, n, &n, err);
+    for (size_t k = 0; !rc && k < n; k++, (*w)++)
+        if (seams && *w < cap) {
+            seams[*w] = tmp[k];
+            seams[*w].face = face;
+        }
+    coons__free(tmp);
+    coons_patch_free(g);
+    return rc;
+}
+
+coons_status coons_body_network_seams(const coons_body *b, coons_network_seam *seams,
+                                      size_t cap, size_t *n, coons_error *err)
+{
+    if (!b || !n) return coons__error_set(err, COONS_E_INVALID, "network seams: NULL argument");
+    /* the linear part of the composed transforms, as a 3 x 4 map */
+    double A[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    int mapped = 0;
+    while (b->inner) {
+        double R[12] = {0};
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                for (int k = 0; k < 3; k++) R[4 * r + c] += A[4 * r + k] * b->xf[4 * k + c];
+        memcpy(A, R, sizeof A);
+        mapped = 1;
+        b = b->inner;
+    }
+    size_t w = 0;
+    coons_status rc = COONS_OK;
+    if (b->kind == &coons__body2_kind)
+        for (int f = 0; f < 6 && !rc; f++)
+            rc = face_seams(b->face[f], mapped ? A : NULL, f, seams, cap, &w, err);
+    else if (b->kind == &coons__shell_kind)
+        rc = face_seams(b->face[0], mapped ? A : NULL, -1, seams, cap, &w, err);
+    if (!rc) *n = w;
+    return rc;
 }
