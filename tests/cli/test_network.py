@@ -17,6 +17,11 @@
   of `--eval` points on the surface (w = 0 of a "front" shell), within 2%;
   the angle is the one between the two sides' tangent planes from the
   same differences.
+- A shell thicker than its surface's radius of curvature (a parabolic valley
+  z = x^2/3, radius 1.5 at the bottom, offset 2 towards the concave side)
+  folds: --info warns "folds over itself", its own boundary mesh crosses
+  itself, and the repaired solid is closed, 2-manifold and free of
+  self-intersections; the STL written is clean for admesh.
 - The node error of a network names the node, both curves and the distance,
   exits non-zero and writes nothing.
 """
@@ -146,6 +151,31 @@ def main():
                 r.check(f"fig13 bilinear: g1_angle {rep['g1_angle']:.4g} = finite differences "
                         f"{angle:.4g} degrees (2%)",
                         angle > 5 and abs(rep["g1_angle"] - angle) <= 0.02 * angle)
+
+        # a fold
+        fold = {"coons": 1, "bodies": [{"type": "shell", "thickness": 4, "name": "valley",
+                 "surface": {"type": "bezier-surface", "points": [
+                     [[-3, 0, 3], [-3, 4, 3.2]], [[0, 0, -3], [0.2, 4, -2.8]],
+                     [[3, 0, 3], [3, 4, 3.1]]]}}]}
+        fj = os.path.join(tmp, "fold.json")
+        with open(fj, "w") as f:
+            json.dump(fold, f)
+        st, out, err = r.run(["--info", fj])
+        ok = st == 0 and "folds over itself" in err
+        if ok:
+            info = json.loads(out)
+            b, sol = info["bodies"][0], info["solid"]
+            ok = (b["min_det_jacobian"] < 0 and b["mesh"]["self_intersections"] > 0
+                  and sol["closed"] and sol["manifold"] and sol["self_intersections"] == 0)
+        r.check("a folded shell: reported, and repaired into a clean solid", ok, err + out[-600:])
+        fs = os.path.join(tmp, "fold.stl")
+        st, _, err = r.run(["-o", fs, fj])
+        ad = subprocess.run(["admesh", fs], capture_output=True, text=True, timeout=300)
+        fixed = re.findall(r"^(?:Degenerate facets|Edges fixed|Facets removed|Facets added|"
+                           r"Facets reversed|Backwards edges|Normals fixed)\s*:\s*(\d+)",
+                           ad.stdout, re.M)
+        r.check("a folded shell: its STL is clean for admesh",
+                st == 0 and len(fixed) == 7 and not any(int(x) for x in fixed), err + ad.stdout)
 
         # the node error
         with open(os.path.join(ex_dir, "fig13.json")) as f:
