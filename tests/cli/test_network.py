@@ -77,6 +77,9 @@ def main():
             src = os.path.join(ex_dir, name + ".json")
             stl = os.path.join(tmp, name + ".stl")
             st, _, err = r.run(["-o", stl, src])
+            if st == 3 and "CGAL" in err:
+                print(f"skip {name}: its union needs CGAL, not in this build")
+                continue
             if not r.check(f"{name}: coons2stl -o .stl", st == 0, err):
                 continue
             vol = stl_volume(stl)
@@ -152,31 +155,6 @@ def main():
                         f"{angle:.4g} degrees (2%)",
                         angle > 5 and abs(rep["g1_angle"] - angle) <= 0.02 * angle)
 
-        # a fold
-        fold = {"coons": 1, "bodies": [{"type": "shell", "thickness": 4, "name": "valley",
-                 "surface": {"type": "bezier-surface", "points": [
-                     [[-3, 0, 3], [-3, 4, 3.2]], [[0, 0, -3], [0.2, 4, -2.8]],
-                     [[3, 0, 3], [3, 4, 3.1]]]}}]}
-        fj = os.path.join(tmp, "fold.json")
-        with open(fj, "w") as f:
-            json.dump(fold, f)
-        st, out, err = r.run(["--info", fj])
-        ok = st == 0 and "folds over itself" in err
-        if ok:
-            info = json.loads(out)
-            b, sol = info["bodies"][0], info["solid"]
-            ok = (b["min_det_jacobian"] < 0 and b["mesh"]["self_intersections"] > 0
-                  and sol["closed"] and sol["manifold"] and sol["self_intersections"] == 0)
-        r.check("a folded shell: reported, and repaired into a clean solid", ok, err + out[-600:])
-        fs = os.path.join(tmp, "fold.stl")
-        st, _, err = r.run(["-o", fs, fj])
-        ad = subprocess.run(["admesh", fs], capture_output=True, text=True, timeout=300)
-        fixed = re.findall(r"^(?:Degenerate facets|Edges fixed|Facets removed|Facets added|"
-                           r"Facets reversed|Backwards edges|Normals fixed)\s*:\s*(\d+)",
-                           ad.stdout, re.M)
-        r.check("a folded shell: its STL is clean for admesh",
-                st == 0 and len(fixed) == 7 and not any(int(x) for x in fixed), err + ad.stdout)
-
         # the node error
         with open(os.path.join(ex_dir, "fig13.json")) as f:
             m = json.load(f)
@@ -191,6 +169,36 @@ def main():
                 st != 0 and "node (1, 0)" in err and "/bodies/1/surface/rows/0" in err
                 and "/bodies/1/surface/columns/1" in err and "0.5 apart" in err, err)
         r.check("a moved column: nothing written", not os.path.exists(out_stl))
+        # a fold
+        fold = {"coons": 1, "bodies": [{"type": "shell", "thickness": 4, "name": "valley",
+                 "surface": {"type": "bezier-surface", "points": [
+                     [[-3, 0, 3], [-3, 4, 3.2]], [[0, 0, -3], [0.2, 4, -2.8]],
+                     [[3, 0, 3], [3, 4, 3.1]]]}}]}
+        fj = os.path.join(tmp, "fold.json")
+        with open(fj, "w") as f:
+            json.dump(fold, f)
+        st, out, err = r.run(["--info", fj])
+        ok = st == 0 and "folds over itself" in err
+        r.check("a folded shell: --info reports the fold", ok, err)
+        info = json.loads(out) if ok else {}
+        b, sol = info.get("bodies", [{}])[0], info.get("solid")
+        if sol is None or b.get("mesh", {}).get("self_intersections") is None:
+            # the repair is CGAL's (tools/test.sh runs this in a build with it)
+            print("skip the fold's repair: no CGAL in this build")
+            r.finish()
+        r.check("a folded shell: its boundary crosses itself; the repaired solid is clean",
+                b["min_det_jacobian"] < 0 and b["mesh"]["self_intersections"] > 0
+                and sol["closed"] and sol["manifold"] and sol["self_intersections"] == 0,
+                out[-600:])
+        fs = os.path.join(tmp, "fold.stl")
+        st, _, err = r.run(["-o", fs, fj])
+        ad = subprocess.run(["admesh", fs], capture_output=True, text=True, timeout=300)
+        fixed = re.findall(r"^(?:Degenerate facets|Edges fixed|Facets removed|Facets added|"
+                           r"Facets reversed|Backwards edges|Normals fixed)\s*:\s*(\d+)",
+                           ad.stdout, re.M)
+        r.check("a folded shell: its STL is clean for admesh",
+                st == 0 and len(fixed) == 7 and not any(int(x) for x in fixed), err + ad.stdout)
+
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     r.finish()
