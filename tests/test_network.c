@@ -369,6 +369,30 @@ static void test_derivs(void **state)
     coons_patch_free(q);
     p = generic(COONS_TWIST_ZERO, COONS_BLEND_LINEAR);
     fx_check_derivs_fd(p, 1e-6);
+    /* the wrappers of references: transform and reparametrisation, whose
+     * second partials follow by M and the chain rule */
+    const double M[12] = {0, -1, 0.3, 10, 1, 0, 0, -2, 0, 0.5, 2, 0.5};
+    coons_patch *tp = NULL, *rp = NULL;
+    assert_coons_ok(coons_patch_new_transformed(p, M, &tp, &err), &err);
+    assert_coons_ok(coons_patch_new_reparametrized(tp, 1, 1, 0, &rp, &err), &err);
+    fx_check_derivs_fd(tp, 1e-6);
+    fx_check_derivs_fd(rp, 1e-6);
+    assert_int_equal(coons_patch_get_type(rp), COONS_PATCH_NETWORK);
+    /* the seams seen through them: the same defects; a swap makes columns rows */
+    coons_network_seam a[3], sb[3];
+    size_t na = 0, nb = 0;
+    assert_coons_ok(coons_patch_network_seams(p, a, 3, &na, &err), &err);
+    assert_coons_ok(coons_patch_network_seams(rp, sb, 3, &nb, &err), &err);
+    assert_int_equal(na, 3);
+    assert_int_equal(nb, 3);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(sb[k].dir, 1 - a[k].dir);
+        assert_true(a[k].c1_defect > 1e-3 && sb[k].c1_defect > 1e-3);
+        /* flip_s (the network's s after the swap) mirrors the columns */
+        assert_near(sb[k].param, a[k].dir == 0 ? 1 - a[k].param : a[k].param, 1e-15);
+    }
+    coons_patch_free(tp);
+    coons_patch_free(rp);
     coons_patch_free(p);
     fx_boundary b;
     fx_boundary_make(&b);
