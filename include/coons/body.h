@@ -3,7 +3,7 @@
  * @file coons/body.h
  * @brief Trivariate bodies over (u,v,w) in [0,1]^3 (seed 000): Coons body 0
  *        (8 points), body 1 (12 edge curves), body 2 (6 boundary patches),
- *        Bezier and B-spline/NURBS volumes.
+ *        Bezier and B-spline/NURBS volumes, and shells (a patch made solid).
  *
  * Constructors deep-copy their inputs; the body belongs to the caller and is
  * released with coons_body_free(). Bodies are immutable: any number of

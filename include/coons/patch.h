@@ -3,7 +3,8 @@
  * @file coons/patch.h
  * @brief Patches over (s,t) in [0,1]^2: bilinear, ruled, Coons (linear and
  *        cubic blend), Hermite-blended Coons with tangent ribbons and twists
- *        (seed 001), Bezier and B-spline/NURBS surfaces.
+ *        (seed 001), Bezier and B-spline/NURBS surfaces, and networks of
+ *        curves filled by Hermite Coons cells (seed 001 section 1.2.2).
  *
  * Constructors deep-copy their inputs (a patch holds copies of its curves);
  * the result belongs to the caller and is released with coons_patch_free().
@@ -251,7 +252,7 @@ COONS_EXPORT coons_status coons_patch_new_network(coons_curve *const *rows, size
 /** The smoothness of a network across one inner row or column. */
 typedef struct coons_network_seam {
     int dir;          /**< 0: the inner column s = s_i; 1: the inner row t = t_j */
-    size_t index;     /**< i (column) or j (row) */
+    size_t index;     /**< i (column) or j (row), in the network's own numbering */
     double param;     /**< s_i or t_j */
     double c1_defect; /**< largest |B - A| of the cross derivative over the seam, relative
                            to the larger of |A|, |B| (A, B: the two sides' one-sided values) */
@@ -316,7 +317,8 @@ COONS_EXPORT coons_status coons_patch_eval_grid(const coons_patch *p, const doub
 /**
  * Box of the patch's control data, used to scale tolerances: the corners
  * (bilinear), the control points of the boundary curves (ruled, Coons,
- * Hermite Coons; not the cross curves, which carry tangents) or the net.
+ * Hermite Coons; not the cross curves, which carry tangents), of the rows
+ * and columns (network) or the net.
  */
 COONS_EXPORT void coons_patch_control_bbox(const coons_patch *p, double lo[3], double hi[3]);
 
