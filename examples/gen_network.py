@@ -18,9 +18,9 @@ The examples:
 - hood-shell.json: the same panel made a 2 mm shell below its surface.
 - sleeve.json: the side surface of spool.json (its four side faces) made a
   1 mm shell outside it: a printable sleeve.
-- fig13.json: seed 001 Fig. 1.3, a network of two cells with a kinked
-  middle profile filled bilinearly (blend linear, C0: a crease) and by
-  Hermite cells (blend cubic, C1), each a 1 mm shell, side by side.
+- fig13.json: seed 001 Fig. 1.3, a network of two cells filled bilinearly
+  (blend linear, C0: a crease along the middle curve) and by Hermite cells
+  (blend cubic, C1), each the top of a body 2 on a flat bottom, side by side.
 Verification (by examples/coons_ref.py, independent of libcoons): every
 node agrees, every network interpolates its curves, the body 2's faces
 agree along their shared edges, and the shells' faces at the seams of the
@@ -104,13 +104,14 @@ def line(a, b):
     return {"type": "line", "points": [P(*a), P(*b)]}
 
 
-def hood_body(twist):
-    """Body 2: w1 the network, w0 the flat bottom z = 0, the four sides
-    ruled between the bottom's edges and the network's border curves."""
-    top = hood_network(twist)
+def body2_under(top, name, z0=0.0):
+    """Body 2: w1 the network `top` (its border curves must run linearly in
+    x and y over the rectangle of its corners), w0 the flat bottom z = z0,
+    the four sides ruled between the bottom's edges and the border curves."""
     rows, cols = top["rows"], top["columns"]
-    x0, x1, y1 = -HOOD_W / 2, HOOD_W / 2, HOOD_D
-    c = [(x0, 0, 0), (x1, 0, 0), (x0, y1, 0), (x1, y1, 0)]
+    X = [R.curve_eval(rows[0], 0), R.curve_eval(rows[0], 1), R.curve_eval(rows[-1], 0),
+         R.curve_eval(rows[-1], 1)]
+    c = [(p[0], p[1], z0) for p in X]
     faces = {
         "u0": {"type": "ruled", "curves": [line(c[0], c[2]), cols[0]]},
         "u1": {"type": "ruled", "curves": [line(c[1], c[3]), cols[-1]]},
@@ -119,7 +120,11 @@ def hood_body(twist):
         "w0": {"type": "bilinear", "corners": [P(*c[0]), P(*c[1]), P(*c[2]), P(*c[3])]},
         "w1": top,
     }
-    return {"type": "body2", "name": "hood-" + twist, "faces": faces}
+    return {"type": "body2", "name": name, "faces": faces}
+
+
+def hood_body(twist):
+    return body2_under(hood_network(twist), "hood-" + twist)
 
 
 # ---------------------------------------------------------------- the sleeve
@@ -166,14 +171,17 @@ def fig13_network(blend, dx):
 
 
 def fig13_bodies():
-    return [{"type": "shell", "name": "bilinear", "surface": fig13_network("linear", 0),
-             "thickness": 1, "side": "front"},
-            {"type": "shell", "name": "hermite", "surface": fig13_network("cubic", 50),
-             "thickness": 1, "side": "front"}]
+    """Each fill as the top of a block 3 mm deep at its border (a body 2:
+    a shell of the creased fill would tear along the crease, where the
+    normal jumps)."""
+    return [body2_under(fig13_network("linear", 0), "bilinear", -3),
+            body2_under(fig13_network("cubic", 50), "hermite", -3)]
 
 
-def model(bodies, operation=None):
+def model(bodies, operation=None, tolerance=None):
     m = {"coons": 1, "units": "mm"}
+    if tolerance:
+        m["tolerance"] = tolerance
     if operation:
         m["operation"] = operation
     m["bodies"] = bodies
@@ -187,7 +195,8 @@ EXAMPLES = [
     ("hood-shell.json", lambda: model([{"type": "shell", "name": "hood-shell",
                                         "surface": hood_network("bessel"), "thickness": 2,
                                         "side": "back"}])),
-    ("sleeve.json", lambda: model(sleeve_bodies())),
+    # 0.05 mm is finer than a print's layers and halves the triangles
+    ("sleeve.json", lambda: model(sleeve_bodies(), tolerance=0.05)),
     ("fig13.json", lambda: model(fig13_bodies(), operation="none")),
 ]
 

@@ -50,15 +50,27 @@ static void eval(const coons_body *b, double u, double v, double w, double out[3
     v3_scale(d[2], n, b->shell_h);
 }
 
+/* The surface point and normal once per (u,v), then every w: a face grid
+ * with nu = 1 or nv = 1 runs along w at one surface point. The same
+ * operations as eval, so grid points equal eval's bitwise. */
 static coons_status grid(const coons_body *b, const double *u, size_t nu, const double *v,
                          size_t nv, const double *w, size_t nw, double *out, coons_error *err)
 {
     (void)err;
+    const coons_patch *p = b->face[0];
     for (size_t i = 0; i < nu; i++)
-        for (size_t j = 0; j < nv; j++)
-            for (size_t k = 0; k < nw; k++)
-                eval(b, clamp01(u[i]), clamp01(v[j]), clamp01(w[k]),
-                     out + ((i * nv + j) * nw + k) * 3, NULL);
+        for (size_t j = 0; j < nv; j++) {
+            double x[3][3], N[3], n[3];
+            p->kind->eval(p, clamp01(u[i]), clamp01(v[j]), 1, x);
+            v3_cross(N, x[1], x[2]);
+            double len = v3_norm(N);
+            v3_scale(n, N, len > 0.0 ? 1.0 / len : 0.0);
+            for (size_t k = 0; k < nw; k++) {
+                double *o = out + ((i * nv + j) * nw + k) * 3;
+                v3_copy(o, x[0]);
+                v3_axpy(o, (clamp01(w[k]) - b->shell_c) * b->shell_h, n);
+            }
+        }
     return COONS_OK;
 }
 
