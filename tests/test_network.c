@@ -555,13 +555,55 @@ static void test_loader(void **state)
     free(badnet);
 }
 
+/* Given rows with a kink at the inner node (a roof: polylines up to the
+ * ridge and down), then each cell takes its own one-sided tangents: the
+ * network is the two planes exactly, and the seam report sees the kink. */
+static void test_kink(void **state)
+{
+    (void)state;
+    coons_curve *rows[2], *cols[3];
+    coons_error err = COONS_ERROR_INIT;
+    for (int j = 0; j < 2; j++) {
+        double p[9] = {0, j, 0, 1, j, 1, 2, j, 0};
+        assert_coons_ok(coons_curve_new_polyline(p, 3, &rows[j], &err), &err);
+    }
+    for (int i = 0; i < 3; i++) {
+        double a[3] = {i, 0, i == 1}, b[3] = {i, 1, i == 1};
+        assert_coons_ok(coons_curve_new_line(a, b, &cols[i], &err), &err);
+    }
+    coons_patch *p = NULL;
+    assert_coons_ok(coons_patch_new_network(rows, 2, cols, 3, NULL, &p, &err), &err);
+    for (int i = 0; i <= 20; i++)
+        for (int j = 0; j <= 10; j++) {
+            double s = i / 20.0, t = j / 10.0, d[3][3];
+            double want[3] = {2 * s, t, s <= 0.5 ? 2 * s : 2 - 2 * s};
+            double ws[3] = {2, 0, s < 0.5 ? 2 : -2}, wt[3] = {0, 1, 0};
+            coons_patch_eval_derivs(p, s, t, 1, d);
+            assert_vec3_near(d[0], want, 1e-12);
+            assert_vec3_near(d[1], ws, 1e-6);
+            assert_vec3_near(d[2], wt, 1e-6);
+        }
+    /* across the ridge x_s jumps from (2, 0, 2) to (2, 0, -2): relative
+     * defect |(0, 0, 4)| / |(2, 0, 2)| = sqrt 2, planes z = x and z = -x at
+     * 90 degrees */
+    coons_network_seam sm[1];
+    size_t n = 0;
+    assert_coons_ok(coons_patch_network_seams(p, sm, 1, &n, &err), &err);
+    assert_int_equal(n, 1);
+    assert_near(sm[0].c1_defect, sqrt(2.0), 1e-6);
+    assert_near(sm[0].g1_angle, 90.0, 1e-4);
+    coons_patch_free(p);
+    free_curves(rows, 2);
+    free_curves(cols, 3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_cell),      cmocka_unit_test(test_exact_surface),
         cmocka_unit_test(test_c1_across),     cmocka_unit_test(test_plane),
         cmocka_unit_test(test_derivs),        cmocka_unit_test(test_invalid),
-        cmocka_unit_test(test_loader),
+        cmocka_unit_test(test_loader),        cmocka_unit_test(test_kink),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,11 +27,18 @@
 
 /* ---- a piece of a curve: y(x) = c(a + x (b - a)) ------------------------ */
 
+static void tangent(const coons_curve *c, double x, int left, double out[3]);
+
+/* At its right end x = 1 a piece is the limit from the left, also at an
+ * inner kink of c, where c itself gives the right-hand derivative: each cell
+ * keeps its own one-sided tangents (only the first derivative: nothing
+ * needs a one-sided second derivative at a cell's far side). */
 static void piece_eval(const coons_curve *c, double x, int order, double out[][3])
 {
     double a = c->xf[0], b = c->xf[1], len = b - a;
     /* exact at both ends, so pieces meet their neighbours bit for bit */
     c->inner->kind->eval(c->inner, clamp01((1.0 - x) * a + x * b), order, out);
+    if (order >= 1 && x >= 1.0 && b < 1.0) tangent(c->inner, b, 1, out[1]);
     if (order >= 1) v3_scale(out[1], out[1], len);
     if (order >= 2) v3_scale(out[2], out[2], len * len);
 }
@@ -247,27 +254,8 @@ static coons_status make_cell(const build *B, size_t i, size_t j, coons_blend bl
         ho.tol = tol;
         for (int k = 0; k < 4; k++)
             v3_scale(ho.twists[k], B->tw[(i + (k & 1)) * (B->n + 1) + j + (k >> 1)], ds * dt);
+        /* corner tangents come from the pieces, one-sided (piece_eval) */
         rc = coons_patch_new_hermite_coons(pc, &ho, out, err);
-        if (!rc) {
-            /* The one-sided node tangents in local units into the matrix of
-             * eq. 1.15 (hermite_coons.c's layout); the constructor took
-             * right-hand derivatives, which differ only at a kink. */
-            double xs[4][3], xt[4][3];
-            cell_tangents(B, i, j, xs, xt);
-            coons_patch *p = *out;
-            for (int k = 0; k < 4; k++) {
-                v3_scale(xs[k], xs[k], ds);
-                v3_scale(xt[k], xt[k], dt);
-            }
-            v3_copy(p->M[0][1], xt[0]);
-            v3_copy(p->M[0][2], xt[2]);
-            v3_copy(p->M[3][1], xt[1]);
-            v3_copy(p->M[3][2], xt[3]);
-            v3_copy(p->M[1][0], xs[0]);
-            v3_copy(p->M[1][3], xs[2]);
-            v3_copy(p->M[2][0], xs[1]);
-            v3_copy(p->M[2][3], xs[3]);
-        }
     }
     for (int k = 0; k < 4; k++) coons_curve_free(pc[k]);
     return rc;
