@@ -233,12 +233,62 @@ static void test_undefined_normal(void **state)
     }
 }
 
+/* Given a shell of a network with a ridge (rows kinked at the middle node),
+ * transformed by diag(1, 1, 2), then coons_body_network_seams measures the
+ * ridge as instanced: x_s jumps from (2, 0, 4) to (2, 0, -4), relative
+ * defect 8 / |(2, 0, 4)| and planes at acos(0.6); untransformed sqrt 2 and
+ * 90 degrees. */
+static void test_network_seams(void **state)
+{
+    (void)state;
+    coons_curve *rows[2], *cols[3];
+    coons_error err = COONS_ERROR_INIT;
+    for (int j = 0; j < 2; j++) {
+        double p[9] = {0, j, 0, 1, j, 1, 2, j, 0};
+        assert_coons_ok(coons_curve_new_polyline(p, 3, &rows[j], &err), &err);
+    }
+    for (int i = 0; i < 3; i++) {
+        double a[3] = {i, 0, i == 1}, b[3] = {i, 1, i == 1};
+        assert_coons_ok(coons_curve_new_line(a, b, &cols[i], &err), &err);
+    }
+    coons_patch *p = NULL;
+    assert_coons_ok(coons_patch_new_network(rows, 2, cols, 3, NULL, &p, &err), &err);
+    coons_body *b = shell_of(p, 0.1, COONS_SHELL_FRONT), *t = NULL;
+    const double M[12] = {1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 2, 1};
+    assert_coons_ok(coons_body_new_transformed(b, M, &t, &err), &err);
+    coons_network_seam s[2];
+    size_t n = 0;
+    assert_coons_ok(coons_body_network_seams(b, s, 2, &n, &err), &err);
+    assert_int_equal(n, 1);
+    assert_int_equal(s[0].face, -1);
+    assert_near(s[0].c1_defect, sqrt(2.0), 1e-6);
+    assert_near(s[0].g1_angle, 90.0, 1e-4);
+    assert_coons_ok(coons_body_network_seams(t, s, 2, &n, &err), &err);
+    assert_int_equal(n, 1);
+    assert_near(s[0].c1_defect, 8.0 / sqrt(20.0), 1e-6);
+    assert_near(s[0].g1_angle, acos(0.6) * 180.0 / PI, 1e-4);
+    /* a body without networks has none */
+    const double X[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    coons_patch *plane = NULL;
+    assert_coons_ok(coons_patch_new_bilinear(X, &plane, &err), &err);
+    coons_body *q = shell_of(plane, 1, COONS_SHELL_BOTH);
+    assert_coons_ok(coons_body_network_seams(q, NULL, 0, &n, &err), &err);
+    assert_int_equal(n, 0);
+    coons_body_free(q);
+    coons_patch_free(plane);
+    coons_body_free(t);
+    coons_body_free(b);
+    coons_patch_free(p);
+    for (int k = 0; k < 2; k++) coons_curve_free(rows[k]);
+    for (int k = 0; k < 3; k++) coons_curve_free(cols[k]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_plane_box),   cmocka_unit_test(test_cylinder_volume),
         cmocka_unit_test(test_jacobian_fd), cmocka_unit_test(test_fold),
-        cmocka_unit_test(test_undefined_normal),
+        cmocka_unit_test(test_undefined_normal), cmocka_unit_test(test_network_seams),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
