@@ -340,6 +340,8 @@ def patch_eval(p, s, t):
                 num = add(num, mul(w, vec(net[i][j])))
                 den += w
         return mul(1 / den, num)
+    if ty == "network":
+        return _network(p, s, t)
     raise ValueError("unknown patch type " + ty)
 
 
@@ -474,6 +476,8 @@ def body_eval(b, u, v, w):
         return sub(sub(D, c1), trilinear(C, u, v, w, blend))
     if ty in ("bezier-volume", "bspline-volume"):
         return volume_eval(b, u, v, w)
+    if ty == "shell":
+        return _shell(b, u, v, w)
     raise ValueError("unknown body type " + ty)
 
 
@@ -597,3 +601,122 @@ def det3(T):
     return (T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1])
             - T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0])
             + T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]))
+# ---------------------------------------------------------------- networks, shells
+# coons-model(5) "Networks of curves" and "Shells", written from the format's
+# text (seed 001 eq. 1.13-1.16 per cell), not from libcoons.
+
+
+def _nodes(given, count):
+    return [float(x) for x in given] if given else [k / (count - 1) for k in range(count)]
+
+
+def _cell_of(x, nodes):
+    i = 0
+    while i + 2 < len(nodes) and re(x) >= nodes[i + 1]:
+        i += 1
+    return i
+
+
+def network_node_data(p):
+    return memo(_network_node_data, p)
+
+
+def _network_node_data(p):
+    rows, cols = p["rows"], p["columns"]
+    sn, tn = _nodes(p.get("s_nodes"), len(cols)), _nodes(p.get("t_nodes"), len(rows))
+    m, n = len(cols) - 1, len(rows) - 1
+    X = [[mul(0.5, add(curve_eval(rows[j], sn[i]), curve_eval(cols[i], tn[j])))
+          for j in range(n + 1)] for i in range(m + 1)]
+    xs = [[curve_deriv(rows[j], sn[i]) for j in range(n + 1)] for i in range(m + 1)]
+    xt = [[curve_deriv(cols[i], tn[j]) for j in range(n + 1)] for i in range(m + 1)]
+    rule = p.get("twist", "bessel")
+
+    def proposal(i, j, a, b):
+        """The twist cell (i, j) proposes at its corner (a, b), in (s, t)."""
+        ds, dt = sn[i + 1] - sn[i], tn[j + 1] - tn[j]
+        cell = add(sub(sub(X[i][j], X[i + 1][j]), X[i][j + 1]), X[i + 1][j + 1])
+        if rule == "zero":
+            return (0.0, 0.0, 0.0)
+        if rule == "bessel":
+            return mul(1 / (ds * dt), cell)
+        # adini in the cell's own parameters: x_a = ds x_s, x_b = dt x_t
+        d_s = mul(dt, sub(xt[i + 1][j + b], xt[i][j + b]))
+        d_t = mul(ds, sub(xs[i + a][j + 1], xs[i + a][j]))
+        return mul(1 / (ds * dt), sub(add(d_s, d_t), cell))
+
+    def weights(x, k):
+        if k == 0:
+            return {0: 1.0}  # only the cell after the node
+        if k == len(x) - 1:
+            return {-1: 1.0}
+        span = x[k + 1] - x[k - 1]
+        return {-1: (x[k + 1] - x[k]) / span, 0: (x[k] - x[k - 1]) / span}
+
+    T = [[None] * (n + 1) for _ in range(m + 1)]
+    for i in range(m + 1):
+        for j in range(n + 1):
+            acc = (0.0, 0.0, 0.0)
+            for di, wi in weights(sn, i).items():
+                for dj, wj in weights(tn, j).items():
+                    ci, cj = i + di, j + dj
+                    acc = add(acc, mul(wi * wj, proposal(ci, cj, i - ci, j - cj)))
+            T[i][j] = acc
+    return sn, tn, X, xs, xt, T
+
+
+def _network(p, s, t):
+    rows, cols = p["rows"], p["columns"]
+    sn, tn, X, xs, xt, T = network_node_data(p)
+    i, j = _cell_of(s, sn), _cell_of(t, tn)
+    ds, dt = sn[i + 1] - sn[i], tn[j + 1] - tn[j]
+    a, b = (s - sn[i]) / ds, (t - tn[j]) / dt
+
+    def row(k, x):
+        return curve_eval(rows[k], sn[i] + x * ds)
+
+    def col(k, y):
+        return curve_eval(cols[k], tn[j] + y * dt)
+    Xc = [[X[i][j], X[i][j + 1]], [X[i + 1][j], X[i + 1][j + 1]]]
+    if p.get("blend", "cubic") == "linear":  # eq. 1.8 on the cell
+        rc = add(mul(1 - b, row(j, a)), mul(b, row(j + 1, a)))
+        rd = add(mul(1 - a, col(i, b)), mul(a, col(i + 1, b)))
+        rcd = comb([(1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b],
+                   [Xc[0][0], Xc[1][0], Xc[0][1], Xc[1][1]])
+        return sub(add(rc, rd), rcd)
+    # local corner data: x_a = ds x_s, x_b = dt x_t, x_ab = ds dt x_st
+    Ls = [[mul(ds, xs[i + A][j + B]) for B in range(2)] for A in range(2)]
+    Lt = [[mul(dt, xt[i + A][j + B]) for B in range(2)] for A in range(2)]
+    Lw = [[mul(ds * dt, T[i + A][j + B]) for B in range(2)] for A in range(2)]
+    Ha, Hb = hermite_basis(a), hermite_basis(b)
+    # ribbons, eq. 1.16
+    xt0 = comb(Ha, [Lt[0][0], Lw[0][0], Lw[1][0], Lt[1][0]])
+    xt1 = comb(Ha, [Lt[0][1], Lw[0][1], Lw[1][1], Lt[1][1]])
+    xs0 = comb(Hb, [Ls[0][0], Lw[0][0], Lw[0][1], Ls[0][1]])
+    xs1 = comb(Hb, [Ls[1][0], Lw[1][0], Lw[1][1], Ls[1][1]])
+    hc = comb(Ha, [col(i, b), xs0, xs1, col(i + 1, b)])   # eq. 1.13
+    hd = comb(Hb, [row(j, a), xt0, xt1, row(j + 1, a)])   # eq. 1.14
+    M = [[Xc[0][0], Lt[0][0], Lt[0][1], Xc[0][1]],        # eq. 1.15
+         [Ls[0][0], Lw[0][0], Lw[0][1], Ls[0][1]],
+         [Ls[1][0], Lw[1][0], Lw[1][1], Ls[1][1]],
+         [Xc[1][0], Lt[1][0], Lt[1][1], Xc[1][1]]]
+    hcd = (0.0, 0.0, 0.0)
+    for k in range(4):
+        hcd = add(hcd, mul(Ha[k], comb(Hb, M[k])))
+    return sub(add(hc, hd), hcd)
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _shell(b, u, v, w):
+    """S = x + (w - c) h n, n = x_s x x_t / |x_s x x_t| (real u, v, w: the
+    partials of the patch by complex step)."""
+    p = b["surface"]
+    x = realv(patch_eval(p, u, v))
+    xs = deriv(lambda z: patch_eval(p, z, v), u)
+    xt = deriv(lambda z: patch_eval(p, u, z), v)
+    N = _cross(xs, xt)
+    n = mul(1 / math.sqrt(N[0] ** 2 + N[1] ** 2 + N[2] ** 2), N)
+    c = {"both": 0.5, "front": 0.0, "back": 1.0}[b.get("side", "both")]
+    return add(x, mul((w - c) * float(b["thickness"]), n))

@@ -3,7 +3,7 @@
  * @file coons/body.h
  * @brief Trivariate bodies over (u,v,w) in [0,1]^3 (seed 000): Coons body 0
  *        (8 points), body 1 (12 edge curves), body 2 (6 boundary patches),
- *        Bezier and B-spline/NURBS volumes.
+ *        Bezier and B-spline/NURBS volumes, and shells (a patch made solid).
  *
  * Constructors deep-copy their inputs; the body belongs to the caller and is
  * released with coons_body_free(). Bodies are immutable: any number of
@@ -30,7 +30,8 @@ typedef enum coons_body_type {
     COONS_BODY_BODY1,
     COONS_BODY_BODY2,
     COONS_BODY_BEZIER,
-    COONS_BODY_BSPLINE
+    COONS_BODY_BSPLINE,
+    COONS_BODY_SHELL
 } coons_body_type;
 
 /** Largest number of control points (product of the three counts) of a tensor volume. */
@@ -103,6 +104,47 @@ COONS_EXPORT coons_status coons_body_new_bspline(const int degree[3], const doub
                                                  const double *knots_v, const double *knots_w,
                                                  const double *weights, coons_body **out,
                                                  coons_error *err);
+
+/** Where a shell's solid lies relative to its surface (coons_body_new_shell()). */
+typedef enum coons_shell_side {
+    COONS_SHELL_BOTH = 0, /**< the surface is the mid-surface (c = 1/2) */
+    COONS_SHELL_FRONT,    /**< on the normal's side: the surface is the w0 face (c = 0) */
+    COONS_SHELL_BACK      /**< against the normal: the surface is the w1 face (c = 1) */
+} coons_shell_side;
+
+/**
+ * A surface made solid (coons-model(5), "Shells"):
+ * S(u,v,w) = x(u,v) + (w - c) h n(u,v), with x the patch, n = x_s x x_t /
+ * |x_s x x_t| its unit normal, h the thickness and c from `side`. The
+ * Jacobian is exact: dS/du = x_s + (w - c) h n_s with n_s from the
+ * patch's second derivatives (likewise v), dS/dw = h n, so det J = h |N|
+ * at the surface (a shell is right-handed) and becomes <= 0 where the
+ * offset (w - c) h passes a centre of curvature: a shell thicker than the
+ * surface's radius of curvature folds (coons_body_min_jacobian() finds it).
+ * The normal must be defined: it is checked on a 65 x 65 grid of (s,t)
+ * (|x_s x x_t| <= 1e-12 |x_s| |x_t|, or 0, is undefined). Copies the patch.
+ * The control box is the patch's, grown by h on every side.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL, thickness not finite and
+ *         > 0, unknown side, an undefined normal: the message gives (s,t)),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_new_shell(const coons_patch *surface, double thickness,
+                                               coons_shell_side side, coons_body **out,
+                                               coons_error *err);
+
+/**
+ * The seams of every network patch of a body (coons_patch_network_seams()):
+ * the faces of a body 2 in face order, the surface of a shell, as the body
+ * is instanced (through transforms, which change lengths and angles), each
+ * entry's `face` saying which. Bodies of other types have none.
+ * @param[out] seams NULL (count only) or room for cap entries
+ * @param[out] n     the number of seams
+ * @return ::COONS_OK (at most cap written), ::COONS_E_INVALID (NULL b or n),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_network_seams(const coons_body *b,
+                                                   coons_network_seam *seams, size_t cap,
+                                                   size_t *n, coons_error *err);
 
 /**
  * The affine image G = M F + t of a body (coons-model(5), "Definitions and

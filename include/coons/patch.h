@@ -3,7 +3,8 @@
  * @file coons/patch.h
  * @brief Patches over (s,t) in [0,1]^2: bilinear, ruled, Coons (linear and
  *        cubic blend), Hermite-blended Coons with tangent ribbons and twists
- *        (seed 001), Bezier and B-spline/NURBS surfaces.
+ *        (seed 001), Bezier and B-spline/NURBS surfaces, and networks of
+ *        curves filled by Hermite Coons cells (seed 001 section 1.2.2).
  *
  * Constructors deep-copy their inputs (a patch holds copies of its curves);
  * the result belongs to the caller and is released with coons_patch_free().
@@ -29,7 +30,8 @@ typedef enum coons_patch_type {
     COONS_PATCH_COONS,
     COONS_PATCH_HERMITE_COONS,
     COONS_PATCH_BEZIER,
-    COONS_PATCH_BSPLINE
+    COONS_PATCH_BSPLINE,
+    COONS_PATCH_NETWORK
 } coons_patch_type;
 
 /**
@@ -195,6 +197,85 @@ COONS_EXPORT coons_status coons_patch_new_reparametrized(const coons_patch *p, i
                                                          int flip_s, int flip_t,
                                                          coons_patch **out, coons_error *err);
 
+/** Options of coons_patch_new_network(). Initialise with ::COONS_NETWORK_OPTIONS_INIT. */
+typedef struct coons_network_options {
+    unsigned version;      /**< ::COONS_NETWORK_OPTIONS_VERSION */
+    const double *s_nodes; /**< ncolumns node parameters s_i, or NULL: uniform i/m */
+    const double *t_nodes; /**< nrows node parameters t_j, or NULL: uniform j/n */
+    coons_twist twist;     /**< ZERO, ADINI or BESSEL (default): the node twist rule */
+    coons_blend blend;     /**< CUBIC (default): Hermite cells; LINEAR: Coons cells */
+    double tol;            /**< consistency tolerance, see ::COONS_TOL_DEFAULT */
+} coons_network_options;
+
+#define COONS_NETWORK_OPTIONS_VERSION 1
+#define COONS_NETWORK_OPTIONS_INIT \
+    {COONS_NETWORK_OPTIONS_VERSION, NULL, NULL, COONS_TWIST_BESSEL, COONS_BLEND_CUBIC, \
+     COONS_TOL_DEFAULT}
+
+/**
+ * Sets `*o` to ::COONS_NETWORK_OPTIONS_INIT; NULL is a harmless no-op.
+ */
+COONS_EXPORT void coons_network_options_init(coons_network_options *o);
+
+/**
+ * The patch that fills a network of curves (seed 001 section 1.2.2,
+ * coons-model(5) "Networks of curves"): row j is x(s, t_j) (parameter s),
+ * column i is x(s_i, t) (parameter t). Cell (i, j) over [s_i, s_i+1] x
+ * [t_j, t_j+1] is, with blend CUBIC, the Hermite Coons patch (eq.
+ * 1.13-1.15) of its four curve pieces with the ribbons of eq. 1.16 from
+ * node data: x_s from the rows, x_t from the columns (one-sided where a
+ * curve has a kink at a node) and one twist per node, the average of the
+ * twists its cells propose (ZERO: 0; ADINI: the cell's Adini twist;
+ * BESSEL: the cell's difference quotient (X(i+1,j+1) - X(i+1,j) -
+ * X(i,j+1) + X(i,j)) / (ds dt)), weighted as Bessel weights the two sides
+ * of a node (left cell (s_i+1 - s_i) / (s_i+1 - s_i-1), right cell
+ * (s_i - s_i-1) / (s_i+1 - s_i-1), products in s and t). The result is C1
+ * across inner rows and columns where the curves are C1. With blend LINEAR
+ * each cell is the bilinearly blended Coons patch (C0 only, Fig. 1.3).
+ * Node points are the average of the row's and the column's point. A
+ * network of one cell equals coons_patch_new_hermite_coons() of its four
+ * curves with the same twist. Copies the curves.
+ * @param[in] rows     nrows >= 2 curves (row 0 is t0, the last t1)
+ * @param[in] columns  ncolumns >= 2 curves (column 0 is s0, the last s1)
+ * @param[in] opts     NULL for the defaults; node parameters strictly
+ *                     increasing from exactly 0 to exactly 1
+ * @return ::COONS_OK, ::COONS_E_INCOMPATIBLE (a node where row and column
+ *         do not meet: the message names node (i, j) and the distance),
+ *         ::COONS_E_INVALID (NULL, counts, nodes, twist, blend),
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_patch_new_network(coons_curve *const *rows, size_t nrows,
+                                                  coons_curve *const *columns, size_t ncolumns,
+                                                  const coons_network_options *opts,
+                                                  coons_patch **out, coons_error *err);
+
+/** The smoothness of a network across one inner row or column. */
+typedef struct coons_network_seam {
+    int dir;          /**< 0: the inner column s = s_i; 1: the inner row t = t_j */
+    size_t index;     /**< i (column) or j (row), in the network's own numbering */
+    double param;     /**< s_i or t_j */
+    double c1_defect; /**< largest |B - A| of the cross derivative over the seam, relative
+                           to the larger of |A|, |B| (A, B: the two sides' one-sided values) */
+    double g1_angle;  /**< largest angle in degrees between the two sides' tangent planes */
+    int face;         /**< coons_body_network_seams(): the body 2 face (::COONS_FACE_U0 ..)
+                           that is the network, or -1 (a shell's surface); else -1 */
+} coons_network_seam;
+
+/**
+ * Measures a network patch (also one transformed or reparametrised, as
+ * coons_patch_get_type() sees it) across each inner column and row, from
+ * the one-sided derivatives of the cells on both sides, at 65 points along
+ * the seam. Columns come first, in order, then rows; the seams are given
+ * in the patch's own (s,t) after any reparametrisation.
+ * @param[out] seams  NULL (count only) or room for cap entries
+ * @param[out] n      the number of inner rows plus inner columns
+ * @return ::COONS_OK (at most cap entries written, *n the full count),
+ *         ::COONS_E_INVALID (not a network, NULL p or n).
+ */
+COONS_EXPORT coons_status coons_patch_network_seams(const coons_patch *p,
+                                                    coons_network_seam *seams, size_t cap,
+                                                    size_t *n, coons_error *err);
+
 /** Deep copy. */
 COONS_EXPORT coons_status coons_patch_copy(const coons_patch *p, coons_patch **out,
                                            coons_error *err);
@@ -236,7 +317,8 @@ COONS_EXPORT coons_status coons_patch_eval_grid(const coons_patch *p, const doub
 /**
  * Box of the patch's control data, used to scale tolerances: the corners
  * (bilinear), the control points of the boundary curves (ruled, Coons,
- * Hermite Coons; not the cross curves, which carry tangents) or the net.
+ * Hermite Coons; not the cross curves, which carry tangents), of the rows
+ * and columns (network) or the net.
  */
 COONS_EXPORT void coons_patch_control_bbox(const coons_patch *p, double lo[3], double hi[3]);
 

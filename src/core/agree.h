@@ -75,4 +75,12 @@ coons_status coons__agree_body2_edges(const coons_patch *const f[6], double tol,
  * edge (0 = s, 1 = t) and the value of the other one. */
 void coons__agree_edge_source(int e, int m, int *face, int *run, int *fixed);
 
+/* Network nodes rows[j](sn[i]) = cols[i](tn[j]), j outer, i inner: the
+ * first node (*i, *j) further apart than tol, with the distance
+ * (network.c). */
+coons_status coons__network_nodes_agree(const coons_curve *const *rows, size_t nr,
+                                        const coons_curve *const *cols, size_t nc,
+                                        const double *sn, const double *tn, double tol,
+                                        size_t *i, size_t *j, double *dist);
+
 #endif

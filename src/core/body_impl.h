@@ -37,6 +37,8 @@ struct coons_body {
     coons_body *inner;
     double xf[12];
     double xf_det;
+    /* Shells (shell.c): the surface is face[0]; thickness h, offset c. */
+    double shell_h, shell_c;
 };
 
 /* Allocates a zeroed record of the given kind, with an empty control box. */

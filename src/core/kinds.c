@@ -36,6 +36,7 @@ static const row PATCHES[] = {
     [COONS_PATCH_HERMITE_COONS] = {"hermite-coons", &coons__hermite_coons_kind},
     [COONS_PATCH_BEZIER] = {"bezier-surface", &coons__bezier_surface_kind},
     [COONS_PATCH_BSPLINE] = {"bspline-surface", &coons__bspline_surface_kind},
+    [COONS_PATCH_NETWORK] = {"network", &coons__network_kind},
 };
 
 static const row BODIES[] = {
@@ -44,6 +45,7 @@ static const row BODIES[] = {
     [COONS_BODY_BODY2] = {"body2", &coons__body2_kind},
     [COONS_BODY_BEZIER] = {"bezier-volume", &coons__bezier_volume_kind},
     [COONS_BODY_BSPLINE] = {"bspline-volume", &coons__bspline_volume_kind},
+    [COONS_BODY_SHELL] = {"shell", &coons__shell_kind},
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))

@@ -102,11 +102,13 @@ extern const coons__patch_kind coons__bilinear_kind, coons__ruled_kind,
 extern const coons__patch_kind coons__hermite_coons_kind;        /* hermite_coons.c */
 extern const coons__patch_kind coons__bezier_surface_kind,
     coons__bspline_surface_kind;                                 /* tensor_surface.c */
+extern const coons__patch_kind coons__network_kind;              /* network.c */
 extern const coons__body_kind coons__body0_kind;                 /* body0.c */
 extern const coons__body_kind coons__body1_kind;                 /* body1.c */
 extern const coons__body_kind coons__body2_kind;                 /* body2.c */
 extern const coons__body_kind coons__bezier_volume_kind,
     coons__bspline_volume_kind;                                  /* tensor_volume.c */
+extern const coons__body_kind coons__shell_kind;                 /* shell.c */
 
 /* Wrappers of another object (coons-model(5), "Definitions and
  * references"); not in the tables: they report the wrapped type. */

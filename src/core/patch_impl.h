@@ -52,6 +52,14 @@ struct coons_patch {
     double xf[12];
     int swap, flip_s, flip_t;
     double lo[3], hi[3];
+
+    /* Networks (network.c): ncs x nct cells, cell (i,j) at i*nct + j, each a
+     * hermite-coons or coons patch over its own [0,1]^2; the node
+     * parameters; the rows (nct+1) then the columns (ncs+1). */
+    size_t ncs, nct;
+    double *sn, *tn;
+    coons_patch **cells;
+    coons_curve **net;
 };
 
 /* A wrapper record of kind over a copy of p with control box [lo, hi]

@@ -209,6 +209,9 @@ def patch_eval_corner(p, s, t):
         b = p["boundary"]
         # x(s, t) at a corner: t0/t1 give x(s, 0)/x(s, 1); s0/s1 agree with them
         return curve_eval(b["t1" if t else "t0"], s)
+    if typ == "network":
+        # row 0 is x(s, 0), the last row x(s, 1)
+        return curve_eval(p["rows"][-1 if t else 0], s)
     return tensor_eval(p, [s, t])
 
 
@@ -227,9 +230,20 @@ def body_corners(b):
             f = b["faces"]
             # u_I(s, t) = C(I, v=s, w=t)
             out.append(patch_eval_corner(f["u%d" % i], j, k))
+        elif typ == "shell":
+            # the offset needs the surface's normal: examples/coons_ref.py
+            out.append(list(_coons_ref().body_corner(b, i, j, k)))
         else:
             out.append(tensor_eval(b, [i, j, k]))
     return out
+
+
+def _coons_ref():
+    """examples/coons_ref.py, the format's reference evaluator (no libcoons)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(here, "..", "..", "examples"))
+    import coons_ref
+    return coons_ref
 
 
 def model_scale(model):

@@ -8,6 +8,7 @@
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "cli.h"
 
@@ -170,6 +171,41 @@ static int info_mesh(const coons_model *m, size_t i, const coons_sample_options 
  */
 #define FOLD_REL 1e-9
 
+/* "networks": the seams of the body's network patches (a body 2 face, a
+ * shell's surface): per inner column and row of each, the measured C1
+ * defect and G1 angle (coons_body_network_seams). Nothing when there are
+ * none. Returns non-zero on failure (reported). */
+static int print_networks(const coons_body *b, size_t i, const char *name)
+{
+    coons_error err = COONS_ERROR_INIT;
+    size_t n = 0;
+    coons_network_seam *s = NULL;
+    if (coons_body_network_seams(b, NULL, 0, &n, &err) == COONS_OK && n &&
+        (s = calloc(n, sizeof *s)) != NULL)
+        coons_body_network_seams(b, s, n, &n, &err);
+    if (err.code || (n && !s)) {
+        cli_message(0, "body %zu (%s): networks: %s", i, name, n && !s ? "out of memory" : err.message);
+        free(s);
+        return 1;
+    }
+    if (!n) return 0;
+    printf(",\n     \"networks\": [");
+    for (size_t k = 0; k < n; k++) {
+        printf("%s\n      {\"face\": \"%s\", \"seam\": \"%s\", \"index\": %zu, \"at\": ",
+               k ? "," : "", s[k].face >= 0 ? coons_body_face_name(s[k].face) : "surface",
+               s[k].dir == 0 ? "column" : "row", s[k].index);
+        json_number(s[k].param);
+        printf(", \"c1_defect\": ");
+        json_number(s[k].c1_defect);
+        printf(", \"g1_angle\": ");
+        json_number(s[k].g1_angle);
+        printf("}");
+    }
+    printf("]");
+    free(s);
+    return 0;
+}
+
 /* One entry of "bodies"; *vol receives its volume (relative accuracy
  * `rel`). */
 static int info_body(const coons_model *m, size_t i, int first, double rel,
@@ -204,6 +240,7 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
     printf(", \"min_det_jacobian\": ");
     json_number(mindet);
     printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
+    if (print_networks(b, i, name)) return EXIT_GEOMETRY;
     int rc = info_mesh(m, i, so, checks);
     if (rc) return rc;
     if (vm) {

@@ -257,12 +257,14 @@ coons_status coons__ld_read_coons(coons__ld *L, coons__ld_obj *o, coons_patch **
 coons_status coons__ld_read_hermite_coons(coons__ld *L, coons__ld_obj *o, coons_patch **out);
 coons_status coons__ld_read_bezier_surface(coons__ld *L, coons__ld_obj *o, coons_patch **out);
 coons_status coons__ld_read_bspline_surface(coons__ld *L, coons__ld_obj *o, coons_patch **out);
+coons_status coons__ld_read_network(coons__ld *L, coons__ld_obj *o, coons_patch **out);
 
 coons_status coons__ld_read_body0(coons__ld *L, coons__ld_obj *o, coons_body **out);
 coons_status coons__ld_read_body1(coons__ld *L, coons__ld_obj *o, coons_body **out);
 coons_status coons__ld_read_body2(coons__ld *L, coons__ld_obj *o, coons_body **out);
 coons_status coons__ld_read_bezier_volume(coons__ld *L, coons__ld_obj *o, coons_body **out);
 coons_status coons__ld_read_bspline_volume(coons__ld *L, coons__ld_obj *o, coons_body **out);
+coons_status coons__ld_read_shell(coons__ld *L, coons__ld_obj *o, coons_body **out);
 
 /* ---- shared by the Coons patch readers (read_patch_boundary.c) ------------ */
 

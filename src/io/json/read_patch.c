@@ -15,6 +15,7 @@ static const coons__ld_patch_row PATCHES[] = {
     {COONS_PATCH_HERMITE_COONS, coons__ld_read_hermite_coons},
     {COONS_PATCH_BEZIER, coons__ld_read_bezier_surface},
     {COONS_PATCH_BSPLINE, coons__ld_read_bspline_surface},
+    {COONS_PATCH_NETWORK, coons__ld_read_network},
 };
 enum { NPATCHES = sizeof PATCHES / sizeof PATCHES[0] };
 
@@ -34,6 +35,6 @@ coons_status coons__ld_patch(coons__ld *L, size_t obj, coons_patch **out)
     coons_status rc = coons__ld_typed(L, obj, "a patch", names, " patch", &type, &o);
     if (rc) return rc;
     snprintf(o.hint, sizeof o.hint, "%s",
-             "only a coons patch (and body0, body1, body2) has a blend");
+             "only a coons or network patch (and body0, body1, body2) has a blend");
     return PATCHES[type].read(L, &o, out);
 }
