@@ -601,6 +601,8 @@ def det3(T):
     return (T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1])
             - T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0])
             + T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]))
+
+
 # ---------------------------------------------------------------- networks, shells
 # coons-model(5) "Networks of curves" and "Shells", written from the format's
 # text (seed 001 eq. 1.13-1.16 per cell), not from libcoons.
