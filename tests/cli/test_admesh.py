@@ -14,7 +14,8 @@ too), where thin triangles of the union once gave 85 and 2 fixed normals
 file holds (its own count), after as before; no disconnected facet; every
 repair counter (degenerate facets, edges fixed, facets removed, added,
 reversed, backwards edges, normals fixed) 0; a positive volume (outward
-facets).
+facets). In a build without CGAL, models whose union needs it are left
+out (coons2stl refuses them).
 
 Usage: test_admesh.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -88,6 +89,17 @@ def check_one(r, label, stl):
     r.check(f"{label}: positive volume {rep['Volume']:.6g} (outward)", rep["Volume"] > 0)
 
 
+def have_cgal(build):
+    """Whether this build has the Boolean (CGAL) layer, from its CMake cache.
+    Without it, models whose bodies overlap cannot be united (coons2stl exits
+    3 and names CGAL): those are left out, and only then."""
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as f:
+            return "COONS_WITH_CGAL:BOOL=ON" in f.read()
+    except OSError:
+        return True  # unknown: nothing is excused
+
+
 def main():
     r = Runner(__doc__)
     if not shutil.which("admesh"):
@@ -107,6 +119,7 @@ def main():
         names = [os.path.splitext(os.path.basename(e))[0] for e in examples]
         for name in FINE:
             r.check(f"example {name} exists", name in names)
+        cgal = have_cgal(r.build)
         runs = []
         for ex, name in zip(examples, names):
             runs.append((name, ex, [], "stl"))
@@ -119,6 +132,9 @@ def main():
         for i, (name, ex, args, what) in enumerate(runs):
             stl = os.path.join(tmp, f"{i}-{name}.stl")
             st, _, err = r.run(["-q"] + args + ["-o", stl, ex])
+            if st == 3 and "CGAL" in err and not cgal:
+                print(f"n/a  {name} ({what}): its union needs CGAL, not in this build")
+                continue
             if r.check(f"{name} ({what}): coons2stl writes it", st == 0, err):
                 check_one(r, f"{name} ({what})", stl)
             os.remove(stl) if os.path.exists(stl) else None

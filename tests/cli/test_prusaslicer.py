@@ -20,7 +20,8 @@ For each examples/*.json, coons2stl -o x.stl, then:
   extrusion near its point, prints nothing there) and at most half a layer
   above it (layers are cut at their middle); heights as the G-code's own
   configuration comments give them.
-The slicer runs two at a time.
+The slicer runs two at a time. In a build without CGAL, models whose union
+needs it are left out (coons2stl refuses them).
 
 Usage: test_prusaslicer.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -106,6 +107,17 @@ def slice_one(stl):
     return p.returncode, p.stdout, zs, conf
 
 
+def have_cgal(build):
+    """Whether this build has the Boolean (CGAL) layer, from its CMake cache.
+    Without it, models whose bodies overlap cannot be united (coons2stl exits
+    3 and names CGAL): those are left out, and only then."""
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as f:
+            return "COONS_WITH_CGAL:BOOL=ON" in f.read()
+    except OSError:
+        return True  # unknown: nothing is excused
+
+
 def main():
     r = Runner(__doc__)
     if not shutil.which("prusa-slicer"):
@@ -123,10 +135,14 @@ def main():
         examples = sorted(glob.glob(os.path.join(r.src, "examples", "*.json")))
         r.check("examples found", len(examples) > 10, f"{len(examples)}")
         stls = {}
+        cgal = have_cgal(r.build)
         for ex in examples:
             name = os.path.splitext(os.path.basename(ex))[0]
             stl = os.path.join(tmp, name + ".stl")
             st, _, err = r.run(["-q", "-o", stl, ex])
+            if st == 3 and "CGAL" in err and not cgal:
+                print(f"n/a  {name}: its union needs CGAL, not in this build")
+                continue
             if r.check(f"{name}: coons2stl -o {name}.stl", st == 0, err):
                 stls[name] = stl
         names = sorted(stls)
