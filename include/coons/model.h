@@ -24,6 +24,14 @@ typedef enum coons_operation {
 #define COONS_MODEL_MAX_VALUES ((size_t)1 << 23)
 #define COONS_MODEL_MAX_DEPTH 64u
 #define COONS_MODEL_MAX_POINTS ((size_t)1000000)
+/**
+ * The sizes of model (the diagonal of its control points' box) the library
+ * supports: within them every tolerance is relative to the size and a model
+ * meshes to the same triangles, up to scale, at every size; outside them
+ * loading fails with ::COONS_E_LIMIT naming the size.
+ */
+#define COONS_MODEL_MIN_SIZE 1e-150
+#define COONS_MODEL_MAX_SIZE 1e150
 
 /**
  * Limits that guard the loader's allocations; exceeding one gives

@@ -73,10 +73,16 @@ static inline void bbox_add(double lo[3], double hi[3], const double p[3])
         if (p[i] > hi[i]) hi[i] = p[i];
     }
 }
+/* The box's diagonal, without overflow or underflow of the squares: a box
+ * of size 1e200 or 1e-300 has a finite, non-zero diagonal. */
 static inline double bbox_diag(const double lo[3], const double hi[3])
 {
     if (!(lo[0] <= hi[0])) return 0.0;
-    return v3_dist(lo, hi);
+    double m = 0, q = 0;
+    for (int i = 0; i < 3; i++) m = fmax(m, hi[i] - lo[i]);
+    if (!(m > 0) || !isfinite(m)) return m > 0 ? m : 0.0;
+    for (int i = 0; i < 3; i++) q += ((hi[i] - lo[i]) / m) * ((hi[i] - lo[i]) / m);
+    return m * sqrt(q);
 }
 
 /* NaN maps to 0: a parameter must never reach an integer conversion as NaN. */

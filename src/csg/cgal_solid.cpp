@@ -57,6 +57,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -1082,13 +1083,40 @@ typedef std::unique_ptr<coons_mesh, MeshFree> MeshPtr;
 // The work of coons_mesh_solidify() (see the file comment). `parts` and
 // `current` (the parts being worked on) stay with the caller, whose error
 // message names them.
+// Scale invariance: CGAL's filtered predicates and exact numbers (Mpzf)
+// overflow on products of coordinates near 1e100 and lose their filters
+// near 1e-100. The work is done on coordinates scaled by a power of two
+// (exact) that makes the extent about 1, and the results scaled back
+// (exact again): the same triangles, up to scale, at every size.
+double unit_scale(const double *xyz, size_t nv)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (size_t i = 0; i < nv; i++)
+        for (int d = 0; d < 3; d++) {
+            lo[d] = std::min(lo[d], xyz[3 * i + d]);
+            hi[d] = std::max(hi[d], xyz[3 * i + d]);
+        }
+    double ext = 0;
+    for (int d = 0; d < 3; d++) ext = std::max(ext, hi[d] - lo[d]);
+    return ext > 0 && std::isfinite(ext) ? std::ldexp(1.0, -std::ilogb(ext)) : 1.0;
+}
+
+std::vector<double> scaled(const double *xyz, size_t nv, double scale)
+{
+    std::vector<double> v(xyz, xyz + 3 * nv);
+    for (double &x : v) x *= scale;
+    return v;
+}
+
 coons_status solidify(const coons_mesh *in, const coons_csg_options &o, std::vector<Part> &parts,
                       std::vector<size_t> &current, coons_mesh **out, coons_csg_report *report,
                       coons_error *err)
 {
     coons_csg_report rep = COONS_CSG_REPORT_INIT;
     Progress prog{&o};
-    const double *xyz = coons_mesh_vertices(in);
+    const double scale = unit_scale(coons_mesh_vertices(in), coons_mesh_vertex_count(in));
+    const std::vector<double> unit = scaled(coons_mesh_vertices(in), coons_mesh_vertex_count(in), scale);
+    const double *xyz = unit.data();
     const uint32_t *tri = coons_mesh_triangles(in);
     collect_parts(in, parts);
     // Until the groups are known, a failure concerns every part.
@@ -1115,6 +1143,7 @@ coons_status solidify(const coons_mesh *in, const coons_csg_options &o, std::vec
         GroupSolidifier g(xyz, sxyz.data(), tri, parts, current, o, rep, prog, p0, p1);
         if (!g.run(s)) check_rounding(s);
         edge_stats(s, rep);
+        for (double &x : s.xyz) x /= scale;
         if (o.unite) {
             uint32_t base = (uint32_t)(all.xyz.size() / 3);
             all.xyz.insert(all.xyz.end(), s.xyz.begin(), s.xyz.end());
@@ -1196,26 +1225,49 @@ coons_status describe_failure(coons_error *err, const std::exception &e,
 }
 
 const char unknown_text[] = "unknown exception in the CGAL layer";
-const coons::guard_text self_int_text = {COONS_E_CSG, "self-intersection test failed: ",
-                                         unknown_text};
+
+
+// A failure of the self-intersection test in words: what failed, CGAL's
+// own reason (its explanation or expression, not the whole assertion
+// text), and what to try.
+coons_status describe_self_int(coons_error *err, const std::exception &e) noexcept
+{
+    const char *text = e.what();
+    int len = (int)std::strlen(text);
+    if (const CGAL::Failure_exception *c = dynamic_cast<const CGAL::Failure_exception *>(&e))
+        cgal_reason(c->what(), &text, &len);
+    return coons__error_set(err, COONS_E_CSG,
+                            "the exact self-intersection test of the mesh could not complete "
+                            "(CGAL: %.*s); try a coarser tolerance (-t) or write it with "
+                            "--no-repair",
+                            len, text);
+}
 
 coons_status self_int(const char *entry, const coons_mesh *m, size_t *pairs, bool to_float,
                       coons_error *err) noexcept
 {
     *pairs = 0;
-    return coons::guard(entry, err, self_int_text, [&]() -> coons_status {
+    return coons::guard(entry, err, unknown_text, [&]() -> coons_status {
         size_t nv = coons_mesh_vertex_count(m);
         const double *xyz = coons_mesh_vertices(m);
-        std::vector<double> f;
-        if (to_float) {
-            f.resize(3 * nv);
+        std::vector<double> f(xyz, xyz + 3 * nv);
+        if (to_float) { // rounded as STL stores it, then scaled exactly
+            double big = 0;
+            for (size_t i = 0; i < 3 * nv; i++) big = std::max(big, std::fabs(xyz[i]));
+            if (big > FLT_MAX || (big > 0 && big < std::ldexp((double)FLT_MIN, 23)))
+                return coons__error_set(err, COONS_E_LIMIT,
+                                        "the mesh's largest coordinate, %.17g, does not fit "
+                                        "STL's 32-bit floats",
+                                        big);
             for (size_t i = 0; i < 3 * nv; i++) f[i] = (double)(float)xyz[i];
-            xyz = f.data();
         }
+        const double scale = unit_scale(f.data(), nv);
+        for (double &x : f) x *= scale;
+        xyz = f.data();
         *pairs = count_self_intersections(xyz, nv, coons_mesh_triangles(m),
                                           coons_mesh_triangle_count(m));
         return COONS_OK;
-    });
+    }, [](coons_error *e, const std::exception &x) noexcept { return describe_self_int(e, x); });
 }
 
 } // namespace

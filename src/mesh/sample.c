@@ -100,6 +100,8 @@ static coons_status eval_face(sampler *s, int f, const double *av, size_t na, co
     c[F->b] = nb;
     coons_status st = coons_body_eval_grid(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out, s->err);
     if (st) return st;
+    if (s->scale != 1.0)
+        for (size_t i = 0; i < 3 * na * nb; i++) out[i] *= s->scale;
     if (!coons__all_finite(out, 3 * na * nb))
         return coons__error_set(s->err, COONS_E_INVALID,
                                 "body '%s' evaluates to a non-finite point on face %s", s->name,
@@ -218,6 +220,19 @@ static coons_status init_lattices(sampler *s)
             s->t[d] = coons__malloc_array(s->n[d] + 1, sizeof(double));
             if (!s->t[d]) return coons__error_nomem(s->err);
             memcpy(s->t[d], s->start_t[d], (s->n[d] + 1) * sizeof(double));
+        }
+        return alloc_lattices(s);
+    }
+    if (s->skip == 63 && !s->o->resolution) {
+        /* Every face shared (a cell inside a lattice): no boundary of its
+         * own; its lattice comes from its neighbours', its points only
+         * join theirs (sample_lattice.c). */
+        for (int d = 0; d < 3; d++) {
+            s->n[d] = 1;
+            s->t[d] = coons__malloc_array(2, sizeof(double));
+            if (!s->t[d]) return coons__error_nomem(s->err);
+            s->t[d][0] = 0.0;
+            s->t[d][1] = 1.0;
         }
         return alloc_lattices(s);
     }
@@ -748,7 +763,7 @@ static coons_status run(sampler *s)
 {
     coons_status st = init_lattices(s);
     if (st) return st;
-    if (s->skip && (st = coarse_sign(s))) return st;
+    if (s->skip && s->skip != 63 && (st = coarse_sign(s))) return st;
     if (s->o->resolution) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
         if (s->o->flags & COONS_SAMPLE_UNMEASURED) return COONS_OK;
@@ -757,21 +772,21 @@ static coons_status run(sampler *s)
     }
     for (int round = 0; round < MAX_ROUNDS; round++) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
-        if ((st = scan(s, 2, LOOP_FRACTION * s->o->tolerance))) return st;
+        if ((st = scan(s, 2, LOOP_FRACTION * s->tol))) return st;
         size_t split;
         if ((st = refine(s, &split))) return st;
         if (split) continue;
         /* The coarse estimate is satisfied: measure on the finer samples. */
-        if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->o->tolerance))) return st;
+        if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->tol))) return st;
         s->measured = 1;
-        if (s->dev <= ACCEPT_FRACTION * s->o->tolerance) return COONS_OK;
+        if (s->dev <= ACCEPT_FRACTION * s->tol) return COONS_OK;
         if ((st = refine(s, &split))) return st;
         if (!split) break;
     }
     return coons__error_set(s->err, COONS_E_LIMIT,
                             "body '%s': cannot reach tolerance %g (deviation %g remains where "
                             "the parameter step is already %g)",
-                            s->name, s->o->tolerance, s->dev, MIN_WIDTH);
+                            s->name, s->o->tolerance, s->dev / s->scale, MIN_WIDTH);
 }
 
 static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
@@ -808,7 +823,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
     for (size_t i = 0; i < 3 * s->nt; i++) {
         uint32_t v = s->tri[i];
         if (map[v] == UINT32_MAX) {
-            v3_copy(xyz + 3 * (size_t)nv, s->pos + 3 * (size_t)v);
+            coons__sampler_unscaled(s, v, xyz + 3 * (size_t)nv);
             if (params) v3_copy(uvw + 3 * (size_t)nv, uvw + 3 * (s->nv + (size_t)v));
             map[v] = nv++;
         }
@@ -820,7 +835,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
         coons__mesh_part *P = &mesh->parts[part];
         P->tolerance = s->o->tolerance;
         P->sampled = 1;
-        P->deviation = s->measured ? s->dev : NAN;
+        P->deviation = s->measured ? s->dev / s->scale : NAN;
         for (int d = 0; d < 3; d++) P->lattice[d] = s->n[d];
         P->glued = s->glued;
         if (triangles) *triangles = s->nt;
@@ -842,6 +857,12 @@ void coons__sampler_init(sampler *s, const coons_body *b, const coons__sample_op
     s->name = name ? name : "body";
     s->err = err;
     s->sign = 1;
+    /* A power of two near 1 / the body's extent (control box). */
+    double lo[3], hi[3], ext = 0;
+    coons_body_control_bbox(b, lo, hi);
+    for (int d = 0; d < 3; d++) ext = fmax(ext, hi[d] - lo[d]);
+    s->scale = ext > 0 && isfinite(ext) ? ldexp(1.0, -ilogb(ext)) : 1.0;
+    s->tol = o->tolerance * s->scale;
 }
 
 coons_status coons__sampler_run(sampler *s)
@@ -903,7 +924,7 @@ coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample
             n[d] = 0;
         }
     }
-    if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev : NAN;
+    if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev / s.scale : NAN;
     coons__sampler_free(&s);
     return st;
 }

@@ -178,7 +178,7 @@ static coons_status emit_joined(lattice_job *j, const coons__shared_face *sf, si
                                               S->name);
                         goto done;
                     }
-                    v3_copy(xyz + 3 * (size_t)nv, j->s[repb[root]].pos + 3 * (size_t)r);
+                    coons__sampler_unscaled(&j->s[repb[root]], r, xyz + 3 * (size_t)nv);
                     map[root] = nv++;
                 }
                 v[c] = map[root];
@@ -205,7 +205,7 @@ static coons_status emit_joined(lattice_job *j, const coons__shared_face *sf, si
         int measured = 1;
         for (size_t i = 0; i < j->nb; i++) {
             if (!j->s[i].measured) measured = 0;
-            if (j->s[i].dev > dev) dev = j->s[i].dev;
+            if (j->s[i].dev / j->s[i].scale > dev) dev = j->s[i].dev / j->s[i].scale;
         }
         P->deviation = measured ? dev : NAN;
         /* The lattice of the first body (a part made of several bodies has

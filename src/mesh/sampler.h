@@ -46,6 +46,12 @@ typedef struct sampler {
     size_t start_n[3];
     int sign;              /* with skip: +1 / -1 the body's orientation */
     unsigned char *evaluated; /* per raw vertex: its position was computed */
+    /* Scale invariance: positions are the body's points times `scale`, a
+     * power of two (exact) that makes the body's extent about 1, so that
+     * squared distances and the products of the distance tests neither
+     * overflow nor underflow at any size the format allows; `tol` is the
+     * tolerance in those units. */
+    double scale, tol;
 } sampler;
 
 
@@ -60,6 +66,12 @@ void coons__sampler_free(sampler *s);
 static inline uint32_t coons__sampler_id(const sampler *s, int f, size_t ia, size_t ib)
 {
     return s->ids[f][ia * (s->n[coons__faces[f].b] + 1) + ib];
+}
+
+/* The body's point of raw vertex v (positions are scaled: see `scale`). */
+static inline void coons__sampler_unscaled(const sampler *s, uint32_t v, double out[3])
+{
+    for (int d = 0; d < 3; d++) out[d] = s->pos[3 * (size_t)v + (size_t)d] / s->scale;
 }
 
 #endif

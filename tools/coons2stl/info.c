@@ -253,7 +253,7 @@ static void print_csg_report(const coons_csg_report *rep)
 
 /* The object after "solid": (the mesh checks, then the CSG report). */
 static void print_solid(const coons_mesh_report *r, const coons_csg_report *rep, size_t parts,
-                        int repair, int united, int csg, size_t pairs, size_t pairs32)
+                        int repair, int united, int csg, size_t pairs, long pairs32)
 {
     printf("{");
     json_bool("repair", repair && csg);
@@ -277,8 +277,11 @@ static void print_solid(const coons_mesh_report *r, const coons_csg_report *rep,
                "\"csg\": null}");
         return;
     }
-    printf(", \"self_intersections\": %zu, \"self_intersections_float32\": %zu,\n", pairs,
-           pairs32);
+    printf(", \"self_intersections\": %zu, \"self_intersections_float32\": ", pairs);
+    if (pairs32 < 0)
+        printf("null,\n"); /* the solid does not fit STL's 32-bit floats */
+    else
+        printf("%ld,\n", pairs32);
     print_csg_report(rep);
 }
 
@@ -296,7 +299,14 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     size_t pairs = 0, pairs32 = 0;
     if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
     if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections(solid, &pairs, &err);
-    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections_float(solid, &pairs32, &err);
+    int have32 = csg; /* not when the solid does not fit float32 (STL refuses it) */
+    if (rc == COONS_OK && csg) {
+        coons_status r32 = coons_mesh_count_self_intersections_float(solid, &pairs32, &err);
+        if (r32 == COONS_E_LIMIT)
+            have32 = 0, pairs32 = 0;
+        else
+            rc = r32;
+    }
     cli_progress_end();
     size_t parts = rc == COONS_OK ? coons_mesh_part_count(solid) : 0;
     coons_mesh_free(solid);
@@ -315,7 +325,7 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     }
     solid_warnings(&r, pairs, pairs32, repair);
     print_solid(&r, &rep, parts, repair, only < 0 && coons_model_operation(m) == COONS_OP_UNION,
-                csg, pairs, pairs32);
+                csg, pairs, have32 ? (long)pairs32 : -1);
     return 0;
 }
 

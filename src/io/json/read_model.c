@@ -212,6 +212,15 @@ static coons_status tolerances(coons__ld *L, double *tol)
         return coons__ld_fail(L, 0, COONS_E_INVALID,
                               "the control points span more than the largest double: the "
                               "model's size is not finite");
+    /* Scale invariance holds where a body's coordinates, and the products
+     * of three of their differences (volumes, Jacobians), are ordinary
+     * doubles: sizes 1e-150 to 1e150 (coons-model(5) LIMITS). */
+    if (diag > 0 && (diag < COONS_MODEL_MIN_SIZE || diag > COONS_MODEL_MAX_SIZE))
+        return coons__ld_fail(L, 0, COONS_E_LIMIT,
+                              "the model's size (the diagonal of its control points' box) is "
+                              "%.3g, outside the supported range %g to %g: express it in "
+                              "other units",
+                              diag, COONS_MODEL_MIN_SIZE, COONS_MODEL_MAX_SIZE);
     L->ctol = diag > 0 ? 1e-9 * diag : DBL_MIN;
     return COONS_OK;
 }

@@ -62,17 +62,32 @@ static void facet_normal(double n[3], const double *a, const double *b, const do
         v3_zero(n);
 }
 
-/* STL stores float32: a larger coordinate would become infinite. */
+/* STL stores float32: a larger coordinate would become infinite, and a
+ * part whose largest coordinate is below 2^23 times the smallest normal
+ * float32 would lose its 24 bits of precision (subnormals) or become 0. A
+ * single tiny coordinate in a part of ordinary size is harmless. */
 coons_status coons__check_stl(const coons_mesh *m, coons_error *err)
 {
     const double *xyz = coons_mesh_vertices(m);
-    for (size_t i = 0; i < 3 * coons_mesh_vertex_count(m); i++)
+    double big = 0;
+    size_t n = 3 * coons_mesh_vertex_count(m);
+    for (size_t i = 0; i < n; i++) {
         if (fabs(xyz[i]) > FLT_MAX)
             return coons__error_set(err, COONS_E_LIMIT,
                                     "vertex %zu has the coordinate %.17g, outside the range "
                                     "of STL's 32-bit floats (+-%.9g): write OFF or SCAD, "
                                     "which keep doubles",
                                     i / 3, xyz[i], (double)FLT_MAX);
+        big = fmax(big, fabs(xyz[i]));
+    }
+    const double small = ldexp((double)FLT_MIN, 23);
+    if (n && big > 0 && big < small)
+        return coons__error_set(err, COONS_E_LIMIT,
+                                "the largest coordinate, %.17g, is below %.9g: STL's 32-bit "
+                                "floats would lose the mesh's precision there (subnormal "
+                                "numbers); write OFF or SCAD, which keep doubles, or use "
+                                "larger units",
+                                big, small);
     return COONS_OK;
 }
 
