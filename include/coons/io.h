@@ -101,6 +101,16 @@
  *   line (a C3D20 element continues after its 15th node, the line ending
  *   with a comma); numbers are the shortest round-trip text when it fits
  *   the 20 characters CalculiX reads, else the most digits that fit.
+ * - ::COONS_FORMAT_3MF (surface, `.3mf`): a 3MF package (3MF core
+ *   specification 1.x) made with lib3mf: one mesh object of type "model"
+ *   per part, named after it, one build item each, float32 coordinates
+ *   (lib3mf 1.8 cuts them to 6 decimals), `unit` from the options' units
+ *   ("um"/"micron", "mm", "cm", "in", "ft", "m" and their spelled-out
+ *   names, any case; millimeter when none; any other: ::COONS_E_UNSUPPORTED),
+ *   the name as "Title" metadata, UUIDs from the part index (deterministic).
+ *   A part that is empty or not a closed surface running every edge once
+ *   each way is refused (::COONS_E_UNSUPPORTED) before anything is
+ *   created, as is every 3MF write of a library built without lib3mf.
  *
  * Numbers in OFF and SCAD are the shortest decimal text that strtod() reads
  * back to the identical double (-0 stays "-0"); non-finite values are
@@ -144,7 +154,8 @@ typedef enum coons_format {
     COONS_FORMAT_MSH4 = 7,       /**< Gmsh MSH 4.1 ASCII (volume) */
     COONS_FORMAT_VTU = 8,        /**< VTK XML UnstructuredGrid, version 1.0 (volume) */
     COONS_FORMAT_INP = 9,        /**< Abaqus / CalculiX input deck (volume) */
-    COONS_FORMAT_VTU_ASCII = 10  /**< VTK XML UnstructuredGrid, ASCII data (volume) */
+    COONS_FORMAT_VTU_ASCII = 10, /**< VTK XML UnstructuredGrid, ASCII data (volume) */
+    COONS_FORMAT_3MF = 11        /**< 3MF package, core specification 1.x (needs lib3mf) */
 } coons_format;
 
 /** The kind of mesh a format holds (coons_format_kind()). */

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Installs the build into a temporary prefix and uses it as a client would.
+"""Installs the build into a temporary prefix and uses it as a client would,
+then does the same with the Debian package.
 
 tests/api/consumer.c (includes only <coons.h>, checks values it computes
 itself) is built against the installed files
@@ -12,6 +13,16 @@ itself) is built against the installed files
 and each executable is run. Also checks that the shared library exports
 only coons_* symbols, its soname, the installed headers, man pages and
 CMake version file.
+
+The Debian package (`cpack -G DEB`, cmake/CoonsPackage.cmake) is built into
+a scratch directory and checked with dpkg's own tools: its name, version and
+architecture (`dpkg-deb -f`), its file list (`dpkg-deb -c`: the libraries,
+every public header, coons2stl, every man page, coons.pc, the CMake package,
+nothing outside /usr), and its Depends: exactly the Debian packages that own
+(`dpkg -S`) the shared libraries its ELF files need (readelf NEEDED,
+resolved by ldd), each with a version. Extracted with `dpkg -x` into a
+scratch root, the consumer is built against it with pkg-config and with
+CMake's find_package and run, and the packaged coons2stl meshes the spool.
 
 Usage: test_install.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -242,8 +253,146 @@ target_link_libraries(consumer_static PRIVATE coons::coons_static)
                       str(needed(exe)))
                 rc, out = run([exe])  # the shared one finds the library via its RPATH
                 check(f"(c) run {t}{variant}", rc == 0, out)
+        deb_checks(src, build, tmp, cc, cflags, consumer, soname, gen)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+
+
+def owner(path):
+    """The Debian package that owns a file (also through the /usr merge)."""
+    for p in (path, os.path.realpath(path), re.sub(r"^/usr/lib/", "/lib/", path),
+              re.sub(r"^/lib/", "/usr/lib/", path)):
+        rc, out = run(["dpkg", "-S", p])
+        if rc == 0:
+            return out.split(":")[0].strip()
+    return None
+
+
+def deb_checks(src, build, tmp, cc, cflags, consumer, soname, gen):
+    """Builds the .deb, checks its fields and files, and uses it extracted."""
+    for tool in ("cpack", "dpkg-deb", "dpkg-shlibdeps"):
+        check(f"{tool} is installed", shutil.which(tool) is not None)
+    out_dir = os.path.join(tmp, "deb")
+    rc, out = run(["cpack", "-G", "DEB", "--config", os.path.join(build, "CPackConfig.cmake"),
+                   "-B", out_dir])
+    debs = glob.glob(os.path.join(out_dir, "*.deb"))
+    if not check("cpack -G DEB makes one .deb", rc == 0 and len(debs) == 1, out):
+        return
+    deb = debs[0]
+    major, minor, patch = header_version(build)
+    version = f"{major}.{minor}.{patch}"
+    rc, arch = run(["dpkg", "--print-architecture"])
+    arch = arch.strip()
+    check(f"named libcoons_{version}_{arch}.deb",
+          os.path.basename(deb) == f"libcoons_{version}_{arch}.deb", deb)
+    fields = {}
+    for key in ("Package", "Version", "Architecture", "Depends", "Suggests", "Maintainer",
+                "Description"):
+        rc, val = run(["dpkg-deb", "-f", deb, key])
+        fields[key] = val.strip() if rc == 0 else ""
+    check("Package libcoons, Version, Architecture",
+          fields["Package"] == "libcoons" and fields["Version"] == version and
+          fields["Architecture"] == arch, str(fields))
+    check("Maintainer and Description are set",
+          fields["Maintainer"] and len(fields["Description"].splitlines()) > 1, str(fields))
+
+    # The file list.
+    rc, listing = run(["dpkg-deb", "-c", deb])
+    files = set()
+    for line in listing.splitlines():
+        name = line.split()[5] if len(line.split()) > 5 else ""
+        files.add(re.sub(r"^\./", "/", name).rstrip("/"))
+    want = {"/usr/bin/coons2stl", "/usr/lib/libcoons.a", "/usr/lib/libcoons.so",
+            f"/usr/lib/{soname}", f"/usr/lib/libcoons.so.{version}",
+            "/usr/lib/pkgconfig/coons.pc", "/usr/lib/cmake/coons/coonsConfig.cmake",
+            "/usr/lib/cmake/coons/coonsConfigVersion.cmake",
+            "/usr/lib/cmake/coons/coons-targets.cmake", "/usr/include/coons.h",
+            "/usr/include/coons/version.h", "/usr/include/coons/export.h",
+            "/usr/share/doc/libcoons/copyright"}
+    want |= {"/usr/include/coons/" + os.path.basename(h)
+             for h in glob.glob(os.path.join(src, "include", "coons", "*.h"))}
+    want |= {f"/usr/share/man/{os.path.basename(os.path.dirname(p))}/{os.path.basename(p)}"
+             for p in glob.glob(os.path.join(src, "man", "man[0-9]", "*.[0-9]"))}
+    missing = sorted(want - files)
+    check(f"the package holds the {len(want)} expected files", not missing, f"missing {missing}")
+    outside = sorted(f for f in files if f and f != "/" and not f.startswith("/usr"))
+    check("nothing outside /usr", not outside, str(outside))
+
+    # Extract, then Depends against the owners of what the ELF files need.
+    root = os.path.join(tmp, "root")
+    rc, out = run(["dpkg", "-x", deb, root])
+    if not check("dpkg -x into a scratch root", rc == 0, out):
+        return
+    libdir = os.path.join(root, "usr", "lib")
+    renv = dict(os.environ, LD_LIBRARY_PATH=libdir)
+    owners, unresolved = set(), []
+    for elf in (os.path.join(libdir, f"libcoons.so.{version}"),
+                os.path.join(root, "usr", "bin", "coons2stl")):
+        rc, ldd = run(["ldd", elf], env=renv)
+        paths = dict(re.findall(r"^\s*(\S+) => (\S+)", ldd, re.M))
+        for path in re.findall(r"^\s*(/\S+) \(0x", ldd, re.M):  # the dynamic loader
+            paths.setdefault(os.path.basename(path), path)
+        for lib in needed(elf):
+            if lib.startswith("libcoons"):
+                continue
+            pkg = owner(paths.get(lib, "")) if paths.get(lib) else None
+            if pkg:
+                owners.add(pkg.split(":")[0])
+            else:
+                unresolved.append(lib)
+    check("every needed library has an owning package", not unresolved, str(unresolved))
+    deps = [d.strip() for d in fields["Depends"].split(",") if d.strip()]
+    names = {re.match(r"[a-z0-9.+-]+", d).group(0) for d in deps}
+    check(f"Depends names exactly the owners of the needed libraries ({len(owners)})",
+          names == owners, f"Depends: {sorted(names)}; owners: {sorted(owners)}")
+    check("every dependency has a minimum version",
+          deps and all(re.search(r"\(>= [^)]+\)$", d) for d in deps), fields["Depends"])
+    with_3mf = (cache_value(build, "COONS_WITH_LIB3MF") or "OFF").upper() in ("ON", "1", "TRUE")
+    check(f"lib3mf1 is a dependency exactly when 3MF is built in ({with_3mf})",
+          ("lib3mf1" in names) == with_3mf, fields["Depends"])
+
+    # The consumer against the extracted tree: pkg-config (the .pc file is
+    # relocatable: its prefix follows where it lies), then CMake.
+    env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(libdir, "pkgconfig"),
+               PKG_CONFIG_LIBDIR=os.path.join(libdir, "pkgconfig"))
+    rc, flags = run(["pkg-config", "--cflags", "--libs", "coons"], env=env)
+    dirs = {f[:2]: os.path.normpath(f[2:]) for f in flags.split() if f[:2] in ("-I", "-L")}
+    check("deb: pkg-config points into the extracted tree",
+          rc == 0 and dirs.get("-I") == os.path.join(root, "usr", "include") and
+          dirs.get("-L") == libdir, flags)
+    exe = os.path.join(tmp, "deb_consumer")
+    rc, out = run([cc] + cflags + [consumer, "-o", exe] + flags.split())
+    if check("deb: consumer builds with pkg-config", rc == 0, flags + out):
+        rc, ldd = run(["ldd", exe], env=renv)
+        check("deb: it loads the packaged libcoons", f"{soname} => {libdir}/{soname}" in ldd, ldd)
+        rc, out = run([exe], env=renv)
+        check("deb: consumer runs", rc == 0, out)
+    proj = os.path.join(tmp, "deb-cmake")
+    os.makedirs(proj)
+    with open(os.path.join(proj, "CMakeLists.txt"), "w") as f:
+        f.write(f"""cmake_minimum_required(VERSION 3.18)
+project(consumer C)
+find_package(coons {major}.{minor} CONFIG REQUIRED)
+if(NOT coons_DIR STREQUAL "{libdir}/cmake/coons")
+  message(FATAL_ERROR "found coons in ${{coons_DIR}}")
+endif()
+add_executable(consumer_shared {consumer})
+target_link_libraries(consumer_shared PRIVATE coons::coons)
+""")
+    bdir = os.path.join(tmp, "deb-cmake-build")
+    rc, out = run(["cmake", "-S", proj, "-B", bdir, "-DCMAKE_PREFIX_PATH=" + os.path.join(
+        root, "usr"), "-DCMAKE_C_FLAGS=" + " ".join(cflags)] + gen)
+    if check("deb: find_package(coons) finds the extracted package", rc == 0, out):
+        rc, out = run(["cmake", "--build", bdir])
+        if check("deb: consumer builds with coons::coons", rc == 0, out):
+            rc, out = run([os.path.join(bdir, "consumer_shared")], env=renv)
+            check("deb: CMake consumer runs", rc == 0, out)
+    stl = os.path.join(tmp, "spool.stl")
+    rc, out = run([os.path.join(root, "usr", "bin", "coons2stl"),
+                   os.path.join(src, "examples", "spool.json"), "-o", stl], env=renv)
+    size = os.path.getsize(stl) if os.path.exists(stl) else 0
+    check("deb: the packaged coons2stl meshes the spool",
+          rc == 0 and size > 84 and (size - 84) % 50 == 0, out)
 
 
 if __name__ == "__main__":

@@ -57,10 +57,10 @@ static const option_row OPTIONS[] = {
     {"output", 'o', "FILE", V_TEXT, AT(output),
      "write the mesh to FILE (default: standard output)", NULL, 0, 0, NULL},
     {"format", 'f', "FMT", V_TEXT, AT(format_arg),
-     "surface: stl (binary), stl-ascii, off or scad; volume:\n"
+     "surface: stl (binary), stl-ascii, off, scad or 3mf; volume:\n"
      "msh (Gmsh 2.2), msh4, vtu, vtu-ascii, inp or vtk; by default\n"
-     "taken from the extension of FILE (.stl, .off, .scad, .msh,\n"
-     ".vtu, .inp, .vtk), else stl",
+     "taken from the extension of FILE (.stl, .off, .scad, .3mf,\n"
+     ".msh, .vtu, .inp, .vtk), else stl",
      NULL, 0, 0, NULL},
     {"tolerance", 't', "D", V_REAL, AT(tolerance),
      "largest distance between mesh and surface (> 0),\n"

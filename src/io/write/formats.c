@@ -35,6 +35,9 @@ static const coons__format_row ROWS[] = {
     {.format = COONS_FORMAT_VTU_ASCII, .name = "vtu-ascii", .title = "ASCII VTK XML",
      .kind = VOLUME, .write_volume = coons__write_vtu_ascii,
      .write_surface = coons__write_vtu_surface},
+    {.format = COONS_FORMAT_3MF, .name = "3mf", .title = "3MF", .extensions = {".3mf"},
+     .kind = SURFACE, .max_triangles = UINT32_MAX, .write_surface = coons__write_3mf,
+     .check_surface = coons__check_3mf},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 

@@ -118,6 +118,10 @@ coons_status coons__write_vtu_surface(const coons_mesh *m, const coons__wopts *o
                                       coons__sink *s);
 coons_status coons__write_inp(const coons_volume_mesh *m, const coons__wopts *o, coons__sink *s);
 coons_status coons__check_inp(const coons_volume_mesh *m, coons_error *err);
+/* 3MF (threemf.cpp with lib3mf; without it no3mf/threemf.c refuses with
+ * COONS_E_UNSUPPORTED in the check, before any output exists). */
+coons_status coons__write_3mf(const coons_mesh *m, const coons__wopts *o, coons__sink *s);
+coons_status coons__check_3mf(const coons_mesh *m, coons_error *err);
 
 /* ---- OpenSCAD identifiers (scad.c), for every writer of .scad text ----- */
 
