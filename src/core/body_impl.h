@@ -37,6 +37,13 @@ struct coons_body {
     coons_body *inner;
     double xf[12];
     double xf_det;
+    /* The morph (morph.c): nkeys keys, their times at[], the path
+     * (coons_morph_path) and the time t. */
+    coons_body **keys;
+    size_t nkeys;
+    double *at;
+    int path;
+    double t;
 };
 
 /* Allocates a zeroed record of the given kind, with an empty control box. */

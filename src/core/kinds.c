@@ -44,6 +44,7 @@ static const row BODIES[] = {
     [COONS_BODY_BODY2] = {"body2", &coons__body2_kind},
     [COONS_BODY_BEZIER] = {"bezier-volume", &coons__bezier_volume_kind},
     [COONS_BODY_BSPLINE] = {"bspline-volume", &coons__bspline_volume_kind},
+    [COONS_BODY_MORPH] = {"morph", &coons__morph_kind},
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
