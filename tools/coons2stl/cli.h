@@ -130,4 +130,11 @@ int cli_check_time_options(options *o);
 int cli_write_frames(coons_model *m, long body, const options *o,
                      const coons_sample_options *so);
 
+/* frames.c: --info's "morph" object of a morph body (printed after a
+ * key): keys, times, path, and the sampled times where the smallest det J
+ * changes sign (below -fold_threshold counts as negative); warns of a
+ * fold. 0, or the exit status (reported). */
+int cli_print_morph_info(const coons_body *b, double fold_threshold, const char *name,
+                         size_t index);
+
 #endif

@@ -220,3 +220,82 @@ int cli_write_frames(coons_model *m, long body, const options *o,
     if (o->format == COONS_FORMAT_VTU || o->format == COONS_FORMAT_VTU_ASCII) return write_pvd(o);
     return 0;
 }
+
+/* Times --info samples for the sign of det J: FOLD_SAMPLES + 1 uniform
+ * ones and the key times; det J on a (FOLD_LATTICE + 1)^3 lattice each. */
+enum { FOLD_SAMPLES = 64, FOLD_LATTICE = 8 };
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int cli_print_morph_info(const coons_body *b, double fold_threshold, const char *name,
+                         size_t index)
+{
+    size_t nk = coons_body_morph_keys(b);
+    coons_morph_path path = COONS_MORPH_LINEAR;
+    double t0 = 0;
+    coons_error err = COONS_ERROR_INIT;
+    if (coons_body_morph_info(b, &path, &t0, &err)) return -1;
+    printf(",\n     \"morph\": {\"path\": \"%s\", \"t\": %.17g, \"keys\": [",
+           path == COONS_MORPH_SMOOTH ? "smooth" : "linear", t0);
+    size_t nt = FOLD_SAMPLES + 1 + nk;
+    double *times = malloc(nt * sizeof *times), *mins = malloc(nt * sizeof *mins);
+    if (!times || !mins) {
+        free(times);
+        free(mins);
+        cli_message(0, "out of memory");
+        return EXIT_GEOMETRY;
+    }
+    for (size_t k = 0; k < nk; k++) {
+        double at = 0;
+        const coons_body *key = coons_body_morph_key(b, k, &at);
+        const char *type = coons_body_type_name(coons_body_get_type(key));
+        printf("%s{\"type\": \"%s\", \"at\": %.17g}", k ? ", " : "", type ? type : "unknown", at);
+        times[FOLD_SAMPLES + 1 + k] = at;
+    }
+    for (size_t j = 0; j <= FOLD_SAMPLES; j++) times[j] = (double)j / FOLD_SAMPLES;
+    qsort(times, nt, sizeof *times, cmp_double);
+    size_t n = 0;
+    for (size_t j = 0; j < nt; j++)
+        if (!n || times[j] > times[n - 1]) times[n++] = times[j];
+    int rc = 0;
+    for (size_t j = 0; j < n && !rc; j++) {
+        coons_body *c = NULL;
+        double where[3];
+        if (coons_body_at_time(b, times[j], &c, &err) ||
+            coons_body_min_jacobian(c, FOLD_LATTICE, &mins[j], where, &err)) {
+            cli_message(0, "body %zu (%s): %s", index, name, err.message);
+            rc = EXIT_GEOMETRY;
+        }
+        coons_body_free(c);
+    }
+    if (!rc) {
+        /* the sign of the smallest det J, with the rounding noise of a
+         * collapsed axis counted as 0 (info.c, FOLD_REL) */
+        printf("],\n      \"sampled_times\": %zu, \"det_sign_changes\": [", n);
+        int prev = 0, first = 1;
+        double worst = INFINITY, worst_t = 0;
+        for (size_t j = 0; j < n; j++) {
+            int sgn = mins[j] < -fold_threshold ? -1 : 1;
+            if (j && sgn != prev) {
+                printf("%s{\"between\": [%.17g, %.17g], \"min_det\": [%.17g, %.17g]}",
+                       first ? "" : ", ", times[j - 1], times[j], mins[j - 1], mins[j]);
+                first = 0;
+            }
+            prev = sgn;
+            if (mins[j] < worst) worst = mins[j], worst_t = times[j];
+        }
+        printf("], \"min_det_jacobian\": %.17g, \"min_det_jacobian_time\": %.17g}", worst,
+               worst_t);
+        if (worst < -fold_threshold)
+            cli_message(1, "body %zu (%s): the morph folds: det J = %.6g < 0 at time %g%s",
+                        index, name, worst, worst_t,
+                        first ? "" : " (its keys may differ in handedness)");
+    }
+    free(times);
+    free(mins);
+    return rc;
+}
