@@ -137,4 +137,9 @@ int cli_write_frames(coons_model *m, long body, const options *o,
 int cli_print_morph_info(const coons_body *b, double fold_threshold, const char *name,
                          size_t index);
 
+/* frames.c: -o FILE.scad of a model with morphs (without --time): the
+ * OpenSCAD animation; the exit status. */
+int cli_write_scad_animation(const coons_model *m, long body, const options *o,
+                             const coons_sample_options *so);
+
 #endif

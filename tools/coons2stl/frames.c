@@ -299,3 +299,40 @@ int cli_print_morph_info(const coons_body *b, double fold_threshold, const char 
     free(mins);
     return rc;
 }
+
+int cli_write_scad_animation(const coons_model *m, long body, const options *o,
+                             const coons_sample_options *so)
+{
+    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : o->output;
+    int from_file = o->input && strcmp(o->input, "-") != 0;
+    if (!to_stdout && from_file && cli_is_model_file(o->output, o->input)) {
+        fprintf(stderr, "%s: the output '%s' is the model file '%s'; refusing to overwrite it\n",
+                PROG, o->output, o->input);
+        return EXIT_USAGE;
+    }
+    /* the model's module is named after the output file, else the model file */
+    char name[256] = "";
+    const char *src = to_stdout ? (from_file ? o->input : NULL) : o->output;
+    if (src) {
+        const char *base = strrchr(src, '/');
+        snprintf(name, sizeof name, "%s", base ? base + 1 : src);
+        char *dot = strrchr(name, '.');
+        if (dot && dot != name) *dot = '\0';
+    }
+    coons_write_options w = COONS_WRITE_OPTIONS_INIT;
+    w.units = coons_model_units(m);
+    w.name = name[0] ? name : NULL;
+    w.protect_path = from_file ? o->input : NULL;
+    coons_error err = COONS_ERROR_INIT;
+    coons_status rc = to_stdout ? coons_model_write_scad_animation_stream(m, body, so, stdout, &w,
+                                                                          &err)
+                                : coons_model_write_scad_animation(m, body, so, o->output, &w,
+                                                                   &err);
+    cli_progress_end();
+    if (rc != COONS_OK) {
+        cli_message(0, "%s: %s; nothing was written", shown, err.message);
+        return EXIT_GEOMETRY;
+    }
+    return 0;
+}

@@ -36,6 +36,8 @@ static int run_mode(const options *o, coons_model *m, long body)
     if (o->eval) return cli_eval(coons_model_body(m, body < 0 ? 0 : (size_t)body), o->jacobian);
     if (o->info) return cli_info(m, body, &so, o);
     if (o->niso) return cli_write_iso(m, body, o, &so);
+    if (o->format == COONS_FORMAT_SCAD && !o->time_arg && coons_model_morph_count(m))
+        return cli_write_scad_animation(m, body, o, &so);
     if (cli_is_volume_format(o->format)) {
         if (o->output && strcmp(o->output, "-") != 0 && strcmp(o->input, "-") != 0 &&
             cli_is_model_file(o->output, o->input)) {
