@@ -152,7 +152,7 @@ static void test_union_and_use(void **state)
     snprintf(q, sizeof q, "%s/user.scad", dir);
     FILE *f = fopen(q, "w");
     assert_non_null(f);
-    fprintf(f, "use <model.scad>\nsecond_box();\n");
+    fprintf(f, "use <model.scad>\ncoons_model_second_box();\n");
     fclose(f);
     assert_volume(render_volume(dir, q, NULL), 2.0 * 1.5 * 0.5);
     /* include <>: the whole model, plus OpenSCAD's own cube() still works. */

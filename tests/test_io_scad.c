@@ -244,12 +244,12 @@ static void test_points_exact_faces_reversed(void **state)
             assert_true(md->faces[3 * t + 2] == (double)(w[1] - vf));
         }
     }
-    assert_string_equal(s.mod[0].name, "box");
-    assert_string_equal(s.mod[1].name, "ring");
+    assert_string_equal(s.mod[0].name, "coons_model_box");
+    assert_string_equal(s.mod[1].name, "coons_model_ring");
     assert_string_equal(s.mod[2].name, "coons_model");
     assert_int_equal(s.mod[2].ncalls, 2);
-    assert_string_equal(s.mod[2].calls[0], "box");
-    assert_string_equal(s.mod[2].calls[1], "ring");
+    assert_string_equal(s.mod[2].calls[0], "coons_model_box");
+    assert_string_equal(s.mod[2].calls[1], "coons_model_ring");
     assert_int_equal(s.ntop, 1);
     assert_string_equal(s.top[0], "coons_model");
     assert_non_null(strstr(s.comments, "units: mm"));
@@ -267,48 +267,94 @@ static int is_identifier(const char *s)
 }
 
 /* Given part names that are not identifiers, collide with OpenSCAD's
- * built-ins or keywords, repeat each other or are empty, when written,
- * then every module name is a valid identifier, unique, not reserved, and
- * the model module calls each in order. */
+ * built-ins or keywords, repeat each other or are empty, and model names
+ * that are not identifiers or are built-ins, when written, then the model
+ * module is the model's name made an identifier, each part module is
+ * MODEL_PART made an identifier (outputs.md: every module name carries the
+ * model's name), every name is valid, unique (the model's first, then the
+ * parts' in order, with _2, _3, ...), not reserved, and the model module
+ * calls each part module in order. */
 static void test_module_names(void **state)
 {
     (void)state;
+    static const char *const parts[] = {"hull", "2nd body", "cube", "", "box",
+                                        "box", "for", "Fl\xc3\xbcgel", "box_2", "stl"};
+    enum { N = sizeof parts / sizeof parts[0] };
     static const struct {
-        const char *part, *module;
+        const char *name, *model, *module[N];
     } cases[] = {
-        {"hull", "hull_"},         {"2nd body", "_2nd_body"}, {"cube", "cube_"},
-        {"", "_"},                 {"box", "box"},            {"box", "box_2"},
-        {"for", "for_"},           {"Fl\xc3\xbcgel", "Fl__gel"}, {"box_2", "box_2_2"},
-        {"coons_model", "coons_model"},
+        {NULL, "coons_model",
+         {"coons_model_hull", "coons_model_2nd_body", "coons_model_cube", "coons_model_",
+          "coons_model_box", "coons_model_box_2", "coons_model_for", "coons_model_Fl__gel",
+          "coons_model_box_2_2", "coons_model_stl"}},
+        /* A built-in as the model: the model's module gets the '_' suffix
+         * and the empty part's "union_" is then taken. */
+        {"union", "union_",
+         {"union_hull", "union_2nd_body", "union_cube", "union__2", "union_box", "union_box_2",
+          "union_for", "union_Fl__gel", "union_box_2_2", "union_stl"}},
+        /* MODEL_PART may itself be a built-in: import_stl. */
+        {"import", "import_",
+         {"import_hull", "import_2nd_body", "import_cube", "import__2", "import_box",
+          "import_box_2", "import_for", "import_Fl__gel", "import_box_2_2", "import_stl_"}},
+        {"2nd model.v2", "_2nd_model_v2",
+         {"_2nd_model_v2_hull", "_2nd_model_v2_2nd_body", "_2nd_model_v2_cube", "_2nd_model_v2_",
+          "_2nd_model_v2_box", "_2nd_model_v2_box_2", "_2nd_model_v2_for",
+          "_2nd_model_v2_Fl__gel", "_2nd_model_v2_box_2_2", "_2nd_model_v2_stl"}},
     };
-    size_t n = sizeof cases / sizeof cases[0];
     coons_mesh *m;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_mesh_new(&m, &e), &e);
-    for (size_t i = 0; i < n; i++) io_tetra(m, cases[i].part, 1, 1, 1 + (double)i);
-    coons_write_options o = COONS_WRITE_OPTIONS_INIT;
-    char *text = write_scad(m, &o);
-    scad s;
-    parse_scad(text, &s);
-    assert_int_equal(s.nmod, n + 1);
-    for (size_t i = 0; i < n; i++) {
-        assert_string_equal(s.mod[i].name, cases[i].module);
-        assert_true(is_identifier(s.mod[i].name));
-        assert_string_equal(s.mod[n].calls[i], cases[i].module);
+    for (size_t i = 0; i < N; i++) io_tetra(m, parts[i], 1, 1, 1 + (double)i);
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        coons_write_options o = COONS_WRITE_OPTIONS_INIT;
+        o.name = cases[c].name;
+        char *text = write_scad(m, &o);
+        scad s;
+        parse_scad(text, &s);
+        assert_int_equal(s.nmod, N + 1);
+        for (size_t i = 0; i < N; i++) {
+            assert_string_equal(s.mod[i].name, cases[c].module[i]);
+            assert_true(is_identifier(s.mod[i].name));
+            assert_string_equal(s.mod[N].calls[i], cases[c].module[i]);
+            for (size_t j = 0; j < i; j++) assert_string_not_equal(s.mod[i].name, s.mod[j].name);
+        }
+        assert_string_equal(s.mod[N].name, cases[c].model);
+        assert_int_equal(s.ntop, 1);
+        assert_string_equal(s.top[0], cases[c].model);
+        free_scad(&s);
+        free(text);
     }
-    /* The model's own module moved aside for the part called coons_model. */
-    assert_string_equal(s.mod[n].name, "coons_model_2");
-    assert_string_equal(s.top[0], "coons_model_2");
-    free_scad(&s);
-    free(text);
-    /* A model name is sanitised the same way. */
-    o.name = "union";
-    text = write_scad(m, &o);
-    parse_scad(text, &s);
-    assert_string_equal(s.mod[n].name, "union_");
-    assert_string_equal(s.top[0], "union_");
-    free_scad(&s);
-    free(text);
+    coons_mesh_free(m);
+}
+
+/* Given the same parts written under two model names, then no module name
+ * of one file is a module name of the other: both can be `include`d. */
+static void test_two_models_share_no_module(void **state)
+{
+    (void)state;
+    coons_mesh *m;
+    coons_error e = COONS_ERROR_INIT;
+    assert_coons_ok(coons_mesh_new(&m, &e), &e);
+    io_tetra(m, "union", 1, 1, 1);
+    io_tetra(m, "", 1, 1, 2);
+    coons_write_options o = COONS_WRITE_OPTIONS_INIT;
+    o.name = "spool";
+    char *ta = write_scad(m, &o);
+    o.name = "nail";
+    char *tb = write_scad(m, &o);
+    scad a, b;
+    parse_scad(ta, &a);
+    parse_scad(tb, &b);
+    assert_int_equal(a.nmod, 3);
+    assert_int_equal(b.nmod, 3);
+    for (size_t i = 0; i < a.nmod; i++)
+        for (size_t j = 0; j < b.nmod; j++) assert_string_not_equal(a.mod[i].name, b.mod[j].name);
+    assert_string_equal(a.mod[0].name, "spool_union");
+    assert_string_equal(b.mod[0].name, "nail_union");
+    free_scad(&a);
+    free_scad(&b);
+    free(ta);
+    free(tb);
     coons_mesh_free(m);
 }
 
@@ -340,6 +386,7 @@ int main(void)
         cmocka_unit_test(test_points_exact_faces_reversed),
         cmocka_unit_test(test_module_names),
         cmocka_unit_test(test_comment_injection),
+        cmocka_unit_test(test_two_models_share_no_module),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

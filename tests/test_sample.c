@@ -728,8 +728,20 @@ static void test_model_mesh(void **state)
     assert_null(m);
     assert_non_null(strstr(err.message, "'a' and 'body1'"));
     assert_non_null(strstr(err.message, "\"none\""));
-    /* touching counts as overlapping */
-    assert_int_equal(mesh_two_boxes("union", 1, &m, &err), COONS_E_UNSUPPORTED);
+    /* touching along a whole face: a shared face, joined by index into one
+     * closed part without any Boolean (seed 000 §3, control lattices) */
+    assert_coons_ok(mesh_two_boxes("union", 1, &m, &err), &err);
+    assert_int_equal(coons_mesh_part_count(m), 1);
+    assert_string_equal(coons_mesh_part_name(m, 0), "a+body1");
+    assert_near(coons_mesh_volume(m), 1 + 2, 1e-12);
+    r = (coons_mesh_report)COONS_MESH_REPORT_INIT;
+    assert_coons_ok(coons_mesh_check(m, &r, &err), &err);
+    assert_true(r.closed && r.manifold && r.oriented);
+    assert_int_equal(r.shells, 1);
+    assert_int_equal(r.euler, 2);
+    coons_mesh_free(m);
+    /* overlapping by a thin slab across the face: still needs the Boolean */
+    assert_int_equal(mesh_two_boxes("union", 0.999, &m, &err), COONS_E_UNSUPPORTED);
     /* "none": each body's own shell, overlaps allowed */
     assert_coons_ok(mesh_two_boxes("none", 0.5, &m, &err), &err);
     assert_int_equal(coons_mesh_part_count(m), 2);

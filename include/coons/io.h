@@ -30,7 +30,8 @@
  * - ::COONS_FORMAT_OFF: `OFF`, `#` comment lines (writer, units, parts), the
  *   counts, the vertices in full double precision, then `3 a b c` faces.
  * - ::COONS_FORMAT_SCAD: OpenSCAD source. One module per mesh part, named
- *   after the part, holding a `polyhedron(points=..., faces=...)`; one
+ *   MODEL_PART (the model's name, then the part's), holding a
+ *   `polyhedron(points=..., faces=...)`; one
  *   module for the whole model calling every part module; and a top-level
  *   call of that module. `use <file.scad>` therefore imports the modules
  *   and `include <file.scad>` also renders the model. Vertices carry full
@@ -112,7 +113,12 @@
  * `[A-Za-z0-9_]` becomes `_`, a leading digit or an empty name gets a `_`
  * prefix, a name that is an OpenSCAD keyword or built-in module (`cube`,
  * `hull`, `for`, ...) gets a `_` suffix, and a name already taken gets
- * `_2`, `_3`, ... . The original names appear in comments.
+ * `_2`, `_3`, ... . The original names appear in comments. Every module
+ * name carries the model's name (coons_write_options::name): the model's
+ * module is that name made an identifier, a part's is MODEL_PART made an
+ * identifier ("spool_union"); the model's module is named first, then the
+ * parts' in order. Files written under different names can so be
+ * `include`d into one design without one replacing the other's modules.
  */
 #ifndef COONS_IO_H
 #define COONS_IO_H

@@ -54,6 +54,15 @@ coons_status coons__find_shared_faces(const coons_body *const *bodies, size_t nb
                                       coons__shared_face **out, size_t *count,
                                       coons_error *err);
 
+/* Gives every class of directions that the shared faces sf[0..nsf-1]
+ * tie together one lattice (lattice_share.c): the union of the members'
+ * values, each in its own sense. t[3 i + d] (n[3 i + d] + 1 values, from
+ * coons__malloc) is body i's lattice along d; replaced arrays are freed.
+ * *changed (may be NULL) is set when some lattice gained values. */
+coons_status coons__share_lattices(size_t nb, double **t, size_t *n,
+                                   const coons__shared_face *sf, size_t nsf, int *changed,
+                                   coons_error *err);
+
 /* The lattice the boundary sampler settles on for body b with options o
  * (adaptive or fixed, as coons__body_sample_into() would use): t[d] gets
  * n[d] + 1 increasing values from 0 to 1 per direction d = u, v, w,
@@ -66,6 +75,17 @@ coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample
 coons_status coons__body_sample_into(const coons_body *b, const coons__sample_opts *o,
                                      const char *name, coons_mesh *mesh, size_t *triangles,
                                      coons_error *err);
+
+/* Samples the bodies[0..nb-1] (a control lattice: joined by the shared
+ * faces sf, whose body indices are into `bodies`) into one part `name` of
+ * mesh, joined by index along the shared faces, which are left out
+ * (sample_lattice.c). *triangles (may be NULL) gets the part's count. */
+coons_status coons__lattice_sample_into(const coons_body *const *bodies,
+                                        const char *const *names, size_t nb,
+                                        const coons__shared_face *sf, size_t nsf,
+                                        const coons__sample_opts *o, const char *name,
+                                        coons_mesh *mesh, size_t *triangles,
+                                        coons_error *err);
 
 /* The index-array checks of coons_mesh_check() (check.c): everything but
  * the OpenMesh fields, which are left 0. */

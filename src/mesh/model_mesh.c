@@ -2,10 +2,112 @@
 /* A model's bodies as one mesh, one part per body (sample.c does the work).
  * Without the Boolean layer, "union" is honoured only where it is a plain
  * collection: bodies whose sampled boxes, grown by twice the tolerance (the
- * sampled boundary lies within it of the exact one), are disjoint. */
+ * sampled boundary lies within it of the exact one), are disjoint. In a
+ * union, bodies joined by shared faces (a control lattice) are one part,
+ * joined by index without any Boolean (sample_lattice.c). */
 #include "coons_internal.h"
 #include "mesh_glue.h"
 #include "mesh_impl.h"
+#include "union_find.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Bodies of the model joined by shared faces (shared_faces.c), as
+ * components: comp[i] is the lowest body index of body i's component. Only
+ * for a union: with "none" every body is its own solid. */
+static coons_status components(const coons_model *model, size_t nb, uint32_t *comp,
+                               coons__shared_face **sf, size_t *nsf, coons_error *err)
+{
+    *sf = NULL;
+    *nsf = 0;
+    for (size_t i = 0; i < nb; i++) comp[i] = (uint32_t)i;
+    if (nb < 2 || coons_model_operation(model) != COONS_OP_UNION) return COONS_OK;
+    const coons_body **bodies = coons__malloc_array(nb, sizeof *bodies);
+    if (!bodies) return coons__error_nomem(err);
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    for (size_t i = 0; i < nb; i++) {
+        double a[3], b[3];
+        bodies[i] = coons_model_body(model, i);
+        coons_body_control_bbox(bodies[i], a, b);
+        bbox_add(lo, hi, a);
+        bbox_add(lo, hi, b);
+    }
+    coons_status st = coons__find_shared_faces(bodies, nb, 1e-9 * bbox_diag(lo, hi), sf, nsf, err);
+    coons__free(bodies);
+    if (st) return st;
+    for (size_t k = 0; k < *nsf; k++)
+        coons__uf_union(comp, (uint32_t)(*sf)[k].body[0], (uint32_t)(*sf)[k].body[1]);
+    for (size_t i = 0; i < nb; i++) comp[i] = coons__uf_find(comp, (uint32_t)i);
+    return COONS_OK;
+}
+
+/* The part name of bodies joined by shared faces: their names joined by
+ * '+', or the first and last with "+...+" when that is long. */
+static char *joined_name(const coons_model *model, const size_t *idx, size_t k)
+{
+    enum { LONG_NAME = 200 };
+    size_t len = 0;
+    for (size_t i = 0; i < k; i++) len += strlen(coons_model_body_name(model, idx[i])) + 1;
+    const char *first = coons_model_body_name(model, idx[0]);
+    const char *last = coons_model_body_name(model, idx[k - 1]);
+    size_t cap = len <= LONG_NAME ? len + 1 : strlen(first) + strlen(last) + 8;
+    char *s = coons__malloc(cap);
+    if (!s) return NULL;
+    if (len <= LONG_NAME) {
+        s[0] = 0;
+        for (size_t i = 0; i < k; i++) {
+            if (i) strcat(s, "+");
+            strcat(s, coons_model_body_name(model, idx[i]));
+        }
+    } else {
+        snprintf(s, cap, "%s+...+%s", first, last);
+    }
+    return s;
+}
+
+/* Samples the component of body `first` (bodies idx[0..k-1], first ==
+ * idx[0]) as one part joined by index (sample_lattice.c). */
+static coons_status sample_component(const coons_model *model, const size_t *idx, size_t k,
+                                     const coons__shared_face *sf, size_t nsf,
+                                     const coons__sample_opts *o, coons_mesh *m, size_t *used,
+                                     coons_error *err)
+{
+    const coons_body **bodies = coons__malloc_array(k, sizeof *bodies);
+    const char **names = coons__malloc_array(k, sizeof *names);
+    size_t *local = coons__malloc_array(coons_model_body_count(model), sizeof *local);
+    coons__shared_face *mine = coons__malloc_array(nsf ? nsf : 1, sizeof *mine);
+    char *name = joined_name(model, idx, k);
+    coons_status st = COONS_OK;
+    if (!bodies || !names || !local || !mine || !name) {
+        st = coons__error_nomem(err);
+        goto done;
+    }
+    for (size_t i = 0; i < coons_model_body_count(model); i++) local[i] = SIZE_MAX;
+    for (size_t i = 0; i < k; i++) {
+        bodies[i] = coons_model_body(model, idx[i]);
+        names[i] = coons_model_body_name(model, idx[i]);
+        local[idx[i]] = i;
+    }
+    size_t n = 0;
+    for (size_t q = 0; q < nsf; q++)
+        if (local[sf[q].body[0]] != SIZE_MAX) {
+            mine[n] = sf[q];
+            mine[n].body[0] = local[sf[q].body[0]];
+            mine[n].body[1] = local[sf[q].body[1]];
+            n++;
+        }
+    st = coons__lattice_sample_into(bodies, names, k, mine, n, o, name, m, used, err);
+done:
+    coons__free(bodies);
+    coons__free(names);
+    coons__free(local);
+    coons__free(mine);
+    coons__free(name);
+    return st;
+}
 
 coons_status coons__model_sample(const coons_model *model, const coons_sample_options *opts,
                                  void (*progress)(void *, const char *, double),
@@ -18,19 +120,34 @@ coons_status coons__model_sample(const coons_model *model, const coons_sample_op
     if (st) return st;
     if (!(o.tolerance > 0)) o.tolerance = coons_model_tolerance(model);
     if (tolerance) *tolerance = o.tolerance;
-    coons_mesh *m;
-    if ((st = coons_mesh_new(&m, err))) return st;
     size_t nb = coons_model_body_count(model), budget = o.max_triangles;
+    uint32_t *comp = coons__malloc_array(nb ? nb : 1, sizeof *comp);
+    size_t *idx = coons__malloc_array(nb ? nb : 1, sizeof *idx);
+    coons__shared_face *sf = NULL;
+    size_t nsf = 0;
+    coons_mesh *m = NULL;
+    if (!comp || !idx) st = coons__error_nomem(err);
+    if (!st) st = components(model, nb, comp, &sf, &nsf, err);
+    if (!st) st = coons_mesh_new(&m, err);
     for (size_t i = 0; i < nb && !st; i++) {
+        if (comp[i] != i) continue; /* sampled with the first body of its component */
         /* By bodies: a body's share of the time is not known before. */
         if (progress) progress(userdata, "sample", (double)i / (double)nb);
         coons__sample_opts oi = o;
         oi.max_triangles = budget;
-        size_t used = 0;
-        st = coons__body_sample_into(coons_model_body(model, i), &oi,
-                                     coons_model_body_name(model, i), m, &used, err);
+        size_t used = 0, k = 0;
+        for (size_t j = i; j < nb; j++)
+            if (comp[j] == i) idx[k++] = j;
+        if (k == 1)
+            st = coons__body_sample_into(coons_model_body(model, i), &oi,
+                                         coons_model_body_name(model, i), m, &used, err);
+        else
+            st = sample_component(model, idx, k, sf, nsf, &oi, m, &used, err);
         budget -= used;
     }
+    coons__free(comp);
+    coons__free(idx);
+    coons__free(sf);
     if (st) {
         coons_mesh_free(m);
         return st;

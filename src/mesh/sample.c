@@ -51,6 +51,7 @@
 #include "coons_internal.h"
 #include "mesh_glue.h"
 #include "mesh_impl.h"
+#include "sampler.h"
 #include "union_find.h"
 
 enum {
@@ -67,39 +68,11 @@ enum {
  * edge midpoints and the centroids of both triangles are among them. */
 #define MEASURE_STEPS 6
 
-typedef struct face_desc {
-    int fixed, a, b; /* fixed direction; the face's (s,t) directions, a < b */
-    int flip;        /* 1 when (a,b) is clockwise seen from outside a right-handed body */
-    double val;
-    const char *name;
-} face_desc;
-
-static const face_desc FACES[6] = {
+const face_desc coons__faces[6] = {
     {0, 1, 2, 1, 0.0, "u0"}, {0, 1, 2, 0, 1.0, "u1"}, {1, 0, 2, 0, 0.0, "v0"},
     {1, 0, 2, 1, 1.0, "v1"}, {2, 0, 1, 1, 0.0, "w0"}, {2, 0, 1, 0, 1.0, "w1"}};
 
-typedef struct sampler {
-    const coons_body *body;
-    const coons__sample_opts *o;
-    const char *name;
-    coons_error *err;
-    double merge_tol;
-    double *t[3];          /* lattice values, n[d] + 1 of them, t[d][0] = 0, t[d][n] = 1 */
-    size_t n[3];           /* intervals per direction */
-    unsigned char *mark[3];/* intervals to halve */
-    size_t nv;             /* raw lattice vertices */
-    double *pos;           /* 3 * nv */
-    uint32_t *uf;          /* union-find parents over raw vertices */
-    uint32_t *ids[6];      /* raw vertex of each face lattice point, (na+1)*(nb+1) */
-    unsigned char *diag[6];/* per cell: 0 = diagonal 00-11, 1 = diagonal 10-01 */
-    uint32_t *tri;         /* 3 * nt representative raw ids */
-    size_t nt;
-    double *buf, *bs;      /* evaluation scratch */
-    size_t buf_cap, bs_cap;
-    int glued;             /* bit d: faces d0 and d1 coincide and are left out */
-    int measured;          /* s->dev holds the final measurement */
-    double dev;            /* largest deviation found by the last scan */
-} sampler;
+#define FACES coons__faces
 
 static coons_status ensure(double **p, size_t *cap, size_t need, coons_error *err)
 {
@@ -134,11 +107,14 @@ static coons_status eval_face(sampler *s, int f, const double *av, size_t na, co
     return COONS_OK;
 }
 
-static size_t tri_estimate(const size_t n[3])
+static size_t tri_estimate(const size_t n[3], unsigned skip)
 {
-    /* Two triangles per cell of the six faces, before degenerate ones drop;
-     * the lattice sizes are bounded far below overflow by the caller. */
-    return 4 * (n[0] * n[1] + n[0] * n[2] + n[1] * n[2]);
+    /* Two triangles per cell of the faces sampled, before degenerate ones
+     * drop; the lattice sizes are bounded far below overflow by the caller. */
+    size_t t = 0;
+    for (int f = 0; f < 6; f++)
+        if (!(skip & 1u << f)) t += 2 * n[FACES[f].a] * n[FACES[f].b];
+    return t;
 }
 
 static coons_status alloc_lattices(sampler *s)
@@ -236,6 +212,15 @@ static coons_status start_values(sampler *s, int d)
 static coons_status init_lattices(sampler *s)
 {
     coons_status st = COONS_OK;
+    if (s->start_t[0]) { /* a control lattice's shared values (sample_lattice.c) */
+        for (int d = 0; d < 3; d++) {
+            s->n[d] = s->start_n[d];
+            s->t[d] = coons__malloc_array(s->n[d] + 1, sizeof(double));
+            if (!s->t[d]) return coons__error_nomem(s->err);
+            memcpy(s->t[d], s->start_t[d], (s->n[d] + 1) * sizeof(double));
+        }
+        return alloc_lattices(s);
+    }
     if (s->o->resolution) {
         for (int d = 0; d < 3; d++) s->n[d] = s->o->resolution;
     } else if ((st = start_counts(s))) {
@@ -260,14 +245,16 @@ static coons_status limit_error(sampler *s, size_t need)
                             s->name, s->o->tolerance, s->o->max_triangles);
 }
 
-/* First face (in FACES order) holding lattice point ijk: that face owns it. */
-static int owner(const sampler *s, const size_t ijk[3])
+/* First face (in FACES order) holding lattice point ijk, of those not in
+ * the mask `skip`: that face owns it. -1 when no such face holds it. */
+static int owner(const sampler *s, const size_t ijk[3], unsigned skip)
 {
     for (int f = 0; f < 6; f++) {
+        if (skip & 1u << f) continue;
         size_t want = FACES[f].val == 0.0 ? 0 : s->n[FACES[f].fixed];
         if (ijk[FACES[f].fixed] == want) return f;
     }
-    return -1; /* interior: never asked */
+    return -1;
 }
 
 static void merge_close(sampler *s, uint32_t a, uint32_t b)
@@ -284,9 +271,11 @@ static void free_mesh(sampler *s)
     coons__free(s->pos);
     coons__free(s->uf);
     coons__free(s->tri);
+    coons__free(s->evaluated);
     s->pos = NULL;
     s->uf = NULL;
     s->tri = NULL;
+    s->evaluated = NULL;
     s->nt = 0;
     for (int f = 0; f < 6; f++) {
         coons__free(s->ids[f]);
@@ -321,7 +310,8 @@ static coons_status alloc_mesh(sampler *s)
                                 s->name, (unsigned)UINT32_MAX);
     s->pos = coons__malloc_array(s->nv, 3 * sizeof(double));
     s->uf = coons__malloc_array(s->nv, sizeof(uint32_t));
-    if (!s->pos || !s->uf) return coons__error_nomem(s->err);
+    s->evaluated = coons__calloc(s->nv, 1);
+    if (!s->pos || !s->uf || !s->evaluated) return coons__error_nomem(s->err);
     size_t cells = 0;
     for (int f = 0; f < 6; f++) {
         size_t na = n[FACES[f].a], nb = n[FACES[f].b];
@@ -337,7 +327,9 @@ static coons_status alloc_mesh(sampler *s)
 
 /* Evaluates every face on its lattice; a point is stored by the face that
  * owns it (owner()) and shared by id with the later faces, so seams are
- * one vertex by construction. Extends lo/hi by the stored points. */
+ * one vertex by construction. Extends lo/hi by the stored points. Faces
+ * in s->skip are not evaluated: their points get ids (in the same order),
+ * and positions only from the other faces that hold them. */
 static coons_status eval_lattice(sampler *s, double lo[3], double hi[3])
 {
     const size_t *n = s->n;
@@ -345,25 +337,33 @@ static coons_status eval_lattice(sampler *s, double lo[3], double hi[3])
     for (int f = 0; f < 6; f++) {
         const face_desc *F = &FACES[f];
         size_t na = n[F->a], nb = n[F->b];
-        coons_status st = ensure(&s->buf, &s->buf_cap, 3 * (na + 1) * (nb + 1), s->err);
-        if (st) return st;
-        if ((st = eval_face(s, f, s->t[F->a], na + 1, s->t[F->b], nb + 1, s->buf))) return st;
+        int sampled = !(s->skip & 1u << f);
+        coons_status st = COONS_OK;
+        if (sampled) {
+            st = ensure(&s->buf, &s->buf_cap, 3 * (na + 1) * (nb + 1), s->err);
+            if (!st) st = eval_face(s, f, s->t[F->a], na + 1, s->t[F->b], nb + 1, s->buf);
+            if (st) return st;
+        }
         for (size_t ia = 0; ia <= na; ia++)
             for (size_t ib = 0; ib <= nb; ib++) {
                 size_t ijk[3];
                 ijk[F->fixed] = F->val == 0.0 ? 0 : n[F->fixed];
                 ijk[F->a] = ia;
                 ijk[F->b] = ib;
-                int g = owner(s, ijk);
+                int g = owner(s, ijk, 0);
                 uint32_t id;
                 if (g == f) {
                     id = next++;
-                    v3_copy(s->pos + 3 * (size_t)id, s->buf + 3 * (ia * (nb + 1) + ib));
-                    bbox_add(lo, hi, s->pos + 3 * (size_t)id);
+                    v3_set(s->pos + 3 * (size_t)id, 0, 0, 0);
                 } else {
                     id = lattice_id(s, g, ijk[FACES[g].a], ijk[FACES[g].b]);
                 }
                 s->ids[f][ia * (nb + 1) + ib] = id;
+                if (sampled && owner(s, ijk, s->skip) == f) {
+                    v3_copy(s->pos + 3 * (size_t)id, s->buf + 3 * (ia * (nb + 1) + ib));
+                    s->evaluated[id] = 1;
+                    bbox_add(lo, hi, s->pos + 3 * (size_t)id);
+                }
             }
     }
     if (next != s->nv)
@@ -380,6 +380,7 @@ static void glue_opposite_faces(sampler *s)
 {
     s->glued = 0;
     for (int d = 0; d < 3; d++) {
+        if (s->skip & 3u << 2 * d) continue;
         const uint32_t *i0 = s->ids[2 * d], *i1 = s->ids[2 * d + 1];
         size_t np = (s->n[FACES[2 * d].a] + 1) * (s->n[FACES[2 * d].b] + 1), k;
         for (k = 0; k < np; k++)
@@ -395,6 +396,7 @@ static void glue_opposite_faces(sampler *s)
 static void merge_lattice_lines(sampler *s)
 {
     for (int f = 0; f < 6; f++) {
+        if (s->skip & 1u << f) continue;
         size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t ia = 0; ia <= na; ia++)
             for (size_t ib = 0; ib <= nb; ib++) {
@@ -409,6 +411,7 @@ static void merge_lattice_lines(sampler *s)
 static void choose_diagonals(sampler *s)
 {
     for (int f = 0; f < 6; f++) {
+        if (s->skip & 1u << f) continue;
         size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t p = 0; p < na; p++)
             for (size_t q = 0; q < nb; q++) {
@@ -432,7 +435,7 @@ static void emit_cells(sampler *s)
 {
     size_t nt = 0;
     for (int f = 0; f < 6; f++) {
-        if (s->glued & 1 << FACES[f].fixed) continue;
+        if (s->glued & 1 << FACES[f].fixed || s->skip & 1u << f) continue;
         size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t p = 0; p < na; p++)
             for (size_t q = 0; q < nb; q++) {
@@ -473,6 +476,15 @@ static void orient_outward(sampler *s)
 {
     size_t nt = s->nt;
     double vol = 0;
+    if (s->skip) { /* an open shell: the sign found from the whole body */
+        if (s->sign < 0)
+            for (size_t t = 0; t < nt; t++) {
+                uint32_t tmp = s->tri[3 * t + 1];
+                s->tri[3 * t + 1] = s->tri[3 * t + 2];
+                s->tri[3 * t + 2] = tmp;
+            }
+        return;
+    }
     const double *o = nt ? s->pos + 3 * (size_t)s->tri[0] : NULL;
     for (size_t t = 0; t < nt; t++) {
         double a[3], b[3], c[3], bc[3];
@@ -609,7 +621,7 @@ static coons_status scan(sampler *s, int r, double thr)
     s->dev = 0;
     for (int f = 0; f < 6; f++) {
         const face_desc *F = &FACES[f];
-        if (s->glued & 1 << F->fixed) continue;
+        if (s->glued & 1 << F->fixed || s->skip & 1u << f) continue;
         size_t na = s->n[F->a], nb = s->n[F->b], nbs = (size_t)r * nb + 1;
         size_t block = BLOCK_POINTS / ((size_t)r * nbs);
         if (block < 1) block = 1;
@@ -696,14 +708,47 @@ static coons_status refine(sampler *s, size_t *split)
 
 static coons_status check_budget(sampler *s)
 {
-    size_t need = tri_estimate(s->n);
+    size_t need = tri_estimate(s->n, s->skip);
     return need > s->o->max_triangles ? limit_error(s, need) : COONS_OK;
+}
+
+/* The body's orientation, for a sampler that leaves faces out (its own
+ * shell is then open): the sign of the volume enclosed by all six faces
+ * sampled on a K x K grid each, wound as emit_cells() winds them. */
+static coons_status coarse_sign(sampler *s)
+{
+    enum { K = 9 };
+    double g[K], vol = 0, o[3] = {0, 0, 0};
+    for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
+    coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+    for (int f = 0; f < 6 && !st; f++) {
+        if ((st = eval_face(s, f, g, K, g, K, s->buf))) break;
+        if (f == 0) v3_copy(o, s->buf); /* a point of the shell: less cancellation */
+        for (int p = 0; p + 1 < K; p++)
+            for (int q = 0; q + 1 < K; q++) {
+                const double *A = s->buf + 3 * (p * K + q), *B = s->buf + 3 * ((p + 1) * K + q);
+                const double *C = s->buf + 3 * ((p + 1) * K + q + 1);
+                const double *D = s->buf + 3 * (p * K + q + 1);
+                const double *tri[2][3] = {{A, B, C}, {A, C, D}};
+                for (int k = 0; k < 2; k++) {
+                    double a[3], b[3], c[3], bc[3];
+                    v3_sub(a, tri[k][0], o);
+                    v3_sub(b, tri[k][FACES[f].flip ? 2 : 1], o);
+                    v3_sub(c, tri[k][FACES[f].flip ? 1 : 2], o);
+                    v3_cross(bc, b, c);
+                    vol += v3_dot(a, bc);
+                }
+            }
+    }
+    s->sign = vol < 0 ? -1 : 1;
+    return st;
 }
 
 static coons_status run(sampler *s)
 {
     coons_status st = init_lattices(s);
     if (st) return st;
+    if (s->skip && (st = coarse_sign(s))) return st;
     if (s->o->resolution) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
         if (s->o->flags & COONS_SAMPLE_UNMEASURED) return COONS_OK;
@@ -788,25 +833,56 @@ done:
     return st;
 }
 
+void coons__sampler_init(sampler *s, const coons_body *b, const coons__sample_opts *o,
+                         const char *name, coons_error *err)
+{
+    memset(s, 0, sizeof *s);
+    s->body = b;
+    s->o = o;
+    s->name = name ? name : "body";
+    s->err = err;
+    s->sign = 1;
+}
+
+coons_status coons__sampler_run(sampler *s)
+{
+    /* A sampler may run again (from a new starting lattice). */
+    free_mesh(s);
+    for (int d = 0; d < 3; d++) {
+        coons__free(s->t[d]);
+        coons__free(s->mark[d]);
+        s->t[d] = NULL;
+        s->mark[d] = NULL;
+    }
+    s->measured = 0;
+    s->dev = 0;
+    return run(s);
+}
+
+void coons__sampler_free(sampler *s)
+{
+    free_mesh(s);
+    for (int d = 0; d < 3; d++) {
+        coons__free(s->t[d]);
+        coons__free(s->mark[d]);
+        s->t[d] = NULL;
+        s->mark[d] = NULL;
+    }
+    coons__free(s->buf);
+    coons__free(s->bs);
+    s->buf = s->bs = NULL;
+    s->buf_cap = s->bs_cap = 0;
+}
+
 coons_status coons__body_sample_into(const coons_body *b, const coons__sample_opts *o,
                                      const char *name, coons_mesh *mesh, size_t *triangles,
                                      coons_error *err)
 {
     sampler s;
-    memset(&s, 0, sizeof s);
-    s.body = b;
-    s.o = o;
-    s.name = name ? name : "body";
-    s.err = err;
+    coons__sampler_init(&s, b, o, name, err);
     coons_status st = run(&s);
     if (!st) st = emit(&s, mesh, triangles);
-    free_mesh(&s);
-    for (int d = 0; d < 3; d++) {
-        coons__free(s.t[d]);
-        coons__free(s.mark[d]);
-    }
-    coons__free(s.buf);
-    coons__free(s.bs);
+    coons__sampler_free(&s);
     return st;
 }
 
@@ -815,27 +891,20 @@ coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample
                                         double *deviation, coons_error *err)
 {
     sampler s;
-    memset(&s, 0, sizeof s);
-    s.body = b;
-    s.o = o;
-    s.name = name ? name : "body";
-    s.err = err;
+    coons__sampler_init(&s, b, o, name, err);
     coons_status st = run(&s);
-    free_mesh(&s);
     for (int d = 0; d < 3; d++) {
         if (st == COONS_OK) {
             t[d] = s.t[d];
             n[d] = s.n[d];
+            s.t[d] = NULL;
         } else {
             t[d] = NULL;
             n[d] = 0;
-            coons__free(s.t[d]);
         }
-        coons__free(s.mark[d]);
     }
     if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev : NAN;
-    coons__free(s.buf);
-    coons__free(s.bs);
+    coons__sampler_free(&s);
     return st;
 }
 

@@ -13,7 +13,12 @@ this libcoons has CGAL, else with the sum of the shells when those turn out
 disjoint (equal volumes), and the volume check is skipped otherwise.
 Models whose union needs CGAL are skipped in a build without it.
 Also: `use <x.scad>` renders nothing by itself and gives a module per
-body, `include` renders the model.
+body, `include` renders the model. Two generated files `include`d into one
+design (the spool, and the nail moved beside it by a transform: both files'
+parts are called "union") both render: every module name carries its
+file's name, the design's volume is the sum of the two files' separate
+renders and its bounding box covers both of theirs (when the names
+clashed, OpenSCAD silently rendered the nail twice and no spool).
 
 Usage: test_openscad.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -65,6 +70,77 @@ def openscad(scad, out, cwd):
     p = subprocess.run(["openscad", "-o", out, scad], cwd=cwd, stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE, text=True, timeout=600)
     return p.returncode, p.stdout + p.stderr
+
+
+def bbox(tris):
+    pts = [(t[3 * j], t[3 * j + 1], t[3 * j + 2]) for t in tris for j in range(3)]
+    lo = [min(p[i] for p in pts) for i in range(3)]
+    hi = [max(p[i] for p in pts) for i in range(3)]
+    return lo, hi
+
+
+def render_design(r, tmp, name, text):
+    """Renders a .scad design of `text`; returns (triangles or None, log)."""
+    path = os.path.join(tmp, name + ".scad")
+    with open(path, "w") as f:
+        f.write(text)
+    out = os.path.join(tmp, name + ".stl")
+    rc, log = openscad(path, out, tmp)
+    said = [b for b in BAD if b in log]
+    if not r.check(f"{name}: openscad renders it silently", rc == 0 and not said,
+                   f"exit {rc}, {said}:\n{log}"):
+        return None
+    return read_stl(out)
+
+
+def two_includes(r, tmp):
+    """include <spool.scad> and include <nail.scad> in one design."""
+    src = os.path.join(r.src, "examples")
+    with open(os.path.join(src, "nail.json")) as f:
+        nail = json.load(f)
+    # The nail as a definition, placed 20 mm beside the spool (|x| <= 6).
+    moved = {k: v for k, v in nail.items() if k != "bodies"}
+    moved["define"] = {f"b{i}": b for i, b in enumerate(nail["bodies"])}
+    moved["bodies"] = [{"ref": f"b{i}", "name": b.get("name", f"b{i}"),
+                        "transform": [[1, 0, 0, 20], [0, 1, 0, 0], [0, 0, 1, 0]]}
+                       for i, b in enumerate(nail["bodies"])]
+    inc = os.path.join(tmp, "inc")
+    os.makedirs(inc)
+    nj = os.path.join(inc, "nail-moved.json")
+    with open(nj, "w") as f:
+        json.dump(moved, f)
+    mods = {}
+    for name, model in (("spool", os.path.join(src, "spool.json")), ("nail", nj)):
+        st, _, err = r.run(["-o", os.path.join(inc, name + ".scad"), model])
+        if not r.check(f"two includes: coons2stl -o {name}.scad", st == 0, err):
+            return
+        with open(os.path.join(inc, name + ".scad")) as f:
+            mods[name] = re.findall(r"^module (\w+)\(\)", f.read(), re.M)
+        r.check(f"two includes: every module of {name}.scad carries its name",
+                mods[name] and all(m == name or m.startswith(name + "_") for m in mods[name]),
+                f"{mods[name]}")
+    # The case of the bug report: the same part name in both files.
+    parts = [{m[len(n) + 1:] for m in mods[n] if m != n} for n in ("spool", "nail")]
+    r.check("two includes: both files have a part called 'union'",
+            "union" in parts[0] and "union" in parts[1], f"{mods}")
+    r.check("two includes: no module name in both files",
+            not set(mods["spool"]) & set(mods["nail"]), f"{mods}")
+    alone = {}
+    for name in ("spool", "nail"):
+        alone[name] = render_design(r, inc, f"{name}-alone", f"include <{name}.scad>\n")
+    both = render_design(r, inc, "both", "include <spool.scad>\ninclude <nail.scad>\n")
+    if both is None or None in alone.values():
+        return
+    vs, vn, vb = volume(alone["spool"]), volume(alone["nail"]), volume(both)
+    r.check(f"two includes: volume {vb:.7g} = spool's {vs:.7g} + nail's {vn:.7g}",
+            vs > 0 and vn > 0 and abs(vb - (vs + vn)) <= 1e-5 * (vs + vn))
+    (ls, hs), (ln, hn), (lb, hb) = bbox(alone["spool"]), bbox(alone["nail"]), bbox(both)
+    want_lo = [min(ls[i], ln[i]) for i in range(3)]
+    want_hi = [max(hs[i], hn[i]) for i in range(3)]
+    r.check("two includes: the bounding box covers both parts' (the nail 20 mm beside)",
+            all(abs(lb[i] - want_lo[i]) <= 1e-4 and abs(hb[i] - want_hi[i]) <= 1e-4
+                for i in range(3)) and ln[0] > hs[0],
+            f"{lb} {hb} vs {want_lo} {want_hi}")
 
 
 def main():
@@ -155,6 +231,7 @@ def main():
         rc, log = openscad(user, os.path.join(tmp, "nothing.stl"), tmp)
         r.check("use <> alone renders nothing", rc != 0 or "Current top level object is empty"
                 in log or "top level object is empty" in log.lower(), log)
+        two_includes(r, tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     r.finish()

@@ -230,10 +230,12 @@ def check_openscad():
             return
         text = open(scad).read()
         mods = re.findall(r"^module (\w+)\(\) \{$", text, re.M)
-        want = ["fig4", "fig4_u_0_25", "fig4_u_0_5", "fig4_u_0_75", "fig4_w_0_5", "coons_model"]
-        T.check("a module per part, named BODY_u_0_25 ...", mods == want, str(mods))
+        want = ["coons_model_" + p for p in ["fig4", "fig4_u_0_25", "fig4_u_0_5", "fig4_u_0_75",
+                                             "fig4_w_0_5"]] + ["coons_model"]
+        T.check("a module per part, named MODEL_BODY_u_0_25 ...", mods == want, str(mods))
         T.check("the model module calls the boundary with %",
-                "module coons_model() {\n  %fig4();\n  fig4_u_0_25();\n" in text)
+                "module coons_model() {\n  %coons_model_fig4();\n  coons_model_fig4_u_0_25();\n"
+                in text)
         g, errs = read_vtu(vtu)
         part = g.GetCellData().GetArray("part")
         counts = [0] * len(want[:-1])

@@ -407,7 +407,7 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
             coons_volume_mesh_free(vm);
             return rc;
         }
-        total += vol;
+        total += fabs(vol); /* a left-handed (mirrored) body encloses |volume| */
         listed++;
     }
     cli_progress_end();

@@ -9,7 +9,11 @@
  * indices are shifted to the part's first vertex. Module names must be
  * OpenSCAD identifiers ([A-Za-z_][A-Za-z0-9_]*) and must not shadow a
  * keyword or a built-in module: a user module called `hull` or `cube`
- * would replace the built-in in every file that uses ours. Parts marked
+ * would replace the built-in in every file that uses ours. Every module
+ * name carries the model's name (outputs.md, "Boundary meshes"): the
+ * model's module is the name itself, a part's is MODEL_PART, so that two
+ * generated files `include`d into one design do not replace each other's
+ * modules (OpenSCAD keeps the last definition of a name, silently). Parts marked
  * COONS_PART_BACKGROUND are called with the background modifier `%`
  * (OpenSCAD manual, "Modifier Characters"). */
 #include "writer.h"
@@ -28,10 +32,13 @@ static const char *const reserved[] = {
     "scale", "mirror", "multmatrix", "color", "offset", "hull", "minkowski", "resize",
     "group", "parent_module", "roof", "fill", NULL};
 
-/* Sanitised identifier of `name` into out[cap]. */
-static void identifier(char *out, size_t cap, const char *name)
+void coons__scad_identifier(char *out, size_t cap, const char *name)
 {
     size_t n = 0;
+    if (cap < 3) {
+        if (cap) out[0] = '\0';
+        return;
+    }
     if (!name) name = "";
     if (!((*name >= 'A' && *name <= 'Z') || (*name >= 'a' && *name <= 'z') || *name == '_'))
         out[n++] = '_';
@@ -49,25 +56,39 @@ static void identifier(char *out, size_t cap, const char *name)
         }
 }
 
-#define IDENT_MAX 128
+void coons__scad_part_identifier(char *out, size_t cap, const char *model, const char *part)
+{
+    char joined[2 * COONS__SCAD_IDENT_MAX];
+    snprintf(joined, sizeof joined, "%s_%s", model ? model : "", part ? part : "");
+    coons__scad_identifier(out, cap, joined);
+}
 
-/* Identifiers of the parts (names[0..np)) and of the model (names[np]),
- * made unique with _2, _3, ... in that order. */
+#define IDENT_MAX COONS__SCAD_IDENT_MAX
+
+/* Identifiers of the model (names[np]) and of the parts (names[0..np)),
+ * each part's carrying the model's name; the model's first, then the parts'
+ * in order, each made unique among those before it with _2, _3, ... */
 static coons_status module_names(const coons_mesh *m, const coons__wopts *o, size_t np,
-                                 char (**out)[IDENT_MAX], coons_error *err)
+                                 int whole, char (**out)[IDENT_MAX], coons_error *err)
 {
     char (*names)[IDENT_MAX] = coons__malloc_array(np + 1, IDENT_MAX);
     if (!names) return coons__error_nomem(err);
-    for (size_t i = 0; i <= np; i++) {
+    for (size_t k = 0; k <= np; k++) {
+        size_t i = k == 0 ? np : k - 1; /* the model first */
         char base[IDENT_MAX - 24];
-        identifier(base, sizeof base, i < np ? coons_mesh_part_name(m, i) : o->name);
+        if (i == np)
+            coons__scad_identifier(base, sizeof base, o->name);
+        else
+            coons__scad_part_identifier(base, sizeof base, o->name,
+                                        whole ? "" : coons_mesh_part_name(m, i));
         snprintf(names[i], IDENT_MAX, "%s", base);
         /* Quadratic, but meshes have a handful of parts. */
-        for (unsigned long k = 2;; k++) {
-            size_t j = 0;
-            while (j < i && strcmp(names[j], names[i]) != 0) j++;
-            if (j == i) break;
-            snprintf(names[i], IDENT_MAX, "%s_%lu", base, k);
+        for (unsigned long n = 2;; n++) {
+            size_t j = 0, before = i < np ? i : 0;
+            int taken = i < np && strcmp(names[np], names[i]) == 0;
+            while (!taken && j < before) taken = strcmp(names[j++], names[i]) == 0;
+            if (!taken) break;
+            snprintf(names[i], IDENT_MAX, "%s_%lu", base, n);
         }
     }
     *out = names;
@@ -132,7 +153,7 @@ coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons
     int whole = np == 0; /* a mesh without parts is written as one part */
     if (whole) np = 1;
     char (*names)[IDENT_MAX] = NULL;
-    coons_status st = module_names(m, o, np, &names, s->err);
+    coons_status st = module_names(m, o, np, whole, &names, s->err);
     if (st != COONS_OK) return s->status = st;
     char line[COONS__SINK_MAXREC];
     coons__clean_text(line, sizeof line - 16, o->header);

@@ -119,6 +119,19 @@ coons_status coons__write_vtu_surface(const coons_mesh *m, const coons__wopts *o
 coons_status coons__write_inp(const coons_volume_mesh *m, const coons__wopts *o, coons__sink *s);
 coons_status coons__check_inp(const coons_volume_mesh *m, coons_error *err);
 
+/* ---- OpenSCAD identifiers (scad.c), for every writer of .scad text ----- */
+
+/* Room for any identifier the two functions below make. */
+#define COONS__SCAD_IDENT_MAX 320
+/* `name` (NULL: "") made an OpenSCAD identifier in out[cap], cap >= 3:
+ * bytes outside [A-Za-z0-9_] become '_', a name not starting with a letter
+ * or '_' gets a '_' prefix, a keyword or built-in module name (`cube`,
+ * `hull`, `for`, ...) a '_' suffix; cut to cap - 1 bytes. */
+void coons__scad_identifier(char *out, size_t cap, const char *name);
+/* The identifier of "MODEL_PART": a part's module name, carrying the
+ * model's name so that modules of different models do not clash. */
+void coons__scad_part_identifier(char *out, size_t cap, const char *model, const char *part);
+
 /* ---- cells at collapsed edges and faces (cellshape.c) ------------------ */
 
 /* What a hex8 cell with repeated corner nodes is. */

@@ -177,28 +177,9 @@ static coons_status node_lattice(vbuild *v, vbody *B)
 
 /* Union-find with parity over the 3 nb directions (body i, axis d) = 3i+d:
  * par[x] = 1 when x runs opposite to its parent (t <-> 1 - t). */
-static size_t dfind(size_t *up, unsigned char *par, size_t x, int *parity)
-{
-    int p = 0;
-    while (up[x] != x) {
-        p ^= par[x];
-        x = up[x];
-    }
-    *parity = p;
-    return x;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* Gives every set of directions that shared faces connect (in either
- * sense) one lattice: the union of the members' values, in each member's
- * own sense, so each body's lattice is refined, never coarsened (each
- * still meets its tolerance). Like Gmsh's transfinite constraints
- * propagating through shared surfaces. */
+ * sense) one lattice (lattice_share.c), so each body's lattice is refined,
+ * never coarsened (each still meets its tolerance). */
 static coons_status share_lattices(vbuild *v)
 {
     if (v->nb < 2) return COONS_OK;
@@ -222,91 +203,18 @@ static coons_status share_lattices(vbuild *v)
         coons__free(sf);
         return st;
     }
-    size_t nd = 3 * v->nb;
-    size_t *up = coons__malloc_array(nd, sizeof *up);
-    unsigned char *par = coons__calloc(nd, 1), *sym = coons__calloc(nd, 1);
-    if (!up || !par || !sym) {
+    double **t = coons__malloc_array(3 * v->nb, sizeof *t);
+    size_t *n = coons__malloc_array(3 * v->nb, sizeof *n);
+    if (!t || !n) {
         st = coons__error_nomem(v->err);
-        goto done;
+    } else {
+        for (size_t x = 0; x < 3 * v->nb; x++) t[x] = v->vb[x / 3].t[x % 3], n[x] = v->vb[x / 3].n[x % 3];
+        st = coons__share_lattices(v->nb, t, n, sf, nsf, NULL, v->err);
+        /* The arrays were replaced in t (also on failure, up to it). */
+        for (size_t x = 0; x < 3 * v->nb; x++) v->vb[x / 3].t[x % 3] = t[x], v->vb[x / 3].n[x % 3] = n[x];
     }
-    for (size_t x = 0; x < nd; x++) up[x] = x;
-    for (size_t k = 0; k < nsf; k++) {
-        int f0, a0, b0, f1, a1, b1, s = sf[k].sym;
-        coons__face_axes(sf[k].face[0], &f0, &a0, &b0);
-        coons__face_axes(sf[k].face[1], &f1, &a1, &b1);
-        int swap = (s & COONS__SYM_SWAP) != 0;
-        size_t from[2] = {3 * sf[k].body[0] + (size_t)a0, 3 * sf[k].body[0] + (size_t)b0};
-        size_t to[2] = {3 * sf[k].body[1] + (size_t)(swap ? b1 : a1),
-                        3 * sf[k].body[1] + (size_t)(swap ? a1 : b1)};
-        int flip[2] = {(s & (swap ? COONS__SYM_FLIP_B : COONS__SYM_FLIP_A)) != 0,
-                       (s & (swap ? COONS__SYM_FLIP_A : COONS__SYM_FLIP_B)) != 0};
-        for (int e = 0; e < 2; e++) {
-            int pa, pb;
-            size_t ra = dfind(up, par, from[e], &pa), rb = dfind(up, par, to[e], &pb);
-            int rel = pa ^ pb ^ flip[e];
-            if (ra == rb) {
-                if (rel) sym[ra] = 1; /* joined both ways: the lattice is symmetric */
-            } else {
-                up[rb] = ra;
-                par[rb] = (unsigned char)rel;
-                sym[ra] |= sym[rb];
-            }
-        }
-    }
-    /* Per class: the union of its members' values, in the root's sense. */
-    for (size_t r = 0; r < nd && !st; r++) {
-        int pr;
-        if (dfind(up, par, r, &pr) != r) continue;
-        size_t total = 0, members = 0;
-        for (size_t x = 0; x < nd; x++) {
-            int p;
-            if (dfind(up, par, x, &p) == r) total += v->vb[x / 3].n[x % 3] + 1, members++;
-        }
-        if (members < 2 && !sym[r]) continue;
-        double *all = coons__malloc_array(2 * total, sizeof(double));
-        if (!all) {
-            st = coons__error_nomem(v->err);
-            break;
-        }
-        size_t n = 0;
-        for (size_t x = 0; x < nd; x++) {
-            int p;
-            if (dfind(up, par, x, &p) != r) continue;
-            const vbody *B = &v->vb[x / 3];
-            for (size_t i = 0; i <= B->n[x % 3]; i++) {
-                double t = B->t[x % 3][i];
-                all[n++] = p ? 1.0 - t : t;
-                if (sym[r]) all[n++] = p ? t : 1.0 - t;
-            }
-        }
-        qsort(all, n, sizeof(double), cmp_double);
-        size_t m = 0;
-        for (size_t i = 0; i < n; i++)
-            if (m == 0 || all[i] - all[m - 1] > 1e-12) all[m++] = all[i];
-        all[0] = 0.0;
-        all[m - 1] = 1.0;
-        for (size_t x = 0; x < nd && !st; x++) {
-            int p;
-            if (dfind(up, par, x, &p) != r) continue;
-            vbody *B = &v->vb[x / 3];
-            double *t = coons__malloc_array(m, sizeof(double));
-            if (!t) {
-                st = coons__error_nomem(v->err);
-                break;
-            }
-            for (size_t i = 0; i < m; i++) t[i] = p ? 1.0 - all[m - 1 - i] : all[i];
-            t[0] = 0.0;
-            t[m - 1] = 1.0;
-            coons__free(B->t[x % 3]);
-            B->t[x % 3] = t;
-            B->n[x % 3] = m - 1;
-        }
-        coons__free(all);
-    }
-done:
-    coons__free(up);
-    coons__free(par);
-    coons__free(sym);
+    coons__free(t);
+    coons__free(n);
     coons__free(sf);
     return st;
 }

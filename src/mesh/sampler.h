@@ -1,0 +1,65 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* The boundary sampler's record (sample.c), shared with the control-lattice
+ * assembler (sample_lattice.c), which samples several bodies and joins
+ * them along their shared faces by lattice index. Internal. */
+#ifndef COONS_SAMPLER_H
+#define COONS_SAMPLER_H
+
+#include "mesh_glue.h"
+
+typedef struct face_desc {
+    int fixed, a, b; /* fixed direction; the face's (s,t) directions, a < b */
+    int flip;        /* 1 when (a,b) is clockwise seen from outside a right-handed body */
+    double val;
+    const char *name;
+} face_desc;
+
+/* u0 u1 v0 v1 w0 w1 (sample.c). */
+extern const face_desc coons__faces[6];
+
+typedef struct sampler {
+    const coons_body *body;
+    const coons__sample_opts *o;
+    const char *name;
+    coons_error *err;
+    double merge_tol;
+    double *t[3];          /* lattice values, n[d] + 1 of them, t[d][0] = 0, t[d][n] = 1 */
+    size_t n[3];           /* intervals per direction */
+    unsigned char *mark[3];/* intervals to halve */
+    size_t nv;             /* raw lattice vertices */
+    double *pos;           /* 3 * nv */
+    uint32_t *uf;          /* union-find parents over raw vertices */
+    uint32_t *ids[6];      /* raw vertex of each face lattice point, (na+1)*(nb+1) */
+    unsigned char *diag[6];/* per cell: 0 = diagonal 00-11, 1 = diagonal 10-01 */
+    uint32_t *tri;         /* 3 * nt representative raw ids */
+    size_t nt;
+    double *buf, *bs;      /* evaluation scratch */
+    size_t buf_cap, bs_cap;
+    int glued;             /* bit d: faces d0 and d1 coincide and are left out */
+    int measured;          /* s->dev holds the final measurement */
+    double dev;            /* largest deviation found by the last scan */
+    /* Control lattices (sample_lattice.c): */
+    unsigned skip;         /* bit f: face f is shared with another body: not
+                              sampled beyond the points other faces hold,
+                              not measured, not emitted */
+    const double *start_t[3]; /* starting lattice (NULL: the body's own) */
+    size_t start_n[3];
+    int sign;              /* with skip: +1 / -1 the body's orientation */
+    unsigned char *evaluated; /* per raw vertex: its position was computed */
+} sampler;
+
+
+/* A sampler for body b (name may be NULL); run it, read it, free it. */
+void coons__sampler_init(sampler *s, const coons_body *b, const coons__sample_opts *o,
+                         const char *name, coons_error *err);
+/* Adaptive (or fixed-resolution) sampling: the lattice, its mesh, the
+ * measured deviation. */
+coons_status coons__sampler_run(sampler *s);
+void coons__sampler_free(sampler *s);
+/* Raw vertex of lattice point (ia, ib) of face f. */
+static inline uint32_t coons__sampler_id(const sampler *s, int f, size_t ia, size_t ib)
+{
+    return s->ids[f][ia * (s->n[coons__faces[f].b] + 1) + ib];
+}
+
+#endif
