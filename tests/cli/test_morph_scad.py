@@ -14,7 +14,8 @@ checked with the real OpenSCAD:
   tolerance of OpenSCAD's triangles;
 - one face list: the file holds one faces array per morph and no other;
 - a body that is no morph is a plain polyhedron, united by union() with
-  the morph, and the model renders to a closed mesh;
+  the morph (modules named MODEL and MODEL_BODY, as for every .scad), and
+  the model renders to a closed mesh;
 - with --time the .scad is a plain mesh (no $t).
 
 Usage: test_morph_scad.py --bin <coons2stl> --src <source dir> --build <build dir>
@@ -257,8 +258,9 @@ rc, _, err = T.run([mixed, "--resolution", "4", "-o", scad])
 with open(scad) if rc == 0 else open(os.devnull) as f:
     text = f.read()
 T.check("a plain body is a polyhedron module called in the union() with the morph",
-        rc == 0 and re.search(r"module box\(\) \{\n  polyhedron", text) is not None
-        and re.search(r"union\(\) \{\n    m\(t\);\n    box\(\);\n  \}", text) is not None,
+        rc == 0 and re.search(r"module mixed_box\(\) \{\n  polyhedron", text) is not None
+        and re.search(r"module mixed\(t = \$t\) \{\n  union\(\) \{\n    mixed_m\(t\);\n"
+                      r"    mixed_box\(\);\n  \}", text) is not None,
         err + text[-200:])
 x = os.path.join(TMP, "mixed.stl")
 rc1, err1 = openscad_stl(scad, 0.5, x)

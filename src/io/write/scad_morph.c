@@ -6,7 +6,8 @@
  * function of the time t that blends them with the path's weights in
  * OpenSCAD itself; the top-level call passes $t, so View > Animate plays
  * the metamorphosis. Other bodies are plain polyhedra, united with the
- * morphs by OpenSCAD's union().
+ * morphs by OpenSCAD's union(). Modules are named as scad.c names them:
+ * the model NAME, each body NAME_BODY (coons__scad_part_identifier()).
  *
  * Exactness: the morph is a pointwise blend, so a frame's vertex is
  * sum_k W_k(t) K_k(u,v,w) at the vertex's lattice parameters. The keys'
@@ -43,38 +44,7 @@
 
 #define REF_TIME 0.5
 #define CHECKS_PER_INTERVAL 4
-#define IDENT_CAP 96
-
-/* OpenSCAD keywords and built-in modules a module name must not shadow. */
-static const char *const RESERVED[] = {
-    "module", "function", "if", "else", "let", "for", "each", "true", "false", "undef",
-    "include", "use", "assert", "echo", "intersection_for", "assign", "children", "child",
-    "cube", "sphere", "cylinder", "polyhedron", "square", "circle", "polygon", "text",
-    "import", "surface", "linear_extrude", "rotate_extrude", "projection", "render", "union",
-    "difference", "intersection", "translate", "rotate", "scale", "mirror", "multmatrix",
-    "color", "offset", "hull", "minkowski", "resize", "group", "parent_module", "roof", "fill",
-    NULL};
-
-static void identifier(char *out, size_t cap, const char *name, const char *suffix)
-{
-    size_t n = 0;
-    if (!name) name = "";
-    if (!((*name >= 'A' && *name <= 'Z') || (*name >= 'a' && *name <= 'z') || *name == '_'))
-        out[n++] = '_';
-    for (const char *c = name; *c && n + 24 < cap; c++) {
-        int ok = (*c >= 'A' && *c <= 'Z') || (*c >= 'a' && *c <= 'z') ||
-                 (*c >= '0' && *c <= '9') || *c == '_';
-        out[n++] = ok ? *c : '_';
-    }
-    out[n] = '\0';
-    for (const char *const *r = RESERVED; *r; r++)
-        if (strcmp(out, *r) == 0) {
-            out[n++] = '_';
-            out[n] = '\0';
-            break;
-        }
-    snprintf(out + n, cap - n, "%s", suffix ? suffix : "");
-}
+#define IDENT_CAP COONS__SCAD_IDENT_MAX
 
 /* A node of a morph body's tree: what gives one vertex array. */
 enum { N_CONST, N_AFFINE, N_MORPH };
@@ -633,11 +603,11 @@ static coons_status write_anim(const coons_mesh *unused, const coons__wopts *o, 
     return s->status;
 }
 
-/* Unique identifiers: the body's name, then _2, _3 ... */
+/* Unique identifiers, as scad.c names parts: MODEL_BODY, then _2, _3 ... */
 static void unique_id(anim *a, size_t i, const char *name)
 {
-    char base[IDENT_CAP - 16];
-    identifier(base, sizeof base, name, NULL);
+    char base[IDENT_CAP - 24];
+    coons__scad_part_identifier(base, sizeof base, a->model, name);
     snprintf(a->parts[i].id, IDENT_CAP, "%s", base);
     for (unsigned long k = 2;; k++) {
         int clash = strcmp(a->parts[i].id, a->model) == 0;
@@ -659,7 +629,7 @@ static coons_status build(const coons_model *m, long body, const coons_sample_op
     size_t last = body >= 0 ? (size_t)body + 1 : nb;
     if (body >= 0 && (size_t)body >= nb)
         return coons__error_set(err, COONS_E_INVALID, "no body %ld", body);
-    identifier(a->model, sizeof a->model, model_name, NULL);
+    coons__scad_identifier(a->model, sizeof a->model, model_name);
     if (!(a->parts = coons__calloc(last - first, sizeof *a->parts))) return coons__error_nomem(err);
     for (size_t i = first; i < last && !st; i++) {
         part *p = &a->parts[a->np++];
