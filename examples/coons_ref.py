@@ -16,6 +16,7 @@ cancellation), used for the tangents of Hermite Coons patches and for det J.
 Span look-ups compare real parts only. Standard library only.
 """
 
+import json
 import math
 
 # ---------------------------------------------------------------- vectors
@@ -580,3 +581,57 @@ def control_diagonal(model, include_cross=True):
     lo = [min(p[d] for p in pts) for d in range(3)]
     hi = [max(p[d] for p in pts) for d in range(3)]
     return math.sqrt(sum((hi[d] - lo[d]) ** 2 for d in range(3)))
+
+
+# ---- references (coons-model(5) "Definitions and references")
+
+def _affine(T, p):
+    return [sum(T[r][c] * p[c] for c in range(3)) + T[r][3] for r in range(3)]
+
+
+def _transformed(obj, T, key=None):
+    """Control data mapped by y = M x + t. Exact for every type here: affine
+    maps commute with the Bernstein, B-spline and rational sums (weights
+    stay). Tangent-like data (cross curves, Hermite tangents) would map by
+    M alone; they are refused rather than guessed."""
+    if isinstance(obj, dict):
+        if obj.get("type") == "hermite" or "cross" in obj:
+            raise NotImplementedError("transformed tangents")
+        return {k: _transformed(v, T, k) for k, v in obj.items()}
+    if isinstance(obj, list):
+        if key in ("points", "corners") and len(obj) == 3 and all(
+                isinstance(c, (int, float)) for c in obj):
+            return _affine(T, obj)
+        return [_transformed(v, T, key) for v in obj]
+    return obj
+
+
+def expand(model):
+    """The model with every body reference {"ref": NAME, ...} replaced by its
+    definition, a "transform" applied to its control data, "name" kept
+    (default: the definition's name). References inside definitions and
+    reverse/swap/flip are not handled here (NotImplementedError)."""
+    defs = model.get("define", {})
+
+    def resolve(b):
+        if "ref" not in b:
+            return b
+        mods = set(b) - {"ref", "name", "transform"}
+        if mods:
+            raise NotImplementedError("reference modifiers %s" % sorted(mods))
+        d = json.loads(json.dumps(defs[b["ref"]]))
+        if "transform" in b:
+            d = _transformed(d, b["transform"])
+        d["name"] = b.get("name", b["ref"])
+        return d
+    out = dict(model)
+    out.pop("define", None)
+    out["bodies"] = [resolve(b) for b in model["bodies"]]
+    return out
+
+
+def det3(T):
+    """Determinant of the 3 x 3 part of a 3 x 4 transform."""
+    return (T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1])
+            - T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0])
+            + T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]))

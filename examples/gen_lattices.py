@@ -237,46 +237,8 @@ def exact_volume(v):
     return check
 
 
-def transform_body(b, T):
-    """A body's control data mapped by the affine T (exact for all types)."""
-    def tp(p):
-        return [sum(T[r][c] * p[c] for c in range(3)) + T[r][3] for r in range(3)]
-
-    def walk(x, key=None):
-        if isinstance(x, dict):
-            return {k: walk(v, k) for k, v in x.items()}
-        if isinstance(x, list):
-            if key in ("corners", "points") or key is None:
-                if x and isinstance(x[0], (int, float)) and len(x) == 3:
-                    return tp(x)
-            return [walk(v, key) for v in x]
-        return x
-    return walk(b)
-
-
 def expanded(m):
-    """The model with its references replaced by their definitions."""
-    d = m.get("define", {})
-    out = []
-    for b in m["bodies"]:
-        if "ref" in b:
-            x = json.loads(json.dumps(d[b["ref"]]))
-            if "transform" in b:
-                x = transform_body(x, b["transform"])
-            x["name"] = b.get("name", b["ref"])
-            out.append(x)
-        else:
-            out.append(b)
-    e = dict(m)
-    e.pop("define", None)
-    e["bodies"] = out
-    return e
-
-
-def det3(T):
-    return (T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1])
-            - T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0])
-            + T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]))
+    return R.expand(m)
 
 
 FACE_FIX = {"u0": (0, 0), "u1": (0, 1), "v0": (1, 0), "v1": (1, 1), "w0": (2, 0), "w1": (2, 1)}
@@ -352,7 +314,7 @@ def main(argv):
         e = expanded(m)
         # G.verify wants right-handed bodies: a mirrored instance is checked
         # apart, as the mirror image of its definition (det J negated)
-        mirrored = [b for b in m["bodies"] if "transform" in b and det3(b["transform"]) < 0]
+        mirrored = [b for b in m["bodies"] if "transform" in b and R.det3(b["transform"]) < 0]
         right = dict(e)
         right["bodies"] = [x for x, b in zip(e["bodies"], m["bodies"]) if b not in mirrored]
         G.verify(name, right, extra, rep)

@@ -170,10 +170,14 @@ COONS_EXPORT coons_status coons_body_sample(const coons_body *b,
  * one. `max_triangles` bounds the whole model.
  *
  * For operation "none" the parts are the bodies' own closed shells. For
- * "union", bodies whose sampled bounding boxes (grown by the tolerance) are
- * disjoint are simply put together; overlapping or touching bodies need the
- * Boolean union, which this function does not perform: it returns
- * ::COONS_E_UNSUPPORTED naming the two bodies.
+ * "union", bodies joined by shared faces (a control lattice: coons-model(5)
+ * "Bodies that share faces") are one part named "A+B+..." (first and last
+ * as "A+...+Z" when long): sampled on shared lattices, the shared faces
+ * left out, joined by index into one closed shell with no Boolean
+ * operation. Parts whose sampled bounding boxes (grown by the tolerance)
+ * are disjoint are simply put together; other overlapping or touching
+ * bodies need the Boolean union, which this function does not perform: it
+ * returns ::COONS_E_UNSUPPORTED naming the two bodies.
  * @return as coons_body_sample(), plus ::COONS_E_UNSUPPORTED.
  */
 COONS_EXPORT coons_status coons_model_sample(const coons_model *m,

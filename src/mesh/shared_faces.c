@@ -27,18 +27,24 @@ void coons__face_axes(int f, int *fixed, int *a, int *b)
     *b = ax == 2 ? 1 : 2;
 }
 
-static void face_grid(const coons_body *b, int f, double out[G][G][3])
+/* The face's G x G samples, by the body's grid evaluation (one basis
+ * per direction, not one evaluation per point). */
+static coons_status face_grid(const coons_body *b, int f, double out[G][G][3], coons_error *err)
 {
     int ax, da, db;
     coons__face_axes(f, &ax, &da, &db);
-    for (int i = 0; i < G; i++)
-        for (int j = 0; j < G; j++) {
-            double p[3];
-            p[ax] = (double)(f % 2);
-            p[da] = (double)i / (G - 1);
-            p[db] = (double)j / (G - 1);
-            coons_body_eval(b, p[0], p[1], p[2], out[i][j]);
-        }
+    double g[G], fixed = (double)(f % 2);
+    for (int i = 0; i < G; i++) g[i] = (double)i / (G - 1);
+    const double *q[3];
+    size_t c[3];
+    q[ax] = &fixed;
+    c[ax] = 1;
+    q[da] = g;
+    c[da] = G;
+    q[db] = g;
+    c[db] = G;
+    /* u slowest: with the fixed axis of count 1, the order is (a, b). */
+    return coons_body_eval_grid(b, q[0], c[0], q[1], c[1], q[2], c[2], &out[0][0][0], err);
 }
 
 /* Index (i', j') on the second face of sample (i, j) of the first under
@@ -99,7 +105,7 @@ coons_status coons__find_shared_faces(const coons_body *const *bodies, size_t nb
     for (size_t s = 0; s < cap; s++) tab[s].head = UINT32_MAX;
     double lo[3] = {INFINITY, INFINITY, INFINITY};
     for (size_t i = 0; i < nf; i++) {
-        face_grid(bodies[i / 6], (int)(i % 6), grid[i]);
+        if ((st = face_grid(bodies[i / 6], (int)(i % 6), grid[i], err))) goto done;
         const double *c = grid[i][G / 2][G / 2];
         for (int d = 0; d < 3; d++) lo[d] = c[d] < lo[d] ? c[d] : lo[d];
     }

@@ -236,6 +236,8 @@ def model_scale(model):
     """Diagonal of the box of the model's corner points (for tolerances)."""
     lo, hi = [1e300] * 3, [-1e300] * 3
     for b in model["bodies"]:
+        if "ref" in b:  # a reference: its definition (a transform keeps the scale
+            b = model["define"][b["ref"]]  # up to its norm; good enough for tolerances)
         for p in body_corners(b):
             for i in range(3):
                 lo[i], hi[i] = min(lo[i], p[i]), max(hi[i], p[i])

@@ -157,7 +157,14 @@ for path in models:
         continue  # not a model (e.g. a curve or patch snippet)
     size = clitest.model_scale(m)
     for bi, b in enumerate(m["bodies"]):
-        expect = clitest.body_corners(b)
+        if "ref" in b:  # a reference: its definition's corners, mapped by its transform
+            d = m["define"][b["ref"]]
+            T3 = b.get("transform", [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]])
+            expect = [[sum(T3[r][c] * x[c] for c in range(3)) + T3[r][3] for r in range(3)]
+                      for x in clitest.body_corners(d)]
+            b = d
+        else:
+            expect = clitest.body_corners(b)
         rows, err = eval_lines(path, corner_params, ["--body", str(bi)])
         ok = rows is not None and all(close(r, e, 1e-9 * size + 1e-12) for r, e in zip(rows, expect))
         T.check(f"corners of {os.path.relpath(path, T.src)} body {bi} ({b['type']})", ok,

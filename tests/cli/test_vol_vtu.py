@@ -437,13 +437,14 @@ def check_cli_file(tmp, path, element, nbodies=1):
     x = vtk_to_numpy(g.GetPoints().GetData())
     uvw = np.stack([a for _, _, a in pd[:3]], axis=1)
     # Isoparametric: a sample of nodes at --eval's point of their (u, v, w).
-    # (each node with the body of a cell that uses it: --eval --body k)
-    owner = np.zeros(len(x), dtype=int)
+    # (each node with the lowest-numbered body of the cells that use it,
+    # whose parameters a node shared by bodies carries: --eval --body k)
+    owner = np.full(len(x), 1 << 30, dtype=int)
     body = dict((a, v) for a, _, v in cd)["body"]
     for c in range(g.GetNumberOfCells()):
         ids = g.GetCell(c).GetPointIds()
         for k in range(ids.GetNumberOfIds()):
-            owner[ids.GetId(k)] = body[c]
+            owner[ids.GetId(k)] = min(owner[ids.GetId(k)], body[c])
     sel = list(range(0, len(x), max(1, len(x) // 150)))
     got, rc, err = np.zeros((len(sel), 3)), 0, ""
     for k in sorted(set(owner[sel].tolist())):
