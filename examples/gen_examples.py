@@ -215,16 +215,22 @@ def disc_net(r, z, cx=0.0, cy=0.0, zero=False):
 DISC_W = [[1.0, S2, 1.0], [S2, 0.5, S2], [1.0, S2, 1.0]]
 
 
-def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None, u_factor=None):
+def revolved(profile, degree_w, knots_w=None, cx=0.0, cy=0.0, name=None, u_factor=None,
+             turn_h=None):
     """Body 2 (NURBS faces) of a round solid around the vertical axis through
     (cx, cy): profile = [(z, r), ...], one disc layer per profile point.
     u_factor c multiplies the weights of the net's layer i (along u) by c^i:
     the rational reparametrisation of a Bezier segment, which keeps every
-    face's shape and changes how u runs across the section."""
+    face's shape and changes how u runs across the section. turn_h = H turns
+    the solid upside down by a half turn about the line y = cy, z = H/2
+    (x, y, z) -> (x, 2 cy - y, H - z): a rotation, so the body stays
+    right-handed (det J > 0), and the profile's z runs downwards from H."""
     net = [[[None] * len(profile) for _ in range(3)] for _ in range(3)]
     wts = [[[None] * len(profile) for _ in range(3)] for _ in range(3)]
     for k, (z, r) in enumerate(profile):
         d = disc_net(r, z, cx, cy)
+        if turn_h is not None:
+            d = [[P(q[0], 2 * cy - q[1], turn_h - q[2]) for q in row] for row in d]
         for i in range(3):
             for j in range(3):
                 net[i][j][k] = d[i][j]
@@ -341,13 +347,15 @@ def m_spool():
     is wide at both ends and narrow in the middle."""
     profile = [(0, 6), (1, 6), (1.5, 2.5), (8.5, 2.5), (9, 6), (10, 6)]
     b, net, _ = revolved(profile, 2, name="spool")
-    return "spool.json", model([b]), [radius_check(0, profile, 2)]
+    return "spool.json", model([b]), [radius_check(0, profile, 2), stands_on(0, "w0")]
 
 
-def radius_check(bi, profile, degree_w, cx=0.0, cy=0.0, knots_w=None):
+def radius_check(bi, profile, degree_w, cx=0.0, cy=0.0, knots_w=None, turn_h=None):
     """On the four side faces the distance from the axis equals the profile's
     radius r(w), the B-spline of the profile radii (the rational circle has
-    the same denominator all round, so r and z are plain B-splines of w)."""
+    the same denominator all round, so r and z are plain B-splines of w);
+    the height is z(w), or H - z(w) for a solid turned upside down
+    (revolved(turn_h=H))."""
     def check(m):
         bd = m["bodies"][bi]
         rs = [[0, 0, r] for _, r in profile]
@@ -361,6 +369,8 @@ def radius_check(bi, profile, degree_w, cx=0.0, cy=0.0, knots_w=None):
             w = n / 40
             r = R.curve_eval(curve_r, w)[2]
             z = R.curve_eval(curve_z, w)[2]
+            if turn_h is not None:
+                z = turn_h - z
             for t in [i / 10 for i in range(11)]:
                 for q in ((0, t, w), (1, t, w), (t, 0, w), (t, 1, w)):
                     p = R.body_eval(bd, *q)
@@ -370,18 +380,48 @@ def radius_check(bi, profile, degree_w, cx=0.0, cy=0.0, knots_w=None):
     return check
 
 
+def stands_on(bi, fk):
+    """Meant for printing: face fk of body bi is the model's base, flat in the
+    lowest plane z = 0 of the whole boundary (a slicer's first layer needs an
+    area on the bed, not a point): the worst of |z| on that face and of
+    max(0, -z) on every face of every body, on a 21 x 21 grid."""
+    def check(m):
+        g = [i / 20 for i in range(21)]
+        worst = 0.0
+        for bj, b in enumerate(m["bodies"]):
+            for fkey in FACE_KEYS:
+                ax, side = "uvw".index(fkey[0]), float(fkey[1])
+                for a in g:
+                    for c in g:
+                        q = [a, c]
+                        q.insert(ax, side)
+                        z = R.body_eval(b, *q)[2]
+                        worst = max(worst, -z, abs(z) if (bj, fkey) == (bi, fk) else 0.0)
+        return "stands on face %s of body %d, flat at z = 0, nothing below" % (fk, bi), worst, \
+            R.control_diagonal(m, include_cross=False)
+    return check
+
+
+# The nail stands on its head, tip up (a slicer cannot start a print on the
+# tip): its profile from the tip (z = 0) to the head (z = 12), turned over.
+NAIL_PROFILE = [(0, 0), (2.5, 0.75), (10.5, 0.75), (11, 2.5), (12, 2.5)]
+NAIL_H = 12
+
+
 def m_nail():
-    """Seed 000 Fig. 6: a round shaft, a flat round head and a pointed tip. The
-    bottom layer is a single point, so face w0 collapses to the tip. Degree 1
+    """Seed 000 Fig. 6: a round shaft, a flat round head and a pointed tip,
+    standing on the head (face w1, flat at z = 0) with the tip up. The
+    layer w = 0 is a single point, so face w0 collapses to the tip. Degree 1
     along w gives the sharp cone, shaft and head; the knots give the shaft
     most of the parameter range (the interior "density" along the nail).
-    The head's underside is a shallow cone: every layer is higher than the
-    one before, so det J > 0 inside (a flat annulus between two layers would
-    squash a slab of the parameter cube flat, det J = 0)."""
-    profile = [(0, 0), (2.5, 0.75), (10.5, 0.75), (11, 2.5), (12, 2.5)]
+    The head's inner side is a shallow cone: every layer is further from the
+    tip than the one before, so det J > 0 inside (a flat annulus between two
+    layers would squash a slab of the parameter cube flat, det J = 0)."""
+    profile = NAIL_PROFILE
     kw = [0, 0, 1, 5, 6, 7, 7]
-    b, net, _ = revolved(profile, 1, knots_w=kw, name="nail")
-    return "nail.json", model([b]), [radius_check(0, profile, 1, knots_w=kw)]
+    b, net, _ = revolved(profile, 1, knots_w=kw, name="nail", turn_h=NAIL_H)
+    return "nail.json", model([b]), [radius_check(0, profile, 1, knots_w=kw, turn_h=NAIL_H),
+                                     stands_on(0, "w1")]
 
 
 def m_nail_density():
@@ -391,10 +431,11 @@ def m_nail_density():
     weights are scaled by 2.5^i along u (same quarter circles, u crowded
     towards one side). Every face is the nail's face reparametrised, so the
     boundary is the same surface; the isoparametric surfaces move."""
-    profile = [(0, 0), (2.5, 0.75), (10.5, 0.75), (11, 2.5), (12, 2.5)]
+    profile = NAIL_PROFILE
     kw = [0, 0, 4, 5, 6, 7, 7]
-    b, net, _ = revolved(profile, 1, knots_w=kw, name="nail", u_factor=2.5)
-    return "nail-density.json", model([b]), [radius_check(0, profile, 1, knots_w=kw)]
+    b, net, _ = revolved(profile, 1, knots_w=kw, name="nail", u_factor=2.5, turn_h=NAIL_H)
+    return "nail-density.json", model([b]), [
+        radius_check(0, profile, 1, knots_w=kw, turn_h=NAIL_H), stands_on(0, "w1")]
 
 
 # ---- Fig. 8: union of three bodies 2

@@ -566,10 +566,12 @@ static void test_scad_background(void **state)
     size_t len;
     char *text = io_read_file(path, &len);
     assert_non_null(text);
-    assert_non_null(strstr(text, "module box() {\n"));
-    assert_non_null(strstr(text, "module box_u_0_25() {\n"));
-    assert_non_null(strstr(text, "module box_w_0_5() {\n"));
-    assert_non_null(strstr(text, "\nmodule iso() {\n  %box();\n  box_u_0_25();\n  box_w_0_5();\n}\n"));
+    /* Module names carry the model's name: MODEL_PART. */
+    assert_non_null(strstr(text, "module iso_box() {\n"));
+    assert_non_null(strstr(text, "module iso_box_u_0_25() {\n"));
+    assert_non_null(strstr(text, "module iso_box_w_0_5() {\n"));
+    assert_non_null(strstr(text, "\nmodule iso() {\n  %iso_box();\n  iso_box_u_0_25();\n"
+                                 "  iso_box_w_0_5();\n}\n"));
     free(text);
     assert_coons_ok(coons_mesh_set_part_display(m, 0, COONS_PART_NORMAL, &err), &err);
     assert_coons_ok(coons_mesh_write(m, path, COONS_FORMAT_AUTO, &wo, &err), &err);
