@@ -522,8 +522,8 @@ static void put_affine_node(coons__sink *s, const part *p, size_t i)
 static void put_part(coons__sink *s, const part *p, size_t index)
 {
     char head[256];
-    snprintf(head, sizeof head, "\n// body %zu: %s (%zu vertices, %zu triangles)\n", index,
-             p->morph ? "a morph" : "", p->nv, p->nt);
+    snprintf(head, sizeof head, "\n// body %zu, module %.160s: %s(%zu vertices, %zu triangles)\n",
+             index, p->id, p->morph ? "a morph " : "", p->nv, p->nt);
     coons__sink_puts(s, head);
     if (!p->morph) {
         coons__sink_puts(s, "module ");
