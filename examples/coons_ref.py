@@ -478,7 +478,45 @@ def body_eval(b, u, v, w):
         return volume_eval(b, u, v, w)
     if ty == "shell":
         return _shell(b, u, v, w)
+    if ty == "morph":
+        return morph_eval(b, u, v, w)
     raise ValueError("unknown body type " + ty)
+
+
+def morph_eval(b, u, v, w, t=None):
+    """The morph (coons-model(5) "morph", seed 000 section 4) at its "t" (or
+    t): on the interval of t between neighbouring key times, the straight
+    blend of its two keys (linear path, or two keys), or the cubic Hermite
+    through them with the non-uniform Catmull-Rom tangents of the spec
+    (central difference quotients of the neighbouring keys, one-sided at
+    the ends)."""
+    keys = b["keys"]
+    n = len(keys)
+    at = b.get("at") or [k / (n - 1) for k in range(n)]
+    t = b.get("t", 0) if t is None else t
+    t = min(max(t, 0.0), 1.0)
+    i = 0
+    while i + 2 < n and t >= at[i + 1]:
+        i += 1
+    h = at[i + 1] - at[i]
+    s = min((t - at[i]) / h, 1.0)
+    P = {}
+
+    def key(k):
+        if k not in P:
+            P[k] = body_eval(keys[k], u, v, w)
+        return P[k]
+
+    if b.get("path", "linear") == "linear" or n == 2:
+        return add(mul(1 - s, key(i)), mul(s, key(i + 1)))
+
+    def tangent(k):
+        lo, hi = max(k - 1, 0), min(k + 1, n - 1)
+        return mul(1.0 / (at[hi] - at[lo]), sub(key(hi), key(lo)))
+
+    h00, h10, h11, h01 = hermite_basis(s)  # value 0, slope 0, slope 1, value 1
+    return add(add(mul(h00, key(i)), mul(h * h10, tangent(i))),
+               add(mul(h01, key(i + 1)), mul(h * h11, tangent(i + 1))))
 
 
 def body_corner(b, i, j, k):

@@ -144,7 +144,7 @@ static void test_body_rows(void **state)
                          COONS_OK);
         assert_int_equal(back, t);
     }
-    assert_int_equal(n, COONS_BODY_SHELL + 1); /* the last body type */
+    assert_int_equal(n, COONS_BODY_MORPH + 1); /* the last body type */
     assert_null(coons__body_kind_of((coons_body_type)n));
     coons_error err = COONS_ERROR_INIT;
     coons_body_type bt;

@@ -132,7 +132,7 @@ static void test_types(void **state)
     (void)state;
     char m[4096];
     list bt = core(body_type), pt = core(patch_type), ct = core(curve_type);
-    assert_int_equal(bt.n, COONS_BODY_SHELL + 1);    /* the last body type */
+    assert_int_equal(bt.n, COONS_BODY_MORPH + 1);    /* the last body type */
     assert_int_equal(pt.n, COONS_PATCH_NETWORK + 1); /* the last patch type */
     assert_int_equal(ct.n, 7);
     list l = expected("{\"coons\": 1, \"bodies\": [{\"type\": \"zzz\"}]}");

@@ -31,7 +31,8 @@ typedef enum coons_body_type {
     COONS_BODY_BODY2,
     COONS_BODY_BEZIER,
     COONS_BODY_BSPLINE,
-    COONS_BODY_SHELL
+    COONS_BODY_SHELL,
+    COONS_BODY_MORPH
 } coons_body_type;
 
 /** Largest number of control points (product of the three counts) of a tensor volume. */
@@ -259,6 +260,88 @@ COONS_EXPORT const char *coons_body_edge_name(int edge);
  * the order of ::COONS_FACE_U0 ..), or NULL for any other value.
  */
 COONS_EXPORT const char *coons_body_face_name(int face);
+
+/** The path of a morph in time (coons-model(5), "morph"). */
+typedef enum coons_morph_path {
+    /** Piecewise linear between neighbouring keys. */
+    COONS_MORPH_LINEAR = 0,
+    /** The C1 non-uniform Catmull-Rom spline through the keys: per unit
+     * time, the tangent at an inner key k is (K_k+1 - K_k-1) / (at_k+1 -
+     * at_k-1), at the ends the one-sided quotients; each interval is the
+     * cubic Hermite between its keys. With two keys, the same as linear. */
+    COONS_MORPH_SMOOTH = 1
+} coons_morph_path;
+
+/** Largest number of keys of a morph. */
+#define COONS_MORPH_MAX_KEYS 4096
+
+/**
+ * The weights W_k(t) of a morph's path at time t (clamped to [0,1]):
+ * M(t) = sum_k W_k(t) K_k. They sum to 1; at t = at[k], W_k = 1 and the
+ * others are 0. With `dw` not NULL, dw[k] = dW_k/dt as well (the
+ * one-sided derivative of the interval that holds t; at an inner key the
+ * interval that starts there).
+ * @param[in]  nkeys 2 .. ::COONS_MORPH_MAX_KEYS
+ * @param[in]  at    NULL (uniform, k/(nkeys-1)) or nkeys times strictly
+ *                   increasing from exactly 0 to exactly 1
+ * @param[out] w     nkeys weights
+ * @param[out] dw    NULL or nkeys derivatives
+ * @return ::COONS_OK, ::COONS_E_INVALID (bad count, times or path; NULL w).
+ */
+COONS_EXPORT coons_status coons_morph_weights(size_t nkeys, const double *at,
+                                              coons_morph_path path, double t, double *w,
+                                              double *dw, coons_error *err);
+
+/**
+ * A metamorphosis (seed 000 section 4, Fig. 10; coons-model(5), "morph"):
+ * the pointwise blend M(u,v,w) = sum_k W_k(t) K_k(u,v,w) of 2 or more key
+ * bodies of any types with the weights of coons_morph_weights(), and its
+ * Jacobian sum_k W_k(t) J_k, exact. A morph may be a key of another. The
+ * control box is the box of all keys' boxes (whatever t). Keys that differ
+ * in handedness make det J change sign at some time: that is a fold, found
+ * by coons_body_min_jacobian() like any other. Copies the keys: the caller
+ * keeps them. The type is ::COONS_BODY_MORPH.
+ * @param[in] keys  nkeys bodies (an array of handles, see "Arrays" in
+ *                  coons/types.h)
+ * @param[in] at    NULL (uniform) or nkeys key times, strictly increasing
+ *                  from exactly 0 to exactly 1
+ * @param[in] t     the time, in [0,1]
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument, fewer than 2 or
+ *         more than ::COONS_MORPH_MAX_KEYS keys, bad times or path, t outside
+ *         [0,1]: the message says which), ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_new_morph(const coons_body *const *keys, size_t nkeys,
+                                               const double *at, coons_morph_path path,
+                                               double t, coons_body **out, coons_error *err);
+
+/**
+ * The number of keys of a morph body (seen through transforms: a
+ * transformed morph reports its morph's keys), or 0 for any other body.
+ */
+COONS_EXPORT size_t coons_body_morph_keys(const coons_body *b);
+
+/**
+ * Key k of a morph body (through transforms, the key as the morph holds it,
+ * not transformed), its time in *at (may be NULL), or NULL when b is no
+ * morph or k is out of range. Borrowed: valid while b lives.
+ */
+COONS_EXPORT const coons_body *coons_body_morph_key(const coons_body *b, size_t k, double *at);
+
+/**
+ * The path and current time of a morph body (through transforms).
+ * @return ::COONS_OK, or ::COONS_E_INVALID when b is no morph.
+ */
+COONS_EXPORT coons_status coons_body_morph_info(const coons_body *b, coons_morph_path *path,
+                                                double *t, coons_error *err);
+
+/**
+ * A copy of b in which every morph, also morphs that are keys of morphs
+ * and morphs inside transformed bodies, is taken at time t instead of its
+ * own. A body without morphs is copied unchanged.
+ * @return ::COONS_OK, ::COONS_E_INVALID (t outside [0,1], NULL), ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_at_time(const coons_body *b, double t, coons_body **out,
+                                             coons_error *err);
 
 #ifdef __cplusplus
 }

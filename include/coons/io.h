@@ -137,6 +137,7 @@
 
 #include "coons/types.h"
 #include "coons/volume.h"
+#include "coons/mesh.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -347,6 +348,41 @@ COONS_EXPORT coons_status coons_volume_mesh_write_stream(const coons_volume_mesh
                                                          coons_format format,
                                                          const coons_write_options *opts,
                                                          coons_error *err);
+
+/**
+ * Writes the OpenSCAD animation of a model with morph bodies (coons-model(5)
+ * "morph"; outputs.md "Metamorphosis") atomically to `path`: every morph
+ * as the vertex arrays of its keys on one lattice with one face list and a
+ * function of the time that blends them with the path's weights in
+ * OpenSCAD, a module NAME(t) per body (NAME its sanitised name) and one
+ * for the model (wo->name) that unites them with union(), and a top-level
+ * call passing $t, so that View > Animate plays the metamorphosis. Bodies
+ * without morphs are plain polyhedra sampled with `so`. `openscad -D
+ * '$t=T'` gives, for each morph, the vertices coons_model_set_time(T) and
+ * coons_model_sample() with `resolution` N give, to the printed digits, N
+ * being the lattice the file names in a comment: `so->resolution` when
+ * set, else the smallest uniform lattice whose mesh, with the face list
+ * fixed, is within the tolerance at every key time and at 4 times inside
+ * each interval between keys.
+ * @param[in] body -1 for every body, else the index of the one body written
+ * @return ::COONS_OK, ::COONS_E_INVALID, ::COONS_E_LIMIT (triangle budget),
+ *         ::COONS_E_UNSUPPORTED (a morph whose lattice collapses
+ *         differently at different times: no one face list serves every
+ *         frame), ::COONS_E_IO, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_model_write_scad_animation(const coons_model *m, long body,
+                                                           const coons_sample_options *so,
+                                                           const char *path,
+                                                           const coons_write_options *wo,
+                                                           coons_error *err);
+
+/** coons_model_write_scad_animation() to an open stream (flushed, not closed). */
+COONS_EXPORT coons_status coons_model_write_scad_animation_stream(const coons_model *m,
+                                                                  long body,
+                                                                  const coons_sample_options *so,
+                                                                  FILE *fp,
+                                                                  const coons_write_options *wo,
+                                                                  coons_error *err);
 
 #ifdef __cplusplus
 }

@@ -404,6 +404,29 @@ COONS_EXPORT void coons_mesh_report_init(coons_mesh_report *r);
 COONS_EXPORT coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_report *report,
                                            coons_error *err);
 
+/**
+ * Free-form deformation (seed 000: Coons bodies as FFDs, after Sederberg
+ * and Parry): a new mesh holding `in` mapped through body b, a point p
+ * going to B((p - lo) / (hi - lo)). Triangles are split by edge bisection
+ * until the image of every edge's parametric midpoint lies within
+ * `tolerance` of the chord of its end images and the images of 4 inner
+ * points of every triangle lie within `tolerance` of it; an edge is split
+ * the same way in both its triangles, so a closed 2-manifold input stays
+ * closed and 2-manifold, with its winding (reversed when b is left-handed,
+ * so that an outward input stays outward). An affine body splits nothing
+ * and maps every vertex exactly. One part, named "deformed".
+ * @param[in] lo,hi the frame's corners, or both NULL for the bounding box
+ *                  of `in`'s vertices
+ * @param[in] max_triangles the budget; 0: ::COONS_MESH_MAX_TRIANGLES
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL, tolerance not > 0, a flat
+ *         frame), ::COONS_E_DOMAIN (vertices outside the frame: the message
+ *         counts them and gives the first), ::COONS_E_LIMIT, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_deform_mesh(const coons_body *b, const coons_mesh *in,
+                                                 const double *lo, const double *hi,
+                                                 double tolerance, size_t max_triangles,
+                                                 coons_mesh **out, coons_error *err);
+
 #ifdef __cplusplus
 }
 #endif

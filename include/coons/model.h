@@ -165,6 +165,22 @@ COONS_EXPORT coons_status coons_model_interfaces(const coons_model *m, coons_int
 /** Frees a list from coons_model_interfaces(); NULL is a harmless no-op. */
 COONS_EXPORT void coons_interfaces_free(coons_interface *list);
 
+/**
+ * Takes every morph body of the model (coons_body_new_morph()) at time t
+ * instead of its own "t": also morphs that are keys of other morphs and
+ * morphs reached through references or transforms (coons2stl --time T).
+ * Changes the model in place: not while another thread uses it. Nothing
+ * else depends on the time (the control box and the tolerance are those
+ * of all keys), so a model can be set to one time after another.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL model, t not in [0,1]; the
+ *         model is then unchanged).
+ */
+COONS_EXPORT coons_status coons_model_set_time(coons_model *m, double t, coons_error *err);
+
+/** The number of the model's bodies that are morphs (also transformed
+ * morphs); morphs that are only keys of others do not count. */
+COONS_EXPORT size_t coons_model_morph_count(const coons_model *m);
+
 #ifdef __cplusplus
 }
 #endif

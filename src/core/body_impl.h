@@ -39,6 +39,13 @@ struct coons_body {
     double xf_det;
     /* Shells (shell.c): the surface is face[0]; thickness h, offset c. */
     double shell_h, shell_c;
+    /* The morph (morph.c): nkeys keys, their times at[], the path
+     * (coons_morph_path) and the time t. */
+    coons_body **keys;
+    size_t nkeys;
+    double *at;
+    int path;
+    double t;
 };
 
 /* Allocates a zeroed record of the given kind, with an empty control box. */

@@ -46,6 +46,7 @@ static const row BODIES[] = {
     [COONS_BODY_BEZIER] = {"bezier-volume", &coons__bezier_volume_kind},
     [COONS_BODY_BSPLINE] = {"bspline-volume", &coons__bspline_volume_kind},
     [COONS_BODY_SHELL] = {"shell", &coons__shell_kind},
+    [COONS_BODY_MORPH] = {"morph", &coons__morph_kind},
 };
 
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))

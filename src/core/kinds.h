@@ -109,6 +109,7 @@ extern const coons__body_kind coons__body2_kind;                 /* body2.c */
 extern const coons__body_kind coons__bezier_volume_kind,
     coons__bspline_volume_kind;                                  /* tensor_volume.c */
 extern const coons__body_kind coons__shell_kind;                 /* shell.c */
+extern const coons__body_kind coons__morph_kind;                 /* morph.c */
 
 /* Wrappers of another object (coons-model(5), "Definitions and
  * references"); not in the tables: they report the wrapped type. */

@@ -215,9 +215,42 @@ def patch_eval_corner(p, s, t):
     return tensor_eval(p, [s, t])
 
 
+def morph_weights(b):
+    """The weights of a morph's keys at its "t" (coons-model(5) "morph"): on
+    the interval of t, 1 - s and s (linear, or two keys), else the cubic
+    Hermite with the Catmull-Rom tangents (K_k+1 - K_k-1) / (at_k+1 - at_k-1),
+    one-sided at the ends, written as weights of the keys."""
+    n = len(b["keys"])
+    at = b.get("at") or [k / (n - 1) for k in range(n)]
+    t = min(max(b.get("t", 0), 0), 1)
+    i = 0
+    while i + 2 < n and t >= at[i + 1]:
+        i += 1
+    h = at[i + 1] - at[i]
+    s = min((t - at[i]) / h, 1)
+    w = [0.0] * n
+    if b.get("path", "linear") == "linear" or n == 2:
+        w[i], w[i + 1] = 1 - s, s
+        return w
+    h00, h10 = 2 * s ** 3 - 3 * s ** 2 + 1, s ** 3 - 2 * s ** 2 + s
+    h01, h11 = -2 * s ** 3 + 3 * s ** 2, s ** 3 - s ** 2
+    w[i] += h00
+    w[i + 1] += h01
+    for k, c in ((i, h * h10), (i + 1, h * h11)):
+        lo, hi = max(k - 1, 0), min(k + 1, n - 1)
+        w[hi] += c / (at[hi] - at[lo])
+        w[lo] -= c / (at[hi] - at[lo])
+    return w
+
+
 def body_corners(b):
     """The 8 corners P_ijk (index 4i + 2j + k) of a body."""
     typ = b["type"]
+    if typ == "morph":
+        keys = [body_corners(k) for k in b["keys"]]
+        w = morph_weights(b)
+        return [[sum(w[k] * keys[k][n][d] for k in range(len(keys))) for d in range(3)]
+                for n in range(8)]
     out = []
     for n in range(8):
         i, j, k = n >> 2, (n >> 1) & 1, n & 1

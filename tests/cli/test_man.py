@@ -71,7 +71,7 @@ def documented_functions(pages):
     return names
 
 
-BODY_TYPES = ("body0", "body1", "body2", "bezier-volume", "bspline-volume")
+BODY_TYPES = ("body0", "body1", "body2", "bezier-volume", "bspline-volume", "morph")
 
 # Types listed in the spec (or the page) tables: rows start with | `type` |.
 TYPE_ROW = re.compile(r"^\|\s*`([a-z0-9-]+)`\s*\|")

@@ -172,7 +172,12 @@ def main():
                 continue
             if not r.check(f"{name}: coons2stl -o .scad", st == 0, err):
                 continue
-            st, _, err = r.run(["-o", ours, ex])
+            extra = []
+            with open(scad) as f:  # a morph's animation renders t = $t = 0 on its lattice
+                lat = re.search(r"one lattice of (\d+) intervals", f.read())
+            if lat:
+                extra = ["--time", "0", "--resolution", lat.group(1)]
+            st, _, err = r.run(["-o", ours, ex] + extra)
             r.check(f"{name}: coons2stl -o .stl", st == 0, err)
             rendered = os.path.join(tmp, name + ".openscad.stl")
             rc, log = openscad(scad, rendered, tmp)

@@ -47,6 +47,9 @@ typedef struct options {
     int no_repair;      /* --no-repair */
     int no_solid;       /* --no-solid (with --info) */
     int force_progress; /* --progress */
+    const char *time_arg; /* --time as given, or NULL */
+    double time;          /* --time T (when time_arg) */
+    unsigned frames;      /* --frames N: 0 = none */
 } options;
 
 /* options.c: parses the command line into `o` (zeroed, load.version set);
@@ -116,5 +119,27 @@ int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
 
 int cli_write_output(const coons_model *m, long body, coons_format format, const char *output,
                      const coons_sample_options *so, int repair, const char *input);
+
+/* options.c: a usage error with its message (status EXIT_USAGE). */
+int cli_usage_error(const char *msg);
+/* frames.c: --time (a number in [0,1]) and --frames (N >= 2 and an output
+ * PATTERN with one integer field) checked; -1 to go on, else the status. */
+int cli_check_time_options(options *o);
+/* frames.c: -o with --frames: frame k written to PATTERN(k), at time
+ * k/(N-1), each as a single output would be; stops at the first failure. */
+int cli_write_frames(coons_model *m, long body, const options *o,
+                     const coons_sample_options *so);
+
+/* frames.c: --info's "morph" object of a morph body (printed after a
+ * key): keys, times, path, and the sampled times where the smallest det J
+ * changes sign (below -fold_threshold counts as negative); warns of a
+ * fold. 0, or the exit status (reported). */
+int cli_print_morph_info(const coons_body *b, double fold_threshold, const char *name,
+                         size_t index);
+
+/* frames.c: -o FILE.scad of a model with morphs (without --time): the
+ * OpenSCAD animation; the exit status. */
+int cli_write_scad_animation(const coons_model *m, long body, const options *o,
+                             const coons_sample_options *so);
 
 #endif

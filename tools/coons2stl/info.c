@@ -241,7 +241,9 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
     json_number(mindet);
     printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
     if (print_networks(b, i, name)) return EXIT_GEOMETRY;
-    int rc = info_mesh(m, i, so, checks);
+    int rc = coons_body_morph_keys(b) ? cli_print_morph_info(b, FOLD_REL * d3, name, i) : 0;
+    if (rc) return rc;
+    rc = info_mesh(m, i, so, checks);
     if (rc) return rc;
     if (vm) {
         printf(",\n     \"volume_mesh\": ");

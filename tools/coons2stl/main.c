@@ -29,12 +29,15 @@ static coons_sample_options sample_options(const options *o, const coons_model *
     return so;
 }
 
-static int run_mode(const options *o, const coons_model *m, long body)
+static int run_mode(const options *o, coons_model *m, long body)
 {
     coons_sample_options so = sample_options(o, m);
+    if (o->frames) return cli_write_frames(m, body, o, &so);
     if (o->eval) return cli_eval(coons_model_body(m, body < 0 ? 0 : (size_t)body), o->jacobian);
     if (o->info) return cli_info(m, body, &so, o);
     if (o->niso) return cli_write_iso(m, body, o, &so);
+    if (o->format == COONS_FORMAT_SCAD && !o->time_arg && coons_model_morph_count(m))
+        return cli_write_scad_animation(m, body, o, &so);
     if (cli_is_volume_format(o->format)) {
         if (o->output && strcmp(o->output, "-") != 0 && strcmp(o->input, "-") != 0 &&
             cli_is_model_file(o->output, o->input)) {
@@ -65,6 +68,16 @@ int main(int argc, char **argv)
     if (o.body && (body = cli_select_body(m, o.body)) < 0) {
         coons_model_free(m);
         return EXIT_USAGE;
+    }
+    if (o.time_arg) {
+        coons_error err = COONS_ERROR_INIT;
+        if (coons_model_set_time(m, o.time, &err) != COONS_OK) {
+            fprintf(stderr, "%s: %s\n", PROG, err.message);
+            coons_model_free(m);
+            return EXIT_USAGE;
+        }
+        if (!coons_model_morph_count(m))
+            cli_message(1, "the model has no morph bodies: --time changes nothing");
     }
     cli_progress_start(o.force_progress || (!o.quiet && isatty(STDERR_FILENO)), o.quiet, m);
     rc = run_mode(&o, m, body);

@@ -132,6 +132,15 @@ static const option_row OPTIONS[] = {
      NULL, 0, 0, NULL},
     {"quiet", 'q', NULL, V_FLAG, AT(quiet), "no warnings and no progress report", NULL, 0, 0,
      NULL},
+    {"time", 0, "T", V_TEXT, AT(time_arg),
+     "take every morph body at time T in [0,1] instead of\n"
+     "its \"t\" (also morphs inside others)",
+     NULL, 0, 0, NULL},
+    {"frames", 0, "N", V_UNSIGNED, AT(frames),
+     "write N >= 2 frames of the morphs, at t = k/(N-1), to\n"
+     "-o PATTERN holding one integer field (frame-%03d.stl);\n"
+     "with .vtu also a ParaView .pvd index",
+     "a whole number from 2 to {max}", 0, 100000, NULL},
     {"help", 'h', NULL, V_ACTION, 0, "show this help and exit", NULL, 0, 0, show_help},
     {"version", 0, NULL, V_ACTION, 0, "show the version and exit", NULL, 0, 0, show_version},
 };
@@ -224,6 +233,8 @@ static int usage_error(const char *fmt, ...)
     fprintf(stderr, "\nTry '%s --help' for more information.\n", PROG);
     return EXIT_USAGE;
 }
+
+int cli_usage_error(const char *msg) { return usage_error("%s", msg); }
 
 /* ---- reading argv through the table ----------------------------------- */
 
@@ -536,5 +547,6 @@ int cli_parse_args(int argc, char **argv, options *o)
     if ((rc = resolve_format(o)) >= 0) return rc;
     if ((rc = check_modes(&ps, o)) >= 0) return rc;
     if ((rc = resolve_element(o)) >= 0) return rc;
-    return resolve_iso(o);
+    if ((rc = resolve_iso(o)) >= 0) return rc;
+    return cli_check_time_options(o);
 }

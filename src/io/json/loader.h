@@ -265,6 +265,7 @@ coons_status coons__ld_read_body2(coons__ld *L, coons__ld_obj *o, coons_body **o
 coons_status coons__ld_read_bezier_volume(coons__ld *L, coons__ld_obj *o, coons_body **out);
 coons_status coons__ld_read_bspline_volume(coons__ld *L, coons__ld_obj *o, coons_body **out);
 coons_status coons__ld_read_shell(coons__ld *L, coons__ld_obj *o, coons_body **out);
+coons_status coons__ld_read_morph(coons__ld *L, coons__ld_obj *o, coons_body **out);
 
 /* ---- shared by the Coons patch readers (read_patch_boundary.c) ------------ */
 

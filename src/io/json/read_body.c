@@ -16,6 +16,7 @@ static const coons__ld_body_row BODIES[] = {
     {COONS_BODY_BEZIER, coons__ld_read_bezier_volume},
     {COONS_BODY_BSPLINE, coons__ld_read_bspline_volume},
     {COONS_BODY_SHELL, coons__ld_read_shell},
+    {COONS_BODY_MORPH, coons__ld_read_morph},
 };
 enum { NBODIES = sizeof BODIES / sizeof BODIES[0] };
 

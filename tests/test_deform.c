@@ -1,0 +1,250 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * Free-form deformation of a mesh by a body (src/mesh/deform.c). Expected
+ * values independent of it: the affine map written out (no splitting, exact
+ * vertices); for a curved body 2, the exact images of 150 random points of the
+ * input's triangles against the output by brute-force point-triangle
+ * distance; the enclosed volume against the body's own volume (the
+ * integral of det J over the unit cube, coons_body_volume()); closedness
+ * by counting directed edges; a mirrored body still outward.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "body_fixtures.h"
+
+/* The unit cube as 12 triangles, counter-clockwise seen from outside. */
+static coons_mesh *unit_cube(void)
+{
+    double v[8][3];
+    for (int n = 0; n < 8; n++) v[n][0] = n >> 2, v[n][1] = (n >> 1) & 1, v[n][2] = n & 1;
+    static const uint32_t t[12][3] = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5},
+                                      {0, 4, 5}, {0, 5, 1}, {2, 3, 7}, {2, 7, 6},
+                                      {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+    coons_mesh *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons_mesh_new(&m, &err), &err);
+    assert_coons_ok(coons_mesh_add_part(m, "cube", v[0], 8, t[0], 12, &err), &err);
+    assert_true(coons_mesh_volume(m) > 0.999);
+    return m;
+}
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Every directed edge once, and its reverse once: closed, 2-manifold,
+ * consistently wound. */
+static int closed_oriented(const coons_mesh *m)
+{
+    size_t nt = coons_mesh_triangle_count(m);
+    const uint32_t *t = coons_mesh_triangles(m);
+    size_t ne = 3 * nt;
+    uint64_t *e = malloc(ne * sizeof *e);
+    for (size_t i = 0; i < nt; i++)
+        for (int k = 0; k < 3; k++)
+            e[3 * i + k] = (uint64_t)t[3 * i + k] << 32 | t[3 * i + (k + 1) % 3];
+    qsort(e, ne, sizeof *e, cmp_u64);
+    int ok = 1;
+    for (size_t i = 0; i < ne && ok; i++) {
+        uint64_t rev = (e[i] << 32) | (e[i] >> 32);
+        ok = (i + 1 == ne || e[i + 1] != e[i]) && bsearch(&rev, e, ne, sizeof *e, cmp_u64);
+    }
+    free(e);
+    return ok;
+}
+
+static double seg2(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], l2 = 0, s = 0, d2 = 0;
+    for (int i = 0; i < 3; i++) ab[i] = b[i] - a[i], ap[i] = p[i] - a[i], l2 += ab[i] * ab[i],
+                                s += ap[i] * ab[i];
+    s = l2 > 0 ? s / l2 : 0;
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    for (int i = 0; i < 3; i++) d2 += (a[i] + s * ab[i] - p[i]) * (a[i] + s * ab[i] - p[i]);
+    return d2;
+}
+
+/* Distance from p to triangle abc: the plane where the foot is inside,
+ * else the nearest side. */
+static double tri_dist(const double p[3], const double a[3], const double b[3], const double c[3])
+{
+    double u[3], v[3], n[3], w[3];
+    for (int i = 0; i < 3; i++) u[i] = b[i] - a[i], v[i] = c[i] - a[i], w[i] = p[i] - a[i];
+    n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2],
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    double best = fmin(seg2(p, a, b), fmin(seg2(p, b, c), seg2(p, c, a)));
+    if (nn > 0) {
+        double d = (w[0] * n[0] + w[1] * n[1] + w[2] * n[2]) / nn, f[3];
+        for (int i = 0; i < 3; i++) f[i] = p[i] - d * n[i];
+        /* barycentric coordinates of the foot */
+        double uu = 0, uv = 0, vv = 0, fu = 0, fv = 0;
+        for (int i = 0; i < 3; i++) {
+            double fi = f[i] - a[i];
+            uu += u[i] * u[i], uv += u[i] * v[i], vv += v[i] * v[i], fu += fi * u[i],
+                fv += fi * v[i];
+        }
+        double den = uu * vv - uv * uv, s = (vv * fu - uv * fv) / den, t = (uu * fv - uv * fu) / den;
+        if (s >= 0 && t >= 0 && s + t <= 1) best = fmin(best, d * d * nn);
+    }
+    return sqrt(best);
+}
+
+static void test_affine_exact(void **state)
+{
+    (void)state;
+    const double o[3] = {1, -2, 0.5}, A[3][3] = {{2, 0.5, 0.3}, {0.1, 3, -0.4}, {0.2, 0, 1.5}};
+    double c[8][3];
+    for (int n = 0; n < 8; n++) {
+        double q[3] = {n >> 2, (n >> 1) & 1, n & 1};
+        for (int r = 0; r < 3; r++) c[n][r] = o[r] + A[r][0] * q[0] + A[r][1] * q[1] + A[r][2] * q[2];
+    }
+    coons_error err = COONS_ERROR_INIT;
+    coons_body *b;
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
+    coons_mesh *in = unit_cube(), *out = NULL;
+    assert_coons_ok(coons_body_deform_mesh(b, in, NULL, NULL, 1e-6, 0, &out, &err), &err);
+    assert_int_equal(coons_mesh_triangle_count(out), 12);
+    assert_int_equal(coons_mesh_vertex_count(out), 8);
+    const double *x = coons_mesh_vertices(out), *q = coons_mesh_vertices(in);
+    for (int n = 0; n < 8; n++) {
+        double want[3];
+        for (int r = 0; r < 3; r++)
+            want[r] = o[r] + A[r][0] * q[3 * n] + A[r][1] * q[3 * n + 1] + A[r][2] * q[3 * n + 2];
+        assert_vec3_near(x + 3 * n, want, 1e-12);
+    }
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                 A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    assert_near(coons_mesh_volume(out), det, 1e-12);
+    coons_mesh_free(out);
+    coons_mesh_free(in);
+    coons_body_free(b);
+}
+
+static void check_curved(const coons_body *b, double tol, double sign)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *in = unit_cube(), *out = NULL;
+    assert_coons_ok(coons_body_deform_mesh(b, in, NULL, NULL, tol, 0, &out, &err), &err);
+    assert_true(coons_mesh_triangle_count(out) > 12);
+    assert_true(closed_oriented(out));
+    /* exact images of random points of the input's faces */
+    tb_rng r = {5};
+    const double *qv = coons_mesh_vertices(in), *x = coons_mesh_vertices(out);
+    const uint32_t *ti = coons_mesh_triangles(in), *to = coons_mesh_triangles(out);
+    size_t nto = coons_mesh_triangle_count(out);
+    double worst = 0;
+    for (int s = 0; s < 150; s++) {
+        size_t t = (size_t)(tb_rand(&r) * 12);
+        double a = tb_rand(&r), bb = tb_rand(&r);
+        if (a + bb > 1) a = 1 - a, bb = 1 - bb;
+        double q[3], p[3], best = INFINITY;
+        for (int d = 0; d < 3; d++)
+            q[d] = (1 - a - bb) * qv[3 * ti[3 * t] + d] + a * qv[3 * ti[3 * t + 1] + d] +
+                   bb * qv[3 * ti[3 * t + 2] + d];
+        coons_body_eval(b, q[0], q[1], q[2], p);
+        for (size_t k = 0; k < nto; k++)
+            best = fmin(best, tri_dist(p, x + 3 * to[3 * k], x + 3 * to[3 * k + 1],
+                                       x + 3 * to[3 * k + 2]));
+        worst = fmax(worst, best);
+    }
+    print_message("deformed cube: %zu triangles, worst distance %.3g (tolerance %g)\n", nto,
+                  worst, tol);
+    assert_true(worst <= tol);
+    /* volume: the mesh within tol of the exact boundary encloses the
+     * integral of |det J| up to tol x area */
+    double vol = 0;
+    assert_coons_ok(coons_body_volume(b, 1e-4, &vol, &err), &err);
+    double vm = coons_mesh_volume(out);
+    assert_true(vm > 0);
+    assert_near(vm, sign * vol, tol * coons_mesh_area(out));
+    coons_mesh_free(out);
+    coons_mesh_free(in);
+}
+
+static void test_curved_body2(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_patch *f[6];
+    coons_body *b, *mirror;
+    assert_coons_ok(tb_bspline_faces(5, f, &err), &err);
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_LINEAR, 1e-9, &b, &err), &err);
+    for (int k = 0; k < 6; k++) coons_patch_free(f[k]);
+    check_curved(b, 8e-3, 1.0);
+    /* through a left-handed body: still closed and outward */
+    const double m[12] = {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    assert_coons_ok(coons_body_new_transformed(b, m, &mirror, &err), &err);
+    check_curved(mirror, 8e-3, -1.0);
+    coons_body_free(mirror);
+    coons_body_free(b);
+}
+
+static void test_outside_and_invalid(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_body *b;
+    assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_LINEAR, &b, &err), &err);
+    coons_mesh *in = unit_cube(), *out = NULL;
+    const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 0.5};
+    assert_int_equal(coons_body_deform_mesh(b, in, lo, hi, 1e-3, 0, &out, &err), COONS_E_DOMAIN);
+    assert_non_null(strstr(err.message, "4 of the 8 points"));
+    assert_null(out);
+    const double flat[3] = {1, 1, 0};
+    assert_int_equal(coons_body_deform_mesh(b, in, lo, flat, 1e-3, 0, &out, &err),
+                     COONS_E_INVALID);
+    assert_int_equal(coons_body_deform_mesh(b, in, NULL, NULL, 0, 0, &out, &err), COONS_E_INVALID);
+    coons_mesh_free(in);
+    coons_body_free(b);
+}
+
+static void test_budget_and_alloc(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_body *b, *hex;
+    tb_nurbs_cylinder(1.0, 2.0, &b);
+    coons_mesh *in = unit_cube(), *out = NULL;
+    assert_int_equal(coons_body_deform_mesh(b, in, NULL, NULL, 1e-4, 200, &out, &err),
+                     COONS_E_LIMIT);
+    /* the skew hexahedron is trilinear: a few rounds of splitting */
+    assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_LINEAR, &hex, &err), &err);
+    int done = 0;
+    for (long n = 0; !done && n < 100000; n++) {
+        coons_test_fail_after(n);
+        coons_status rc = coons_body_deform_mesh(hex, in, NULL, NULL, 5e-2, 0, &out, &err);
+        size_t nt = out ? coons_mesh_triangle_count(out) : 0;
+        coons_mesh_free(out);
+        out = NULL;
+        assert_int_equal(coons_test_live_allocs(), 0);
+        coons_test_fail_after(-1);
+        if (rc == COONS_OK) {
+            assert_true(nt > 12);
+            done = 1;
+        } else {
+            assert_int_equal(rc, COONS_E_NOMEM);
+        }
+    }
+    assert_true(done);
+    coons_mesh_free(in);
+    coons_body_free(hex);
+    coons_body_free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_affine_exact),
+        cmocka_unit_test(test_curved_body2),
+        cmocka_unit_test(test_outside_and_invalid),
+        cmocka_unit_test(test_budget_and_alloc),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
