@@ -5,6 +5,10 @@
 void coons__breaks_add(coons__breaks *B, double x)
 {
     if (B->nomem || !(x > 0.0 && x < 1.0)) return;
+    if (B->probe) {
+        if (fabs(x - B->at) <= B->tol) B->hit = 1;
+        return;
+    }
     if (B->n == B->cap) {
         size_t cap = B->cap ? 2 * B->cap : 16;
         double *v = coons__realloc(B->v, cap * sizeof *v);

@@ -10,14 +10,20 @@
 /* More breakpoints than this in a direction: uniform cells instead. */
 #define COONS__MAX_BREAKS 64
 
-/* A growing list of values; nomem is set (and sticks) when growing fails. */
+/* A growing list of values; nomem is set (and sticks) when growing fails.
+ * In probe mode (probe != 0) nothing is stored or allocated: hit is set
+ * when a value within tol of `at` would have been appended, so a question
+ * asked during evaluation ("is x a breakpoint?") cannot fail. Kinds that
+ * map their inner object's breakpoints map `at` and `tol` the other way. */
 typedef struct coons__breaks {
     double *v;
     size_t n, cap;
     int nomem;
+    int probe, hit;
+    double at, tol;
 } coons__breaks;
 
-/* Appends x if it lies in (0,1). */
+/* Appends x if it lies in (0,1) (probe mode: compares it with `at`). */
 void coons__breaks_add(coons__breaks *B, double x);
 
 /* The inner knots k[p+1..ncp-1] of a knot vector of degree p for ncp

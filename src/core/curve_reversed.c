@@ -32,6 +32,12 @@ static coons_status bezier(const coons_curve *c, double *points, size_t capacity
 
 static void breaks(const coons_curve *c, coons__breaks *B)
 {
+    if (B->probe) {
+        coons__breaks in = {.probe = 1, .at = 1.0 - B->at, .tol = B->tol};
+        coons__curve_breaks(c->inner, &in);
+        B->hit |= in.hit;
+        return;
+    }
     size_t n0 = B->n;
     coons__curve_breaks(c->inner, B);
     for (size_t i = n0; i < B->n; i++) B->v[i] = 1.0 - B->v[i];

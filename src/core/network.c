@@ -53,9 +53,15 @@ static coons_status piece_bezier(const coons_curve *c, double *points, size_t ca
 
 static void piece_breaks(const coons_curve *c, coons__breaks *B)
 {
+    double a = c->xf[0], b = c->xf[1];
+    if (B->probe) {
+        coons__breaks in = {.probe = 1, .at = a + B->at * (b - a), .tol = B->tol * (b - a)};
+        coons__curve_breaks(c->inner, &in);
+        B->hit |= in.hit;
+        return;
+    }
     coons__breaks in = {0};
     coons__curve_breaks(c->inner, &in);
-    double a = c->xf[0], b = c->xf[1];
     for (size_t i = 0; i < in.n; i++) coons__breaks_add(B, (in.v[i] - a) / (b - a));
     if (in.nomem) B->nomem = 1;
     coons__free(in.v);
@@ -79,16 +85,13 @@ static coons_status piece_new(const coons_curve *c, double a, double b, coons_cu
 
 /* ---- node data ----------------------------------------------------------- */
 
-/* Is x a breakpoint of c (where a one-sided derivative may differ)? */
+/* Is x a breakpoint of c (where a one-sided derivative may differ)? Asked
+ * during evaluation, so it allocates nothing (the probe mode of breaks.h). */
 static int at_break(const coons_curve *c, double x)
 {
-    coons__breaks B = {0};
+    coons__breaks B = {.probe = 1, .at = x, .tol = 1e-12};
     coons__curve_breaks(c, &B);
-    int hit = 0;
-    for (size_t i = 0; i < B.n; i++)
-        if (fabs(B.v[i] - x) <= 1e-12) hit = 1;
-    coons__free(B.v);
-    return hit;
+    return B.hit;
 }
 
 /* c'(x) from the left (left != 0) or the right. Evaluation returns the

@@ -341,8 +341,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     CHECK(rc2 == rc, "second load gave %d, first %d", rc2, rc);
     coons_model_free(m);
     long total = g_count;
-    if (total > 0) {
-        long k = (long)(fnv1a(data, size) % (uint64_t)total);
+    /* FUZZ_MODEL_EVERY_ALLOCATION=1 fails each allocation of the load in
+     * turn instead of one chosen by the input's hash (slow; for replaying). */
+    int every = getenv("FUZZ_MODEL_EVERY_ALLOCATION") != NULL;
+    for (long j = 0; total > 0 && j < (every ? total : 1); j++) {
+        long k = every ? j : (long)(fnv1a(data, size) % (uint64_t)total);
         coons_error e3 = COONS_ERROR_INIT;
         alloc_reset(k);
         m = NULL;
