@@ -61,9 +61,13 @@ struct TriKey {
 struct TriKeyHash {
     size_t operator()(const TriKey &k) const
     {
-        uint64_t h = 1469598103934665603ull;
-        const unsigned char *p = reinterpret_cast<const unsigned char *>(k.v);
-        for (size_t i = 0; i < sizeof k.v; i++) h = (h ^ p[i]) * 1099511628211ull;
+        uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (int i = 0; i < 9; i++) {
+            uint64_t w;
+            std::memcpy(&w, &k.v[i], sizeof w);
+            h = (h ^ w) * 0xff51afd7ed558ccdull;
+            h ^= h >> 32;
+        }
         return (size_t)h;
     }
 };

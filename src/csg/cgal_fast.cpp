@@ -194,6 +194,10 @@ void fix_slivers(Soup &s, coons_csg_report &rep)
     auto P = [&](uint32_t i) { return IK::Point_3(s.xyz[3 * i], s.xyz[3 * i + 1], s.xyz[3 * i + 2]); };
     for (int round = 0; round < 8; round++) {
         size_t nt = s.tri.size() / 3;
+        bool any = false;
+        for (size_t t = 0; t < nt && !any; t++)
+            any = CGAL::collinear(P(s.tri[3 * t]), P(s.tri[3 * t + 1]), P(s.tri[3 * t + 2]));
+        if (!any) return;
         std::unordered_map<uint64_t, size_t> edge; // directed edge -> triangle
         for (size_t t = 0; t < nt; t++)
             for (int k = 0; k < 3; k++)

@@ -1,14 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Repair and union of body shells with CGAL (Surface_mesh, Polygon Mesh
-// Processing, AABB tree; Debian's CGAL 5.5). The only translation unit that
-// includes CGAL: it costs ~40 s and 1.6 GB to compile. Every extern "C"
+// Processing, AABB tree; Debian's CGAL 5.5). One of the two translation
+// units that include CGAL (the other, cgal_fast.cpp, holds the fast path,
+// compiled without CGAL's assertions; cgal_common.hpp is their interface,
+// free of CGAL types); it costs ~40 s and 1.6 GB to compile. Every extern "C"
 // entry runs through coons::guard (cxx_guard.hpp); describe_failure() is the
 // part of the boundary that knows CGAL's exception.
 //
 // The solid of a shell is where its winding number is non-zero (model
 // format, "Solids and outputs"); the solid of a model is the union of its
-// bodies' solids. Per group of parts whose boxes meet (GroupSolidifier):
+// bodies' solids. Parts meet when boxes of their triangles meet or one lies
+// inside the other (a winding number); parts that meet nothing need no
+// Boolean. Groups of parts that meet are independent: with
+// coons_csg_options.threads they run at once, and each result is put in a
+// canonical order, so that it does not depend on threads or on the heap.
+// Per group (GroupSolidifier):
 //  0. a part that meets nothing and does not cross itself (exact check of
 //     the double mesh, count_self_intersections) passes through unchanged;
 //     the others are first snapped to a power-of-two grid near 1e-12 of the
@@ -16,7 +23,10 @@
 //     than doubles;
 //  1. parts that do not cross themselves are united by chained
 //     corefinement on the inexact-constructions kernel (fast_union); the
-//     result is kept only if the exact check of it finds nothing;
+//     result is kept only if the exact check of it finds nothing (a local
+//     check: only pairs with a triangle that is not an input triangle
+//     unchanged are tested; the inputs were checked, and corefinement
+//     splits every input pair that crosses);
 //  2. otherwise each part becomes an exact (Epeck) closed 2-manifold: as it
 //     is, or repaired by the soup pass (Solidifier) when it crosses itself,
 //     and the parts are united by chained exact corefinement;
@@ -33,7 +43,8 @@
 //  4. an exact result is rounded to doubles once (round_soup), vertices
 //     closer than 1e-11 of the size are merged and triangles the rounding
 //     flattened are removed by an edge split, and the rounded mesh is
-//     checked again with exact predicates: a crossing left is an error.
+//     checked again with exact predicates (the same local check): a
+//     crossing left is an error.
 // Trials with chained corefinement unions (inexact kernel) left
 // self-intersections, and exact results rounded later reintroduced some
 // (BUILD-NOTES): the final checks make that an error instead of a silent
@@ -495,17 +506,24 @@ void names_into(char *buf, size_t size, const std::vector<Part> &parts,
 
 void edge_stats(const Soup &s, coons_csg_report &rep)
 {
-    std::unordered_map<uint64_t, int> count;
+    // Undirected edges sorted: runs of one are border edges, of more than
+    // two non-manifold ones.
+    std::vector<uint64_t> e;
+    e.reserve(s.tri.size());
     for (size_t t = 0; t < s.tri.size() / 3; t++)
         for (int k = 0; k < 3; k++) {
             uint64_t a = s.tri[3 * t + k], b = s.tri[3 * t + (k + 1) % 3];
             if (a > b) std::swap(a, b);
-            count[(a << 32) | b]++;
+            e.push_back((a << 32) | b);
         }
+    std::sort(e.begin(), e.end());
     size_t border = 0, nonman = 0;
-    for (auto &kv : count) {
-        if (kv.second == 1) border++;
-        if (kv.second > 2) nonman++;
+    for (size_t i = 0; i < e.size();) {
+        size_t j = i;
+        while (j < e.size() && e[j] == e[i]) j++;
+        if (j - i == 1) border++;
+        if (j - i > 2) nonman++;
+        i = j;
     }
     rep.closed = border == 0;
     rep.nonmanifold_edges += nonman;

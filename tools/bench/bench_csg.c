@@ -137,6 +137,8 @@ int main(int argc, char **argv)
         coons_csg_report rep = COONS_CSG_REPORT_INIT;
         double t_sample, t_union;
         double t1 = now();
+        st.cur = ST_SAMPLE; /* until the first report (threads: all of the sampling) */
+        st.since = t1;
         if (model_path) {
             check(coons_model_solidify(m, &so, &co, &u, &rep, &err), "solidify", &err);
             on_progress(&st, "done", 1.0);
