@@ -886,6 +886,7 @@ coons_status solidify(const coons_mesh *in, const coons_csg_options &o, std::vec
     };
     if (threads > 1 && ng > 1) {
         unsigned inner = threads / (unsigned)std::min<size_t>(threads, ng);
+        prog("check", 0.0);
         std::vector<std::exception_ptr> errors;
         parallel_for(threads, ng, [&](size_t gi) { one_group(gi, Progress{nullptr}, inner); },
                      errors);

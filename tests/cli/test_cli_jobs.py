@@ -4,7 +4,8 @@
 groups of bodies that do not meet run on N threads, and the written file is
 the same, byte for byte, for every N: multi-body models (bodies that
 overlap, bodies apart, a body in another's box but apart from it, the three
-examples; "union" and "none") written as binary STL with -j 1, -j 2, -j 3
+examples; "union" and "none"; without CGAL the models that need no
+Boolean, and the others are refused on any -j) written as binary STL with -j 1, -j 2, -j 3
 and the default (the number of cores) are compared byte for byte; the STL
 is also checked to hold the expected number of triangles. -j 0 and -j x are
 usage errors (exit 2) that write nothing.
@@ -49,15 +50,33 @@ def stl_triangles(data):
 bodies = [box("a", [0, 0, 0], [1, 1, 1]), box("b", [0.5, 0.5, 0.5], [1.5, 1.5, 1.5]),
           box("c", [4, 0, 0], [5, 1, 1], 3.0), box("d", [7, 0, 0], [7.5, 1, 0.2]),
           box("e", [10, 0, 0], [11, 1, 1]), box("f", [10, 3, 0], [11, 4, 1])]
+apart = [box("p", [0, 0, 0], [1, 1, 1]), box("q", [3, 0, 0], [4, 1, 1]),
+         box("r", [0, 3, 0], [1, 4, 1])]
 models = [
-    ("boxes union", write_model("boxes.json", bodies), ["--resolution", "6"]),
     ("boxes none", write_model("boxes-none.json", bodies, operation="none"),
      ["--resolution", "6"]),
+    ("boxes apart", write_model("apart.json", apart), ["--resolution", "5"]),
+]
+rc, out, err = T.run(["--info", models[1][1]])
+try:
+    HAVE_CGAL = json.loads(out)["solid"].get("csg") is not None
+except (ValueError, KeyError, TypeError):
+    HAVE_CGAL = False
+print(f"# CGAL in this build: {HAVE_CGAL}")
+union_models = [
+    ("boxes union", write_model("boxes.json", bodies), ["--resolution", "6"]),
     ("three examples", os.path.join(T.data, "ok", "three-examples-union.json"),
      ["--resolution", "16"]),
 ]
-
-rc, out, err = T.run(["--info", "--no-solid", models[0][1]])
+if HAVE_CGAL:
+    models += union_models
+else:
+    # without CGAL these unions are refused (exit 3, nothing written) on any -j
+    for label, path, extra in union_models:
+        dst = os.path.join(TMP, "refused.stl")
+        rc, _, err = T.run(["-q", "-o", dst, "-j", "2"] + extra + [path])
+        T.check(f"no CGAL: {label} with -j 2 refused (exit 3), nothing written",
+                rc == 3 and not os.path.exists(dst), err)
 for label, path, extra in models:
     files = {}
     for j in ["1", "2", "3", None]:

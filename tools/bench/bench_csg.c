@@ -15,7 +15,8 @@
  * bodies), check_s (the self-intersection checks of the input shells),
  * union_core_s (corefinement), verify_s (welding and the final exact check);
  * with several groups on several threads the stages overlap and only
- * solid_s (sampling + repair + union) is meaningful. */
+ * solid_s (sampling + repair + union) is meaningful. --no-repair: a body
+ * that meets no other passes without the self-intersection check. */
 #define _XOPEN_SOURCE 700
 #include <coons.h>
 #include <stdio.h>
@@ -89,7 +90,7 @@ int main(int argc, char **argv)
 {
     const char *model = NULL, *dir = ".";
     unsigned res = 92;
-    int repeat = 3, model_path = 0;
+    int repeat = 3, model_path = 0, repair = 1;
     unsigned threads = 1;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--resolution") && i + 1 < argc)
@@ -102,12 +103,14 @@ int main(int argc, char **argv)
             threads = (unsigned)atoi(argv[++i]);
         else if (!strcmp(argv[i], "--model-path"))
             model_path = 1;
+        else if (!strcmp(argv[i], "--no-repair"))
+            repair = 0;
         else
             model = argv[i];
     }
     if (!model) {
         fprintf(stderr, "usage: bench_csg MODEL [--resolution N] [--dir DIR] [--repeat R] "
-                        "[--model-path] [--threads T]\n");
+                        "[--model-path] [--threads T] [--no-repair]\n");
         return 2;
     }
     coons_error err = COONS_ERROR_INIT;
@@ -129,6 +132,7 @@ int main(int argc, char **argv)
         so.resolution = res;
         coons_csg_options co = COONS_CSG_OPTIONS_INIT;
         co.threads = threads;
+        co.repair = repair;
         co.progress = on_progress;
         stages st;
         memset(&st, 0, sizeof st);

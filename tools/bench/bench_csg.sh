@@ -139,6 +139,8 @@ echo
 echo "== two cubes sharing a face (left and its mirror image), libcoons 1 and 2 threads =="
 "$build/tools/bench/bench_csg" "$work/share.json" --model-path --threads 1 --resolution "$res" --dir "$work/share" | tee "$work/sh1.txt"
 "$build/tools/bench/bench_csg" "$work/share.json" --model-path --threads 2 --resolution "$res" --dir "$work/share" | tee "$work/sh2.txt"
+echo "-- the same, 1 thread, --no-repair (no self-intersection check of the glued shell) --"
+"$build/tools/bench/bench_csg" "$work/share.json" --model-path --threads 1 --no-repair --resolution "$res" --dir "$work/share" | tee "$work/sh3.txt"
 echo "== manifold3d: the two cube shells =="
 run_mf "$work/share"
 share_mfb=$mf_bool; share_mfp=$best
@@ -146,6 +148,8 @@ echo
 echo "== ten disjoint bodies (spools and cubes), libcoons 1 and 2 threads =="
 "$build/tools/bench/bench_csg" "$work/ten.json" --model-path --threads 1 --resolution "$res" --dir "$work/ten" | tee "$work/ten1.txt"
 "$build/tools/bench/bench_csg" "$work/ten.json" --model-path --threads 2 --resolution "$res" --dir "$work/ten" | tee "$work/ten2.txt"
+echo "-- the same, 1 thread, --no-repair (no self-intersection checks) --"
+"$build/tools/bench/bench_csg" "$work/ten.json" --model-path --threads 1 --no-repair --resolution "$res" --dir "$work/ten" | tee "$work/ten3.txt"
 g() { awk -v k="$2" '$1 == k {print $2}' "$1"; }
 
 echo
@@ -153,7 +157,8 @@ echo "== ratios =="
 python3 - "$(get total_s)" "$(get union_s)" "$(get2 total_s)" "$(get2 union_s)" "$three_mfp" "$three_mfb" "${os:-nan}" \
   "$(g "$work/sh1.txt" total_s)" "$(g "$work/sh2.txt" total_s)" "$(g "$work/sh1.txt" fast_unions)" "$share_mfb" "$share_mfp" \
   "$(g "$work/ten1.txt" total_s)" "$(g "$work/ten1.txt" sample_s)" "$(g "$work/ten1.txt" write_s)" "$(g "$work/ten1.txt" load_s)" \
-  "$(g "$work/ten2.txt" total_s)" "$(g "$work/ten2.txt" sample_s)" "$(g "$work/ten2.txt" write_s)" "$(g "$work/ten2.txt" load_s)" <<'PY'
+  "$(g "$work/ten2.txt" total_s)" "$(g "$work/ten2.txt" sample_s)" "$(g "$work/ten2.txt" write_s)" "$(g "$work/ten2.txt" load_s)" \
+  "$(g "$work/sh3.txt" total_s)" "$(g "$work/ten3.txt" total_s)" "$(g "$work/ten3.txt" sample_s)" "$(g "$work/ten3.txt" write_s)" "$(g "$work/ten3.txt" load_s)" <<'PY'
 import sys
 a = sys.argv[1:]
 tot, uni, tot2, uni2, mfp, mfb, os_ = map(float, a[:7])
@@ -168,6 +173,11 @@ if os_ == os_:
 print("shared face: libcoons model->STL %.3f s / %.3f s (%d corefinements) vs manifold3d Boolean "
       "%.3f s (process %.3f s): manifold3d's Boolean takes %.2fx / %.2fx" %
       (sh1, sh2, shfu, shmfb, shmfp, shmfb / sh1, shmfb / sh2))
+sh3, t3, s3, w3, l3 = map(float, a[20:25])
+print("shared face, --no-repair: libcoons model->STL %.3f s vs manifold3d Boolean %.3f s: "
+      "manifold3d's Boolean takes %.2fx" % (sh3, shmfb, shmfb / sh3))
+print("ten disjoint, --no-repair: %.3f s vs sampling+writing %.3f s: %.2fx" %
+      (t3, l3 + s3 + w3, t3 / (l3 + s3 + w3)))
 print("ten disjoint: libcoons model->STL %.3f s vs sampling+writing %.3f s: %.2fx (1 thread); "
       "%.3f s vs %.3f s: %.2fx (2 threads)" %
       (t1, l1 + s1 + w1, t1 / (l1 + s1 + w1), t2, l2 + s2 + w2, t2 / (l2 + s2 + w2)))
