@@ -75,6 +75,17 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
     const IK::Point_3 &v = P[s[si[0]]];
     const IK::Point_3 &s1 = P[s[(si[0] + 1) % 3]], &s2 = P[s[(si[0] + 2) % 3]];
     const IK::Point_3 &t1 = P[t[(ti[0] + 1) % 3]], &t2 = P[t[(ti[0] + 2) % 3]];
+    // Along some axis, one triangle's other vertices strictly below v and
+    // the other's not below it: they meet only at v (exact comparisons;
+    // this settles about half the pairs of a flat fan, whose orientation
+    // tests below are exact zeros and cost an exact evaluation each).
+    for (int c = 0; c < 3; c++) {
+        double vc = v[c];
+        if (s1[c] < vc && s2[c] < vc && t1[c] >= vc && t2[c] >= vc) return false;
+        if (t1[c] < vc && t2[c] < vc && s1[c] >= vc && s2[c] >= vc) return false;
+        if (s1[c] > vc && s2[c] > vc && t1[c] <= vc && t2[c] <= vc) return false;
+        if (t1[c] > vc && t2[c] > vc && s1[c] <= vc && s2[c] <= vc) return false;
+    }
     // One triangle strictly on one side of the other's plane (but for v):
     // they meet only at v. This settles almost every pair of a fan.
     CGAL::Orientation a1 = CGAL::orientation(v, s1, s2, t1), a2 = CGAL::orientation(v, s1, s2, t2);
