@@ -7,8 +7,13 @@
 #include "coons_internal.h"
 #include "csg/csg_records.h"
 #include "mesh_glue.h"
+#include "pinch.h"
 
-/* Repairs (and with `unite` unites) the parts of m, then frees m. */
+/* Repairs (and with `unite` unites) the parts of m, then frees m. The
+ * result's pinches (solids touching along a curve or at a point: edges of
+ * four triangles, vertices of two fans) are split (pinch.c), so that every
+ * part is a 2-manifold; the report counts them, and its nonmanifold_edges
+ * is what is left. */
 static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int unite,
                              coons_mesh **out, coons_csg_report *report, coons_error *err)
 {
@@ -17,7 +22,21 @@ static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int 
     co.unite = unite;
     coons_status st = coons_mesh_solidify(m, &co, out, report, err);
     coons_mesh_free(m);
-    return st;
+    if (st) return st;
+    size_t edges = 0, vertices = 0, left = 0;
+    st = coons__mesh_split_pinches(*out, &edges, &vertices, &left, err);
+    if (st) {
+        coons_mesh_free(*out);
+        *out = NULL;
+        coons__csg_report_clear(report);
+        return st;
+    }
+    if (report) {
+        report->pinch_edges_split += edges;
+        report->pinch_vertices_split += vertices;
+        report->nonmanifold_edges = left;
+    }
+    return COONS_OK;
 }
 
 /* The checks every entry makes first: the records' versions, then a

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 
 #include "cli.h"
+#include "mesh/pinch.h" /* coons__mesh_welded (coons_static) */
 
 /* ---- JSON values ------------------------------------------------------ */
 
@@ -287,7 +288,9 @@ static void print_csg_report(const coons_csg_report *rep)
            rep->fallbacks, rep->triangles_out, rep->rounding_merged, rep->close_merged,
            rep->slivers_fixed);
     json_bool("closed", rep->closed);
-    printf(", \"nonmanifold_edges\": %zu}}", rep->nonmanifold_edges);
+    printf(", \"nonmanifold_edges\": %zu, \"pinch_edges_split\": %zu, "
+           "\"pinch_vertices_split\": %zu}}",
+           rep->nonmanifold_edges, rep->pinch_edges_split, rep->pinch_vertices_split);
 }
 
 /* The object after "solid": (the mesh checks, then the CSG report). */
@@ -337,10 +340,16 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
     size_t pairs = 0, pairs32 = 0;
     if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
-    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections(solid, &pairs, &err);
+    /* Crossings are counted with the split pinches welded back: triangles
+     * that touch there share no vertex index but do not cross. */
+    coons_mesh *welded = NULL;
+    if (rc == COONS_OK && csg && rep.pinch_vertices_split)
+        rc = coons__mesh_welded(solid, &welded, &err);
+    const coons_mesh *counted = welded ? welded : solid;
+    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections(counted, &pairs, &err);
     int have32 = csg; /* not when the solid does not fit float32 (STL refuses it) */
     if (rc == COONS_OK && csg) {
-        coons_status r32 = coons_mesh_count_self_intersections_float(solid, &pairs32, &err);
+        coons_status r32 = coons_mesh_count_self_intersections_float(counted, &pairs32, &err);
         if (r32 == COONS_E_LIMIT)
             have32 = 0, pairs32 = 0;
         else
@@ -348,6 +357,7 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     }
     cli_progress_end();
     size_t parts = rc == COONS_OK ? coons_mesh_part_count(solid) : 0;
+    coons_mesh_free(welded);
     coons_mesh_free(solid);
     if (rc == COONS_E_NOMEM) {
         cli_message(0, "%s", err.message);
