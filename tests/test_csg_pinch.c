@@ -4,10 +4,13 @@
  * coons_mesh_solidify() alone returns it closed but pinched (edges of four
  * triangles, as the CGAL layer counts them and as coons_mesh_check()
  * counts them independently); coons__mesh_split_pinches() makes it a
- * closed, oriented 2-manifold of the same triangles (the same coordinates
- * corner by corner, the same volume); coons_model_solidify() returns
- * exactly that mesh, and reports the split. Welded back, the mesh is the
- * pinched one again and crosses nowhere. */
+ * closed, oriented 2-manifold of the same triangles (corner by corner
+ * where they were or moved apart by at most 1e-3 of the shortest edge
+ * there, far below the tolerance; the volume within what that allows),
+ * crossing nowhere in double or float32 (CGAL's exact counts), with the
+ * copies apart (welding by position merges nothing);
+ * coons_model_solidify() returns exactly that mesh, and reports the
+ * split. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -60,9 +63,22 @@ static void test_fold_pinch_split(void **state)
     assert_int_equal(coons_mesh_triangle_count(solid), coons_mesh_triangle_count(pinched));
     const double *va = coons_mesh_vertices(pinched), *vb = coons_mesh_vertices(solid);
     const uint32_t *ta = coons_mesh_triangles(pinched), *tb = coons_mesh_triangles(solid);
-    for (size_t k = 0; k < 3 * coons_mesh_triangle_count(solid); k++)
-        assert_memory_equal(va + 3 * (size_t)ta[k], vb + 3 * (size_t)tb[k], 3 * sizeof(double));
-    assert_true(coons_mesh_volume(solid) == coons_mesh_volume(pinched));
+    double dmax = 0;
+    for (size_t k = 0; k < 3 * coons_mesh_triangle_count(solid); k++) {
+        const double *p = va + 3 * (size_t)ta[k], *q = vb + 3 * (size_t)tb[k];
+        double d = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                        (p[2] - q[2]) * (p[2] - q[2]));
+        dmax = fmax(dmax, d);
+    }
+    double v0 = coons_mesh_volume(pinched), v1 = coons_mesh_volume(solid);
+    printf("largest move %.3g, volume %.12g -> %.12g\n", dmax, v0, v1);
+    assert_true(dmax > 0 && dmax < 0.01 * so.tolerance);
+    assert_true(fabs(v1 - v0) <= dmax * coons_mesh_area(solid));
+    size_t pairs = 99, pairs32 = 99;
+    assert_coons_ok(coons_mesh_count_self_intersections(solid, &pairs, &err), &err);
+    assert_coons_ok(coons_mesh_count_self_intersections_float(solid, &pairs32, &err), &err);
+    assert_int_equal(pairs, 0);
+    assert_int_equal(pairs32, 0);
 
     /* done by hand on the pinched mesh: the same result */
     size_t e = 0, v = 0, left = 9;
@@ -76,15 +92,10 @@ static void test_fold_pinch_split(void **state)
     assert_memory_equal(coons_mesh_triangles(pinched), tb,
                         3 * coons_mesh_triangle_count(solid) * sizeof(uint32_t));
 
-    /* welded back: pinched again, and crossing nowhere */
+    /* the copies are apart: welding by position merges nothing */
     coons_mesh *w = NULL;
     assert_coons_ok(coons__mesh_welded(solid, &w, &err), &err);
-    coons_mesh_report rw = COONS_MESH_REPORT_INIT;
-    assert_coons_ok(coons_mesh_check(w, &rw, &err), &err);
-    assert_int_equal(rw.nonmanifold_edges, r0.nonmanifold_edges);
-    size_t pairs = 99;
-    assert_coons_ok(coons_mesh_count_self_intersections(w, &pairs, &err), &err);
-    assert_int_equal(pairs, 0);
+    assert_int_equal(coons_mesh_vertex_count(w), coons_mesh_vertex_count(solid));
     coons_mesh_free(w);
     coons_mesh_free(shell);
     coons_mesh_free(pinched);

@@ -205,6 +205,7 @@ typedef struct plan {
     size_t *extra;     /* per part: extra vertices */
     size_t before;     /* edges of more than two triangles before */
     size_t split_vertices;
+    unsigned char *split; /* per vertex of the mesh: written more than once */
 } plan;
 
 static int push_src(plan *pl, uint32_t v)
@@ -269,6 +270,7 @@ static int plan_part(const coons_mesh *m, size_t pi, plan *pl, slot *sl, uint32_
                     if (!push_src(pl, v[k])) return 0;
                     if (!(seen[local] & 2)) pl->split_vertices++;
                     seen[local] |= 2;
+                    pl->split[v[k]] = 1;
                 }
             }
             pl->newtri[3 * (p->tri_first + t) + k] = root[r];
@@ -276,6 +278,59 @@ static int plan_part(const coons_mesh *m, size_t pi, plan *pl, slot *sl, uint32_
     }
     pl->extra[pi] = extra;
     return 1;
+}
+
+/* The copies of a split vertex moved apart, each into its own fan's solid
+ * (against the sum of its triangles' outward normals) by a small fraction
+ * of the fan's shortest edge, at least a few float32 units of the
+ * coordinate: readers that weld vertices by position (every STL reader,
+ * OpenSCAD's Booleans, which snap to a grid of 2^-20) would otherwise make
+ * the pinch again. acc: 4 doubles per vertex. */
+#define PINCH_SHIFT 1e-3 /* of the fan's shortest edge */
+#define PINCH_SHIFT_MAX 1e-2
+#define PINCH_FLOAT_ULPS 16.0
+
+static void separate(coons_mesh *m, const unsigned char *split, const uint32_t *orig, double *acc)
+{
+    for (size_t x = 0; x < m->nv; x++) {
+        acc[4 * x] = acc[4 * x + 1] = acc[4 * x + 2] = 0;
+        acc[4 * x + 3] = HUGE_VAL;
+    }
+    for (size_t i = 0; i < m->nparts; i++) {
+        const coons__mesh_part *p = &m->parts[i];
+        double sign = part_inward(m, p) ? -1.0 : 1.0;
+        for (size_t t = p->tri_first; t < p->tri_first + p->tri_count; t++) {
+            const uint32_t *v = m->tri + 3 * t;
+            if (degenerate(v)) continue;
+            for (int k = 0; k < 3; k++) {
+                uint32_t x = v[k];
+                if (!split[orig[x]]) continue;
+                const double *a = m->xyz + 3 * (size_t)x, *b = m->xyz + 3 * (size_t)v[(k + 1) % 3],
+                             *c = m->xyz + 3 * (size_t)v[(k + 2) % 3];
+                double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                double l1 = sqrt(dot(e1, e1)), l2 = sqrt(dot(e2, e2));
+                double s1 = pow2_scale(e1), s2 = pow2_scale(e2), n[3];
+                for (int d = 0; d < 3; d++) e1[d] *= s1, e2[d] *= s2;
+                cross(e1, e2, n); /* outward, scaled: only its direction counts */
+                double len = sqrt(dot(n, n));
+                if (!(len > 0)) continue;
+                for (int d = 0; d < 3; d++) acc[4 * x + d] += sign * n[d] / len;
+                acc[4 * x + 3] = fmin(acc[4 * x + 3], fmin(l1, l2));
+            }
+        }
+    }
+    for (size_t x = 0; x < m->nv; x++) {
+        if (!split[orig[x]]) continue;
+        double *n = acc + 4 * x, len = sqrt(dot(n, n));
+        if (!(len > 0) || !isfinite(acc[4 * x + 3])) continue;
+        double *q = m->xyz + 3 * x;
+        double big = fmax(fabs(q[0]), fmax(fabs(q[1]), fabs(q[2])));
+        double h = acc[4 * x + 3];
+        double step = fmax(PINCH_SHIFT * h, PINCH_FLOAT_ULPS * ldexp(big, -23));
+        step = fmin(step, PINCH_SHIFT_MAX * h);
+        for (int d = 0; d < 3; d++) q[d] -= step * n[d] / len;
+    }
 }
 
 coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_t *vertices_split,
@@ -298,9 +353,11 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
     unsigned char *seen = coons__malloc(maxv + 1);
     pl.newtri = coons__malloc_array(3 * m->nt + 1, sizeof *pl.newtri);
     pl.extra = coons__calloc(m->nparts + 1, sizeof *pl.extra);
-    double *xyz = NULL, *uvw = NULL;
+    pl.split = coons__calloc(m->nv + 1, 1);
+    double *xyz = NULL, *uvw = NULL, *acc = NULL;
+    uint32_t *orig = NULL;
     coons_status st = COONS_OK;
-    if (!sl || !uf || !root || !buf || !seen || !pl.newtri || !pl.extra) goto nomem;
+    if (!sl || !uf || !root || !buf || !seen || !pl.newtri || !pl.extra || !pl.split) goto nomem;
     for (size_t i = 0; i < m->nparts; i++)
         if (!plan_part(m, i, &pl, sl, uf, root, buf, seen)) goto nomem;
     size_t left = 0;
@@ -315,17 +372,23 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
         xyz = coons__malloc_array(3 * nv, sizeof *xyz);
         if (!xyz) goto nomem;
         if (m->uvw && !(uvw = coons__malloc_array(3 * nv, sizeof *uvw))) goto nomem;
+        acc = coons__malloc_array(4 * nv, sizeof *acc);
+        orig = coons__malloc_array(nv, sizeof *orig);
+        if (!acc || !orig) goto nomem;
         /* Nothing fails from here on: the mesh is rewritten. */
         size_t cursor = 0, s = 0;
         for (size_t i = 0; i < m->nparts; i++) {
             coons__mesh_part *p = &m->parts[i];
             size_t first = cursor;
             memcpy(xyz + 3 * cursor, m->xyz + 3 * p->vert_first, 3 * p->vert_count * sizeof *xyz);
+            for (size_t k = 0; k < p->vert_count; k++)
+                orig[cursor + k] = (uint32_t)(p->vert_first + k);
             if (uvw)
                 memcpy(uvw + 3 * cursor, m->uvw + 3 * p->vert_first,
                        3 * p->vert_count * sizeof *uvw);
             cursor += p->vert_count;
             for (size_t e = 0; e < pl.extra[i]; e++, s++, cursor++) {
+                orig[cursor] = pl.src[s];
                 memcpy(xyz + 3 * cursor, m->xyz + 3 * (size_t)pl.src[s], 3 * sizeof *xyz);
                 if (uvw) memcpy(uvw + 3 * cursor, m->uvw + 3 * (size_t)pl.src[s], 3 * sizeof *uvw);
             }
@@ -345,6 +408,7 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
             uvw = NULL;
         }
         m->nv = nv;
+        separate(m, pl.split, orig, acc);
         for (size_t i = 0; i < m->nparts; i++) {
             const coons__mesh_part *p = &m->parts[i];
             left += count_nonmanifold(sl, part_slots(m->tri + 3 * p->tri_first, p->tri_count, sl));
@@ -367,6 +431,9 @@ done:
     coons__free(pl.newtri);
     coons__free(pl.src);
     coons__free(pl.extra);
+    coons__free(pl.split);
+    coons__free(acc);
+    coons__free(orig);
     coons__free(xyz);
     coons__free(uvw);
     return st;

@@ -9,15 +9,18 @@ coons2stl, checked by this test's own readers and counts:
   split (csg.pinch_edges_split, csg.pinch_vertices_split > 0) and a
   2-manifold solid, no warning; the OFF written is, counted here, closed
   and 2-manifold by index (every edge run once each way, every vertex's
-  triangles one cycle around it), while welded by position (what the
-  vertices' coordinates alone say) it has edges of four triangles: the
-  pinch is still there in the geometry, split in the topology; its volume
-  equals --info's and the STL's (same triangles);
+  triangles one cycle around it), and its vertices merged where they lie
+  within 1e-4 (1/40 of the tolerance) it has again the pinch, as many
+  edges of four triangles as --info says were split: the pinch's copies
+  were moved apart by a few 1e-5 into their own solid; its volume equals
+  --info's and the STL's (same triangles), and the pinched mesh's within
+  1e-5 relative;
+- the STL welded by position, as every STL reader welds it, is closed and
+  2-manifold too;
 - OpenSCAD (the real openscad) takes the .scad in a Boolean:
   difference() with a cube, rendered to STL, exit 0, a non-empty result of
-  the expected volume (the fold less the cube's part); the same polyhedron
-  with its vertices welded by position (the pinched mesh, as before the
-  split) is refused;
+  the expected volume (half the fold's: it is symmetric about x = 0.5);
+  the pinched polyhedron (the copies merged again) is refused;
 - two thin boxes 1e-5 apart at z = 1000 (tests/data/csg/float32-crossing.json):
   in double precision they meet nowhere, rounded to float32 their facing
   sides coincide: -o x.stl (binary and ASCII, file and standard output)
@@ -34,6 +37,7 @@ written, as documented; the rest needs CGAL and is not run.
 Usage: test_cli_manifold.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
+import math
 import os
 import shutil
 import struct
@@ -83,15 +87,30 @@ def read_stl(path):
     return [struct.unpack_from("<12f", data, 84 + 50 * i)[3:] for i in range(n)]
 
 
-def weld(verts, faces):
-    """The same triangles with vertices of equal coordinates merged."""
-    index, out = {}, []
-    for p in verts:
-        if p not in index:
-            index[p] = len(index)
-    for f in faces:
-        out.append(tuple(index[verts[i]] for i in f))
-    return out
+def weld_close(verts, faces, eps):
+    """(vertices, faces) with vertices closer than eps merged (grid hash,
+    union-find): the copies of a split pinch become one vertex again."""
+    parent = list(range(len(verts)))
+
+    def find(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+    grid = {}
+    for i, p in enumerate(verts):
+        grid.setdefault(tuple(int(math.floor(x / eps)) for x in p), []).append(i)
+    for key, ids in grid.items():
+        near = [j for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)
+                for j in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), [])]
+        for i in ids:
+            for j in near:
+                if i < j and math.dist(verts[i], verts[j]) < eps:
+                    parent[find(j)] = find(i)
+    roots = sorted(set(find(i) for i in range(len(verts))))
+    index = {r: k for k, r in enumerate(roots)}
+    return ([verts[r] for r in roots],
+            [tuple(index[find(i)] for i in f) for f in faces])
 
 
 def edge_uses(faces):
@@ -225,16 +244,18 @@ if ok:
     T.check("fold .off: closed and 2-manifold by index (each edge once each way, counted here)",
             closed_2manifold(f))
     T.check("fold .off: every vertex's triangles one fan (counted here)", one_fan_each(f))
-    w = weld(v, f)
-    n4 = four_face_edges(w)
-    T.check(f"fold .off welded by position: the pinch is there ({n4} edges of 4 triangles)",
-            n4 == c.get("pinch_edges_split") and not closed_2manifold(w), f"{n4} vs {c}")
-    T.check("fold .off: as many vertices as --info, extra copies at the same positions",
-            len(v) == s["vertices"] and len(set(v)) < len(v)
-            and len(v) - len(set(v)) >= c.get("pinch_vertices_split", 0), f"{len(v)} {len(set(v))}")
+    pv, pf = weld_close(v, f, 1e-4)
+    n4 = four_face_edges(pf)
+    T.check(f"fold .off, vertices within 1e-4 merged: the pinch again, {n4} edges of 4 triangles "
+            "= pinch_edges_split, one vertex less per split vertex",
+            n4 == c.get("pinch_edges_split") and not closed_2manifold(pf)
+            and len(v) - len(pv) == c.get("pinch_vertices_split"), f"{n4} {len(v)} {len(pv)} {c}")
     vol = volume(v, f)
     T.check("fold .off: volume = --info's solid volume (same triangles)",
             abs(vol - s["volume"]) <= 1e-12 * abs(s["volume"]), f"{vol} vs {s['volume']}")
+    vp = volume(pv, pf)
+    T.check("fold .off: volume = the pinched mesh's within 1e-5 relative",
+            abs(vol - vp) <= 1e-5 * abs(vp), f"{vol} vs {vp}")
     stl = os.path.join(TMP, "fold.stl")
     rc, _, err = run(["-t", TOLF, "-o", stl, FOLD])
     if T.check("fold -o .stl: exit 0 (float32 rounding crosses nothing)", rc == 0, err):
@@ -242,6 +263,11 @@ if ok:
         T.check("fold .stl: the same triangles, same volume within float32 rounding",
                 len(tris) == len(f) and abs(tri_volume(tris) - vol) < 1e-5 * abs(vol),
                 f"{len(tris)} {tri_volume(tris)} {vol}")
+        index, sf = {}, []
+        for t in tris:
+            sf.append(tuple(index.setdefault(t[k:k + 3], len(index)) for k in (0, 3, 6)))
+        T.check("fold .stl welded by position (as STL readers do): closed and 2-manifold, "
+                "every vertex one fan", closed_2manifold(sf) and one_fan_each(sf))
 
 # ---- OpenSCAD takes it in a Boolean ------------------------------------------------
 scad = os.path.join(TMP, "fold.scad")
@@ -268,15 +294,9 @@ elif T.check("fold -o .scad: exit 0", rc == 0, err) and ok:
         got = tri_volume(read_stl(res))
         T.check(f"openscad: the difference's volume ({got:.6f}) is half the fold's ({vol / 2:.6f})",
                 abs(got - vol / 2) < 2e-4 * abs(vol), f"{got} vs {vol / 2}")
-    # The control: the same polyhedron pinched (welded by position) is refused.
-    idx = {}
-    for p in v:
-        idx.setdefault(p, len(idx))
-    pts = [None] * len(idx)
-    for p, i in idx.items():
-        pts[i] = p
+    # The control: the pinched polyhedron (the copies merged again) is refused.
     pinched = os.path.join(TMP, "pinched.scad")
-    scad_polyhedron(pinched, pts, w)
+    scad_polyhedron(pinched, pv, pf)
     mainp = os.path.join(TMP, "cutp.scad")
     with open(mainp, "w") as fh:
         fh.write(f"use <pinched.scad>\ndifference() {{ m(); {CUT} }}\n")
