@@ -188,12 +188,6 @@ static void csg_failure(const coons_model *m, long body, int repair, const char 
     static const char cgal[] = "CGAL could not complete the operation on bodies ";
     static const char ours[] = "bodies ";
     int unite = body < 0 && coons_model_operation(m) == COONS_OP_UNION;
-    const char *what = unite ? "repair or union" : "repair";
-    const char *hint = unite ? "Try another tolerance (-t), or write the bodies one at a time "
-                               "(--body)"
-                       : repair ? "Try another tolerance (-t), or --no-repair to write the "
-                                  "shell as sampled (crossing itself)"
-                                : "Try another tolerance (-t)";
     const char *names = NULL;
     int from_cgal = 0;
     if (strncmp(msg, cgal, sizeof cgal - 1) == 0) {
@@ -209,19 +203,24 @@ static void csg_failure(const coons_model *m, long body, int repair, const char 
         end = dots + 5;
     else if (end)
         end += 1;
-    if (!end) {
+    int len = end ? (int)(end - names) : 0;
+    int several = end && memchr(names, ',', (size_t)len) != NULL;
+    /* several bodies at once: their union (or repair) failed; one: its repair */
+    const char *what = several || (!end && unite) ? "repair or union" : "repair";
+    const char *hint = several ? "Try another tolerance (-t), or write the bodies one at a time "
+                                 "(--body NAME)"
+                       : repair ? "Try another tolerance (-t), or --no-repair to write the "
+                                  "shell as sampled (crossing itself)"
+                                : "Try another tolerance (-t)";
+    if (!end)
         cli_message(0, "%s: %s failed: %s; nothing was written. %s", shown, what, msg, hint);
-        return;
-    }
-    int len = (int)(end - names);
-    const char *plural = memchr(names, ',', (size_t)len) ? "ies" : "y";
-    if (from_cgal)
+    else if (from_cgal)
         cli_message(0, "%s: the %s of bod%s %.*s failed: CGAL could not complete it; nothing "
                        "was written. %s; --info shows CGAL's reason",
-                    shown, what, plural, len, names, hint);
+                    shown, what, several ? "ies" : "y", len, names, hint);
     else
         cli_message(0, "%s: the %s of bod%s %.*s failed: %s; nothing was written. %s", shown,
-                    what, plural, len, names, end + 2, hint);
+                    what, several ? "ies" : "y", len, names, end + 2, hint);
 }
 
 /*
