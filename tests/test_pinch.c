@@ -294,6 +294,45 @@ static void test_allocation_failures(void **state)
     coons_mesh_free(ref);
 }
 
+/* coons__mesh_clone(): the same arrays and part records; each allocation
+ * failed in turn gives COONS_E_NOMEM and leaks nothing. */
+static void test_clone(void **state)
+{
+    (void)state;
+    soup a = {0}, b = {0};
+    add_cube(&a, 0, 0, 0);
+    add_cube(&b, 3, 0, 0);
+    const soup *parts[] = {&a, &b};
+    coons_mesh *m = mesh_of(parts, 2);
+    int done = 0;
+    for (long k = 0; k < 100 && !done; k++) {
+        coons_mesh *c = NULL;
+        coons_error err = COONS_ERROR_INIT;
+        coons_test_fail_after(k);
+        coons_status st = coons__mesh_clone(m, &c, &err);
+        coons_test_fail_after(-1);
+        if (st == COONS_OK) {
+            done = 1;
+            assert_int_equal(coons_mesh_vertex_count(c), 16);
+            assert_int_equal(coons_mesh_part_count(c), 2);
+            assert_memory_equal(coons_mesh_vertices(c), coons_mesh_vertices(m), 48 * sizeof(double));
+            assert_memory_equal(coons_mesh_triangles(c), coons_mesh_triangles(m),
+                                72 * sizeof(uint32_t));
+            assert_string_equal(coons_mesh_part_name(c, 1), coons_mesh_part_name(m, 1));
+            size_t r[4], q[4];
+            coons_mesh_part_range(c, 1, &r[0], &r[1], &r[2], &r[3]);
+            coons_mesh_part_range(m, 1, &q[0], &q[1], &q[2], &q[3]);
+            assert_memory_equal(r, q, sizeof r);
+            coons_mesh_free(c);
+        } else {
+            assert_int_equal(st, COONS_E_NOMEM);
+            assert_null(c);
+        }
+    }
+    assert_true(done);
+    coons_mesh_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -303,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_three_wedges_around_an_axis),
         cmocka_unit_test(test_parts_move),
         cmocka_unit_test(test_allocation_failures),
+        cmocka_unit_test(test_clone),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

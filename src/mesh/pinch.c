@@ -507,3 +507,39 @@ done:
     *out = w;
     return COONS_OK;
 }
+
+coons_status coons__mesh_clone(const coons_mesh *m, coons_mesh **out, coons_error *err)
+{
+    *out = NULL;
+    coons_mesh *c = NULL;
+    coons_status st = coons_mesh_new(&c, err);
+    if (st) return st;
+    c->xyz = coons__malloc_array(3 * m->nv + 1, sizeof *c->xyz);
+    c->tri = coons__malloc_array(3 * m->nt + 1, sizeof *c->tri);
+    c->parts = coons__calloc(m->nparts + 1, sizeof *c->parts);
+    c->uvw = m->uvw ? coons__malloc_array(3 * m->nv + 1, sizeof *c->uvw) : NULL;
+    if (!c->xyz || !c->tri || !c->parts || (m->uvw && !c->uvw)) goto nomem;
+    c->cap_v = 3 * m->nv + 1;
+    c->cap_t = 3 * m->nt + 1;
+    c->cap_p = m->nparts + 1;
+    c->cap_uvw = c->uvw ? 3 * m->nv + 1 : 0;
+    memcpy(c->xyz, m->xyz, 3 * m->nv * sizeof *c->xyz);
+    memcpy(c->tri, m->tri, 3 * m->nt * sizeof *c->tri);
+    if (c->uvw) memcpy(c->uvw, m->uvw, 3 * m->nv * sizeof *c->uvw);
+    c->nv = m->nv;
+    c->nt = m->nt;
+    for (size_t i = 0; i < m->nparts; i++) {
+        size_t len = strlen(m->parts[i].name);
+        char *name = coons__malloc(len + 1);
+        if (!name) goto nomem;
+        memcpy(name, m->parts[i].name, len + 1);
+        c->parts[i] = m->parts[i];
+        c->parts[i].name = name;
+        c->nparts = i + 1;
+    }
+    *out = c;
+    return COONS_OK;
+nomem:
+    coons_mesh_free(c);
+    return coons__error_nomem(err);
+}

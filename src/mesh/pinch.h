@@ -43,6 +43,9 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
  */
 coons_status coons__mesh_welded(const coons_mesh *m, coons_mesh **out, coons_error *err);
 
+/* A deep copy of `m` (parts and their records, parameters). */
+coons_status coons__mesh_clone(const coons_mesh *m, coons_mesh **out, coons_error *err);
+
 #ifdef __cplusplus
 }
 #endif
