@@ -93,7 +93,7 @@ typedef struct coons_csg_report {
     size_t pinch_edges_split;   /**< edges of 2k > 2 faces (solids touching along a curve)
                                      split into k edges of two faces each (model solids) */
     size_t pinch_vertices_split; /**< vertices whose triangles formed more than one fan,
-                                      written once per fan (same coordinates) */
+                                      written once per fan (copies moved apart slightly) */
 } coons_csg_report;
 
 #define COONS_CSG_REPORT_INIT {COONS_CSG_REPORT_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
@@ -150,9 +150,12 @@ COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_
  * sheets touch, bodies meeting along an edge), each edge of 2k > 2
  * triangles is split into k edges, pairing the triangles around it that
  * bound the same wedge of solid, and each vertex whose triangles form
- * several fans is written once per fan at the same coordinates (report:
- * `pinch_edges_split`, `pinch_vertices_split`; `nonmanifold_edges` is what
- * is left). coons_mesh_solidify() itself leaves pinches as they are.
+ * several fans is written once per fan, the copies moved apart into their
+ * own fans' solids by 1e-3 of the shortest edge there, so that readers
+ * that weld by position see a 2-manifold too; kept only when the exact
+ * count then finds no crossing (report: `pinch_edges_split`,
+ * `pinch_vertices_split`; `nonmanifold_edges` is what is left).
+ * coons_mesh_solidify() itself leaves pinches as they are.
  * @param[in] sopts  sampling options (NULL: defaults, model tolerance)
  * @param[in] copts  repair/union options (NULL: defaults); its `unite`
  *                   field is ignored: the model's operation decides. Its

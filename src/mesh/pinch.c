@@ -5,7 +5,7 @@
  * come out of the repair closed but pinched: edges of four (2k) triangles,
  * vertices whose triangles form several fans. Slicers and OpenSCAD's
  * Booleans refuse such a mesh; the same solid written with the pinch
- * edges and vertices doubled (same coordinates) is a 2-manifold.
+ * edges and vertices doubled (the copies a hair apart) is a 2-manifold.
  *
  * Per part: every triangle edge is a slot; slots are grouped by edge. An
  * edge of two triangles joins them. An edge of 2k > 2 triangles, k each
@@ -17,8 +17,10 @@
  * Then the corners of each vertex are grouped by the joins (union-find over
  * corners: a join of two triangles along an edge joins their corners at
  * both ends); each group is one fan and gets its own copy of the vertex.
- * Coordinates are never changed: the geometry, the volume and the
- * triangles are the same, only their vertex indices differ.
+ * The copies are then moved apart, each into its own solid (separate()),
+ * by far less than any tolerance: with equal coordinates every STL reader
+ * and OpenSCAD's Booleans (which snap to a 2^-20 grid) would weld them and
+ * see the pinch again. Nothing else moves.
  */
 #include <math.h>
 #include <stdlib.h>

@@ -13,15 +13,20 @@ extern "C" {
 
 /*
  * Makes every part of `m` a 2-manifold where its boundary touches itself,
- * in place, moving no vertex:
+ * in place:
  *  - an edge of 2k > 2 triangles, k of them running it one way and k the
  *    other, is split into k edges: the triangles are sorted by angle
  *    around the edge and each is paired with its neighbour on the side of
  *    the solid (the side its normal points away from), so that each pair
  *    bounds one wedge of solid;
  *  - then a vertex whose triangles form more than one fan (across the
- *    edges as paired) is written once per fan, at the same coordinates
- *    (and parameters); the triangles of each fan use their own copy.
+ *    edges as paired) is written once per fan (same parameters); the
+ *    triangles of each fan use their own copy, and every copy is moved
+ *    into its fan's solid (against the sum of the fan's unit normals) by
+ *    1e-3 of the fan's shortest edge, at least 16 float32 units of its
+ *    largest coordinate, at most 1e-2 of that edge: readers that weld
+ *    vertices by position (STL, OpenSCAD's Booleans) see a 2-manifold.
+ *    The move could in principle make triangles cross: the caller checks.
  * An edge whose triangles cannot be paired so (an odd number, unequal
  * directions, an order that does not alternate) is left as it is.
  * Counts are added to *edges_split (edges of more than two triangles
@@ -36,10 +41,8 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
 
 /*
  * A copy of `m` with the vertices of each part that have the same
- * coordinates merged into one (the pinches split above welded back): what
- * the crossing counts (coons_mesh_count_self_intersections()) look at, so
- * that triangles touching at a split pinch, which share no vertex index,
- * are not counted as crossing. Part names are kept, nothing else.
+ * coordinates merged into one (for the tests: after a split, nothing
+ * merges). Part names are kept, nothing else.
  */
 coons_status coons__mesh_welded(const coons_mesh *m, coons_mesh **out, coons_error *err);
 

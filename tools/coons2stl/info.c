@@ -11,7 +11,6 @@
 #include <stdlib.h>
 
 #include "cli.h"
-#include "mesh/pinch.h" /* coons__mesh_welded (coons_static) */
 
 /* ---- JSON values ------------------------------------------------------ */
 
@@ -340,16 +339,10 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
     size_t pairs = 0, pairs32 = 0;
     if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
-    /* Crossings are counted with the split pinches welded back: triangles
-     * that touch there share no vertex index but do not cross. */
-    coons_mesh *welded = NULL;
-    if (rc == COONS_OK && csg && rep.pinch_vertices_split)
-        rc = coons__mesh_welded(solid, &welded, &err);
-    const coons_mesh *counted = welded ? welded : solid;
-    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections(counted, &pairs, &err);
+    if (rc == COONS_OK && csg) rc = coons_mesh_count_self_intersections(solid, &pairs, &err);
     int have32 = csg; /* not when the solid does not fit float32 (STL refuses it) */
     if (rc == COONS_OK && csg) {
-        coons_status r32 = coons_mesh_count_self_intersections_float(counted, &pairs32, &err);
+        coons_status r32 = coons_mesh_count_self_intersections_float(solid, &pairs32, &err);
         if (r32 == COONS_E_LIMIT)
             have32 = 0, pairs32 = 0;
         else
@@ -357,7 +350,6 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
     }
     cli_progress_end();
     size_t parts = rc == COONS_OK ? coons_mesh_part_count(solid) : 0;
-    coons_mesh_free(welded);
     coons_mesh_free(solid);
     if (rc == COONS_E_NOMEM) {
         cli_message(0, "%s", err.message);

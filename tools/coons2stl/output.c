@@ -16,7 +16,6 @@
 #include <sys/stat.h>
 
 #include "cli.h"
-#include "mesh/pinch.h" /* coons__mesh_welded (coons_static) */
 
 /* SIGINT, SIGTERM and SIGHUP while the output file is being written only set
  * this flag: the library polls it (coons_write_options.cancel), removes its
@@ -134,8 +133,7 @@ static int write_named(const coons_model *m, coons_mesh *mesh, coons_format form
 /*
  * Whether the STL of `mesh` must be refused (reported): its triangles do
  * not cross in double precision, but rounded to float32 as STL stores them
- * some pairs would. Counted with split pinches welded back (they touch,
- * they do not cross). One exact count (CGAL's box intersection, exact
+ * some pairs would. One exact count (CGAL's box intersection, exact
  * predicates) on the float32 coordinates; a second, on the double ones,
  * only when that finds a crossing: a mesh that already crosses (written
  * with --no-repair, isoparametric surfaces) is written as it is. Without
@@ -148,12 +146,9 @@ static int stl_rounding_refused(const coons_mesh *mesh, coons_format format, con
         !coons_csg_is_available())
         return 0;
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *welded = NULL;
     size_t pairs32 = 0, pairs = 0;
-    coons_status rc = coons__mesh_welded(mesh, &welded, &err);
-    if (rc == COONS_OK) rc = coons_mesh_count_self_intersections_float(welded, &pairs32, &err);
-    if (rc == COONS_OK && pairs32) rc = coons_mesh_count_self_intersections(welded, &pairs, &err);
-    coons_mesh_free(welded);
+    coons_status rc = coons_mesh_count_self_intersections_float(mesh, &pairs32, &err);
+    if (rc == COONS_OK && pairs32) rc = coons_mesh_count_self_intersections(mesh, &pairs, &err);
     if (rc == COONS_E_LIMIT) return 0;
     if (rc != COONS_OK) {
         cli_message(0, "%s: checking the STL's float32 coordinates for crossings failed: %s; "
