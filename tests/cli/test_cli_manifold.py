@@ -17,6 +17,9 @@ coons2stl, checked by this test's own readers and counts:
   1e-5 relative;
 - the STL welded by position, as every STL reader welds it, is closed and
   2-manifold too;
+- three boxes united, two meeting along an edge and two at a point: the
+  edge's segments and vertices and the point split, three shells, and
+  OpenSCAD takes the union in a difference() (volume 2.125, computed here);
 - OpenSCAD (the real openscad) takes the .scad in a Boolean:
   difference() with a cube, rendered to STL, exit 0, a non-empty result of
   the expected volume (half the fold's: it is symmetric about x = 0.5);
@@ -304,6 +307,49 @@ elif T.check("fold -o .scad: exit 0", rc == 0, err) and ok:
     rc, logp = openscad(mainp, resp)
     T.check("openscad: the same fold pinched (before the split) is refused in the Boolean",
             rc != 0 or "not closed" in logp or "ERROR" in logp, logp)
+
+# ---- a union of boxes meeting along an edge and at a point -----------------------------
+def box(name, lo, hi):
+    return {"type": "body0", "name": name,
+            "corners": [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                        for z in (lo[2], hi[2])]}
+
+
+edge = os.path.join(TMP, "edge.json")
+with open(edge, "w") as fh:
+    # a and b share the edge x = y = 1; b and c the point (2, 2, 1)
+    json.dump({"coons": 1, "operation": "union", "bodies": [
+        box("a", [0, 0, 0], [1, 1, 1]), box("b", [1, 1, 0], [2, 2, 1]),
+        box("c", [2, 2, 1], [3, 3, 2])]}, fh)
+rc, je, err = info([edge])
+se = je["solid"] if je else {}
+ce = se.get("csg") or {}
+ne = ce.get("pinch_edges_split", 0)
+T.check("boxes meeting along an edge and at a point: united, the edge's segments split and "
+        "their vertices plus the point (one more vertex than segments, plus one)",
+        rc == 0 and ne > 0 and ce.get("pinch_vertices_split") == ne + 2
+        and se.get("manifold") and se.get("shells") == 3 and se.get("self_intersections") == 0
+        and abs(se.get("volume", 0) - 3) < 1e-3 and "2-manifold" not in err, f"{se} {err}")
+eoff = os.path.join(TMP, "edge.off")
+rc, _, err = run(["-o", eoff, edge])
+if T.check("boxes: -o .off exit 0, silent", rc == 0 and err == "", err):
+    v, f = read_off(eoff)
+    T.check("boxes .off: closed, 2-manifold, one fan per vertex (counted here)",
+            closed_2manifold(f) and one_fan_each(f))
+escad = os.path.join(TMP, "edge.scad")
+rc, _, err = run(["-o", escad, edge])
+if shutil.which("openscad") and T.check("boxes: -o .scad exit 0", rc == 0, err):
+    main = os.path.join(TMP, "cutedge.scad")
+    with open(main, "w") as fh:
+        fh.write("use <edge.scad>\ndifference() { edge(); translate([0.5, 0.5, 0.5]) "
+                 "cube([2, 2, 2]); }\n")
+    res = os.path.join(TMP, "cutedge.stl")
+    rc, log = openscad(main, res)
+    good = rc == 0 and os.path.exists(res) and os.path.getsize(res) > 200
+    # removed: 0.125 of a, 0.5 of b, 0.25 of c
+    got = tri_volume(read_stl(res)) if good else None
+    T.check(f"openscad: difference() of the boxes' union and a cube renders, volume {got} = 2.125",
+            good and "ERROR" not in log and abs(got - 2.125) < 1e-3, log)
 
 # ---- STL and float32 ---------------------------------------------------------------
 rc, jf, err = info([FLOAT])
