@@ -5,6 +5,11 @@
 # UndefinedBehaviorSanitizer for SECONDS seconds (default 60).
 #
 #   tools/fuzz.sh [SECONDS] [extra libFuzzer options...]
+#   tools/fuzz.sh solid [SECONDS] [extra libFuzzer options...]
+#
+# The second form fuzzes the target through repair and union
+# (tests/fuzz/fuzz_solid.c, CGAL instrumented too: the first build takes
+# several minutes; build directory build-fuzz-solid).
 #
 # Seeds: examples/*.json, tests/data/**/*.json and tests/fuzz/regressions/.
 # New interesting inputs accumulate in $COONS_FUZZ_BUILD/corpus (default
@@ -16,17 +21,31 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
+target=fuzz_model
+if [ "${1:-}" = solid ]; then
+  target=fuzz_solid
+  shift
+fi
 secs=${1:-60}
 shift || true
-build=${COONS_FUZZ_BUILD:-build-fuzz}
+if [ $target = fuzz_solid ]; then
+  build=${COONS_FUZZ_BUILD:-build-fuzz-solid}
+else
+  build=${COONS_FUZZ_BUILD:-build-fuzz}
+fi
 case $build in /*) ;; *) build="$here/$build" ;; esac
 
 command -v clang >/dev/null || { echo "fuzz.sh: clang is missing (tools/setup.sh)" >&2; exit 2; }
-# A C-only build: the fuzz target reaches no C++ code, and clang with
-# -fsanitize=fuzzer-no-link on CGAL would cost minutes.
-CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCOONS_FUZZ=ON -DCOONS_WITH_OPENMESH=OFF -DCOONS_WITH_CGAL=OFF >/dev/null
-cmake --build "$build" --target fuzz_model -j "${COONS_JOBS:-2}" >/dev/null
+if [ $target = fuzz_solid ]; then
+  CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCOONS_FUZZ=ON -DCOONS_WITH_LIB3MF=OFF >/dev/null
+else
+  # A C-only build: the model target reaches no C++ code, and clang with
+  # -fsanitize=fuzzer-no-link on CGAL would cost minutes.
+  CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCOONS_FUZZ=ON -DCOONS_WITH_OPENMESH=OFF -DCOONS_WITH_CGAL=OFF >/dev/null
+fi
+cmake --build "$build" --target $target -j "${COONS_JOBS:-2}" >/dev/null
 
 seeds="$build/seeds"
 rm -rf "$seeds"
@@ -41,7 +60,7 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 echo "fuzz.sh: fuzzing for ${secs} s ($(ls "$seeds" | wc -l) seeds, $(ls "$build/corpus" | wc -l) in the corpus)" >&2
 log="$build/fuzz.log"
 set +e
-"$build/tests/fuzz_model" "$build/corpus" "$seeds" \
+"$build/tests/$target" "$build/corpus" "$seeds" \
   -dict=tests/fuzz/model.dict -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 \
   -malloc_limit_mb=512 -max_len=16384 -print_final_stats=1 \
   -artifact_prefix=tests/fuzz/regressions/ "$@" >"$log" 2>&1

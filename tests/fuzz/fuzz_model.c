@@ -292,6 +292,105 @@ static void exercise_model(const coons_model *m, uint64_t h)
     coons_mesh_free(mesh);
 }
 
+/* ---- structure-aware mutation ------------------------------------------- */
+
+#ifdef COONS_FUZZ_LIBFUZZER
+size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned seed);
+
+/* Replaces bytes [a, b) of data by the text r, if it fits. */
+static size_t splice(uint8_t *data, size_t size, size_t max_size, size_t a, size_t b,
+                     const char *r)
+{
+    size_t n = strlen(r);
+    if (size - (b - a) + n > max_size) return 0;
+    memmove(data + a + n, data + b, size - b);
+    memcpy(data + a, r, n);
+    return size - (b - a) + n;
+}
+
+/* Half of the mutations keep a model's JSON valid and move one of its
+ * numbers across scales: to an extreme or special value (+-1e300,
+ * denormals, -0, huge degrees and multiplicities within the limits), by a
+ * power of ten, or to a neighbouring double. The rest are libFuzzer's own
+ * byte-level mutations (with the dictionary). */
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned seed)
+{
+    static const char *special[] = {
+        "1e300", "-1e300", "1e-300", "5e-324", "-5e-324", "-0", "0", "1e150", "1e-150",
+        "2.2250738585072014e-308", "1.7976931348623157e308", "1e16", "-1", "1", "2", "3",
+        "4", "7", "31", "64", "1000", "65536", "4294967297", "0.9999999999999999",
+        "1.0000000000000002", "0.5", "1e-9", "-1e-16"};
+    uint64_t r = (uint64_t)seed * 6364136223846793005ull + 1442695040888963407ull;
+    if ((r >> 33) & 1) return LLVMFuzzerMutate(data, size, max_size);
+    /* the numbers outside strings */
+    size_t count = 0;
+    int in_str = 0;
+    for (size_t i = 0; i < size; i++) {
+        uint8_t c = data[i];
+        if (in_str) {
+            if (c == '\\') i++;
+            else if (c == '"') in_str = 0;
+        } else if (c == '"') {
+            in_str = 1;
+        } else if ((c == '-' || (c >= '0' && c <= '9')) &&
+                   (i == 0 || !((data[i - 1] >= '0' && data[i - 1] <= '9') ||
+                                data[i - 1] == '.' || data[i - 1] == 'e' ||
+                                data[i - 1] == 'E' || data[i - 1] == '-' ||
+                                data[i - 1] == '+'))) {
+            count++;
+        }
+    }
+    if (count == 0) return LLVMFuzzerMutate(data, size, max_size);
+    size_t want = (size_t)((r >> 40) % count), k = 0, a = 0, b = 0;
+    in_str = 0;
+    for (size_t i = 0; i < size; i++) {
+        uint8_t c = data[i];
+        if (in_str) {
+            if (c == '\\') i++;
+            else if (c == '"') in_str = 0;
+            continue;
+        }
+        if (c == '"') {
+            in_str = 1;
+            continue;
+        }
+        if ((c == '-' || (c >= '0' && c <= '9')) &&
+            (i == 0 || !((data[i - 1] >= '0' && data[i - 1] <= '9') || data[i - 1] == '.' ||
+                         data[i - 1] == 'e' || data[i - 1] == 'E' || data[i - 1] == '-' ||
+                         data[i - 1] == '+'))) {
+            if (k++ == want) {
+                a = i;
+                b = i + 1;
+                while (b < size && strchr("0123456789.eE+-", data[b])) b++;
+                break;
+            }
+        }
+    }
+    char old[64], text[64];
+    size_t len = b - a < sizeof old - 1 ? b - a : sizeof old - 1;
+    memcpy(old, data + a, len);
+    old[len] = '\0';
+    double x = strtod(old, NULL);
+    switch ((r >> 20) % 4) {
+    case 0:
+    case 1:
+        snprintf(text, sizeof text, "%s", special[(r >> 8) % (sizeof special / sizeof *special)]);
+        break;
+    case 2: /* a power of ten, -300..300 */
+        snprintf(text, sizeof text, "%.17g", x * pow(10.0, (double)((int)((r >> 8) % 601) - 300)));
+        break;
+    default: /* the next double up or down */
+        snprintf(text, sizeof text, "%.17g", nextafter(x, ((r >> 8) & 1) ? INFINITY : -INFINITY));
+        break;
+    }
+    if (!strchr("-0123456789", text[0]) || strstr(text, "inf") || strstr(text, "nan"))
+        snprintf(text, sizeof text, "1e308");
+    size_t n = splice(data, size, max_size, a, b, text);
+    return n ? n : LLVMFuzzerMutate(data, size, max_size);
+}
+#endif
+
 /* ---- the target ------------------------------------------------------------ */
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
