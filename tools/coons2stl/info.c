@@ -287,7 +287,9 @@ static void print_csg_report(const coons_csg_report *rep)
            rep->fallbacks, rep->triangles_out, rep->rounding_merged, rep->close_merged,
            rep->slivers_fixed);
     json_bool("closed", rep->closed);
-    printf(", \"nonmanifold_edges\": %zu}}", rep->nonmanifold_edges);
+    printf(", \"nonmanifold_edges\": %zu, \"pinch_edges_split\": %zu, "
+           "\"pinch_vertices_split\": %zu}}",
+           rep->nonmanifold_edges, rep->pinch_edges_split, rep->pinch_vertices_split);
 }
 
 /* The object after "solid": (the mesh checks, then the CSG report). */
