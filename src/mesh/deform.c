@@ -35,7 +35,8 @@ typedef struct work {
     float *dev;
     /* edge -> midpoint vertex (open addressing; key 0 is empty) */
     uint64_t *key;
-    uint32_t *mid;
+    uint32_t *mid;  /* UINT32_MAX: measured and not split */
+    float *edev;    /* the edge's measured squared deviation */
     size_t cap_e;
     const coons_body *b;
     double tol, limit; /* limit = 0.9 * tol */
@@ -62,13 +63,16 @@ static coons_status reset_edges(work *w, size_t n)
     while (cap < 4 * n) cap *= 2;
     coons__free(w->key);
     coons__free(w->mid);
+    coons__free(w->edev);
     w->key = coons__calloc(cap, sizeof *w->key);
     w->mid = coons__malloc_array(cap, sizeof *w->mid);
+    w->edev = coons__malloc_array(cap, sizeof *w->edev);
     w->cap_e = cap;
-    return w->key && w->mid ? COONS_OK : coons__error_nomem(w->err);
+    return w->key && w->mid && w->edev ? COONS_OK : coons__error_nomem(w->err);
 }
 
-static coons_status add_vertex(work *w, const double q[3], uint32_t *id)
+/* A new vertex at parameters q; x: its image if known, else NULL. */
+static coons_status add_vertex(work *w, const double q[3], const double *x, uint32_t *id)
 {
     if (w->nv == UINT32_MAX) return coons__error_set(w->err, COONS_E_LIMIT, "deform: too many vertices");
     if (w->nv == w->cap_v) {
@@ -82,7 +86,10 @@ static coons_status add_vertex(work *w, const double q[3], uint32_t *id)
         w->cap_v = cap;
     }
     memcpy(w->q + 3 * w->nv, q, 3 * sizeof *q);
-    coons_body_eval(w->b, q[0], q[1], q[2], w->x + 3 * w->nv);
+    if (x)
+        memcpy(w->x + 3 * w->nv, x, 3 * sizeof *x);
+    else
+        coons_body_eval(w->b, q[0], q[1], q[2], w->x + 3 * w->nv);
     *id = (uint32_t)w->nv++;
     return COONS_OK;
 }
@@ -126,11 +133,10 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
     return best;
 }
 
-/* Squared distance from the image of the edge's parametric midpoint to its
- * chord. */
-static double edge_dev2(const work *w, uint32_t a, uint32_t b)
+/* Squared distance from the image x of the edge's parametric midpoint q to
+ * its chord. */
+static double edge_dev2(const work *w, uint32_t a, uint32_t b, double q[3], double x[3])
 {
-    double q[3], x[3];
     for (int d = 0; d < 3; d++) q[d] = 0.5 * (w->q[3 * a + d] + w->q[3 * b + d]);
     coons_body_eval(w->b, q[0], q[1], q[2], x);
     return seg_dist2(x, w->x + 3 * a, w->x + 3 * b);
@@ -156,19 +162,44 @@ static double face_dev2(const work *w, const uint32_t v[3])
     return worst;
 }
 
-/* Marks an edge (creating its midpoint once). */
+/* Marks an edge for splitting (creating its midpoint once). */
 static coons_status mark(work *w, uint32_t a, uint32_t b)
 {
     uint64_t k = edge_key(a, b);
     size_t i = slot(w, k);
-    if (w->key[i]) return COONS_OK;
+    if (w->key[i] && w->mid[i] != UINT32_MAX) return COONS_OK;
     double q[3];
     for (int d = 0; d < 3; d++) q[d] = 0.5 * (w->q[3 * a + d] + w->q[3 * b + d]);
     uint32_t id;
-    coons_status st = add_vertex(w, q, &id);
+    coons_status st = add_vertex(w, q, NULL, &id);
     if (st) return st;
+    if (!w->key[i]) w->edev[i] = 0.0f;
     w->key[i] = k;
     w->mid[i] = id;
+    return COONS_OK;
+}
+
+/* The edge's squared deviation, measured once per round (its two triangles
+ * share it); an edge beyond the limit is marked, its midpoint's image
+ * kept. */
+static coons_status measure_edge(work *w, uint32_t a, uint32_t b, double lim2, double *d2)
+{
+    uint64_t k = edge_key(a, b);
+    size_t i = slot(w, k);
+    if (w->key[i]) {
+        *d2 = w->edev[i];
+        return COONS_OK;
+    }
+    double q[3], x[3];
+    *d2 = edge_dev2(w, a, b, q, x);
+    uint32_t id = UINT32_MAX;
+    if (*d2 > lim2) {
+        coons_status st = add_vertex(w, q, x, &id);
+        if (st) return st;
+    }
+    w->key[i] = k;
+    w->mid[i] = id;
+    w->edev[i] = (float)*d2;
     return COONS_OK;
 }
 
@@ -195,9 +226,12 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
         double worst = face_dev2(w, v);
         int all = worst > lim2;
         for (int e = 0; e < 3 && !st; e++) {
-            double d2 = all ? 0 : edge_dev2(w, v[e], v[(e + 1) % 3]);
+            double d2 = 0;
+            if (all)
+                st = mark(w, v[e], v[(e + 1) % 3]);
+            else
+                st = measure_edge(w, v[e], v[(e + 1) % 3], lim2, &d2);
             worst = fmax(worst, d2);
-            if (all || d2 > lim2) st = mark(w, v[e], v[(e + 1) % 3]);
         }
         /* a triangle that needs splitting is measured again as its parts */
         w->dev[t] = worst > lim2 ? -1.0f : (float)sqrt(worst);
@@ -331,7 +365,7 @@ coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh
         double q[3];
         uint32_t id;
         for (int d = 0; d < 3; d++) q[d] = clamp01((xyz[3 * i + d] - L[d]) / (H[d] - L[d]));
-        st = add_vertex(&w, q, &id);
+        st = add_vertex(&w, q, NULL, &id);
     }
     if (!st && (!(w.tri = coons__malloc_array(nt ? nt : 1, 3 * sizeof *w.tri)) ||
                 !(w.dev = coons__malloc_array(nt ? nt : 1, sizeof *w.dev))))
@@ -349,9 +383,10 @@ coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh
     /* after 64 rounds that all split something, the last parts are measured */
     for (size_t t = 0; t < w.nt && !st; t++)
         if (w.dev[t] < 0) {
-            double worst = face_dev2(&w, w.tri + 3 * t);
+            double worst = face_dev2(&w, w.tri + 3 * t), q[3], x[3];
             for (int e = 0; e < 3; e++)
-                worst = fmax(worst, edge_dev2(&w, w.tri[3 * t + e], w.tri[3 * t + (e + 1) % 3]));
+                worst = fmax(worst, edge_dev2(&w, w.tri[3 * t + e], w.tri[3 * t + (e + 1) % 3],
+                                              q, x));
             w.dev[t] = (float)sqrt(worst);
         }
     double o[3], J[3][3];
@@ -391,5 +426,6 @@ coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh
     coons__free(w.tri);
     coons__free(w.key);
     coons__free(w.mid);
+    coons__free(w.edev);
     return st;
 }
