@@ -176,6 +176,11 @@ static void test_ascii(void **state)
     assert_coons_ok(read_mem(ASCII_TET, strlen(ASCII_TET), "tet.stl", 0, &m, &err), &err);
     check_tet(m);
     coons_mesh_free(m);
+    /* an empty solid is an empty mesh */
+    const char *empty = "solid nothing\nendsolid nothing\n";
+    assert_coons_ok(read_mem(empty, strlen(empty), "e.stl", 0, &m, &err), &err);
+    assert_int_equal(coons_mesh_triangle_count(m), 0);
+    coons_mesh_free(m);
 }
 
 /* ASCII_TET with `from` (first occurrence) replaced by `to`. */

@@ -11,8 +11,9 @@
 # against the I/O floor: a small program (built here against the library)
 # that reads the same STL with coons_mesh_read_file() and writes it back with
 # coons_mesh_write() (the atomic writer, fsync included), as coons2stl does.
-# Each is the minimum of REPEAT runs; the machine is shared, so the load
-# average is printed: compare ratios.
+# Each is the minimum of REPEAT runs, as wall time and as CPU time (user +
+# system, /usr/bin/time); the machine is shared, so the load average is
+# printed: compare ratios, and CPU times.
 # Usage: tools/bench/bench_deform.sh [BUILD_DIR [N [REPEAT]]]
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
@@ -23,9 +24,18 @@ bin=$build/tools/coons2stl
 cmake --build "$build" --target coons2stl coons >/dev/null
 work=$(mktemp -d "$build/bench-deform.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-now() { date +%s.%N; }
-elapsed() { python3 -c "print('%.3f' % ($2 - $1))"; }
 min() { printf '%s\n' "$@" | sort -g | head -1; }
+# timed VAR CMD...: runs CMD, appends its wall time to VAR_wall and its CPU
+# time to VAR_cpu
+timed() {
+  local var=$1 t
+  shift
+  /usr/bin/time -f "%e %U %S" -o "$work/time" "$@" >/dev/null
+  read -r w u s <"$work/time"
+  eval "${var}_wall+=($w)"
+  t=$(python3 -c "print('%.2f' % ($u + $s))")
+  eval "${var}_cpu+=($t)"
+}
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -80,28 +90,29 @@ cc -O2 -I"$here/include" -I"$build/include" "$work/rw.c" -o "$work/rw" \
 tris=$(python3 -c "import struct,sys; print(struct.unpack_from('<I', open(sys.argv[1],'rb').read(84), 80)[0])" "$work/cube.stl")
 echo "input: $tris triangles, $(stat -c %s "$work/cube.stl") bytes"
 
-floor=() spool=() ident=()
+floor_wall=() floor_cpu=() spool_wall=() spool_cpu=() ident_wall=() ident_cpu=()
 for _ in $(seq "$repeat"); do
-  t0=$(now); "$work/rw" "$work/cube.stl" "$work/copy.stl" >/dev/null; t1=$(now)
-  floor+=("$(elapsed "$t0" "$t1")")
-  t0=$(now); "$bin" -q "$here/examples/spool.json" --deform "$work/cube.stl" --body spool \
-    -o "$work/spool.stl"; t1=$(now)
-  spool+=("$(elapsed "$t0" "$t1")")
-  t0=$(now); "$bin" -q "$work/identity.json" --deform "$work/cube.stl" -o "$work/ident.stl"; t1=$(now)
-  ident+=("$(elapsed "$t0" "$t1")")
+  timed floor "$work/rw" "$work/cube.stl" "$work/copy.stl"
+  timed spool "$bin" -q "$here/examples/spool.json" --deform "$work/cube.stl" --body spool \
+    -o "$work/spool.stl"
+  timed ident "$bin" -q "$work/identity.json" --deform "$work/cube.stl" -o "$work/ident.stl"
 done
 out_tris=$(python3 -c "import struct,sys; print(struct.unpack_from('<I', open(sys.argv[1],'rb').read(84), 80)[0])" "$work/spool.stl")
 info=$("$bin" -q "$here/examples/spool.json" --deform "$work/cube.stl" --body spool --info)
 dev=$(python3 -c "import json,sys; d=json.loads(sys.argv[1])['deform']; print('%.4g of tolerance %.4g, %d rounds, output closed: %s' % (d['deviation'], d['tolerance'], d['rounds'], d['output_mesh']['closed']))" "$info")
-f=$(min "${floor[@]}") s=$(min "${spool[@]}") i=$(min "${ident[@]}")
-python3 - "$tris" "$out_tris" "$f" "$s" "$i" "$dev" <<'PY'
+python3 - "$tris" "$out_tris" "$dev" "$(min "${floor_wall[@]}")" "$(min "${floor_cpu[@]}")" \
+  "$(min "${spool_wall[@]}")" "$(min "${spool_cpu[@]}")" "$(min "${ident_wall[@]}")" \
+  "$(min "${ident_cpu[@]}")" <<'PY'
 import sys
-tris, out, f, s, i = int(sys.argv[1]), int(sys.argv[2]), *map(float, sys.argv[3:6])
-print(f"I/O floor (read + write the STL):           {f:7.3f} s")
-print(f"--deform through the spool (body 2):        {s:7.3f} s  {tris / s:10.0f} input triangles/s, "
-      f"{out} out, ratio to the floor {s / f:.2f}")
-print(f"--deform through the identity body 0:       {i:7.3f} s  {tris / i:10.0f} input triangles/s, "
-      f"ratio to the floor {i / f:.2f}")
-print(f"spool: deviation {sys.argv[6]}")
+tris, out, dev = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
+fw, fc, sw, sc, iw, ic = map(float, sys.argv[4:10])
+print(f"{'':38s} {'wall':>8s} {'CPU':>8s} {'tri/s (wall)':>13s} {'tri/s (CPU)':>12s} "
+      f"{'x floor (wall)':>15s} {'x floor (CPU)':>14s}")
+for name, w, c in (("I/O floor: read + write the STL", fw, fc),
+                   ("--deform through the spool (body 2)", sw, sc),
+                   ("--deform through the identity body 0", iw, ic)):
+    print(f"{name:38s} {w:7.2f}s {c:7.2f}s {tris / w:13.0f} {tris / max(c, 1e-9):12.0f} "
+          f"{w / fw:15.1f} {c / max(fc, 1e-9):14.1f}")
+print(f"spool: {tris} triangles in, {out} out; deviation {dev}")
 PY
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -360,12 +360,9 @@ static coons_status read_ascii_stl(reader *r)
 {
     coons_status st;
     size_t start, len;
-    for (;;) {
+    for (int solids = 0;; solids++) {
         len = token(r, 1, 0, &start);
-        if (!len && r->pos >= r->n) {
-            if (r->nt || r->nv) return COONS_OK;
-            return expected(r, start, len, "'solid'");
-        }
+        if (!len && r->pos >= r->n && solids) return COONS_OK;
         if (!token_is(r, start, len, "solid")) return expected(r, start, len, "'solid'");
         rest_of_line(r); /* the solid's name */
         for (;;) {
