@@ -532,6 +532,11 @@ def test_errors(t):
     refused("the output is the input", ["--deform", out], 2, ["refusing to overwrite"])
     st, _, err = r.run([model, "--deform", good, "-o", t.path("x.msh")])
     r.check("--deform to a volume format: exit 2", st == 2 and "surface" in err, err)
+    st, _, err = r.run([model, "--deform", good, "-o", t.path("x.vtu")])
+    with open(t.path("x.vtu"), "rb") as fh:
+        vtu = fh.read()
+    r.check("--deform to .vtu: a surface (12 triangles, VTK_TRIANGLE cells)",
+            st == 0 and b"UnstructuredGrid" in vtu and b'NumberOfCells="12"' in vtu, err)
     st, _, err = r.run([model, "--deform", t.path("missing.stl"), "-o", t.path("y.stl")])
     r.check("a missing input: exit 1, names it", st == 1 and "missing.stl" in err and
             not os.path.exists(t.path("y.stl")), err)

@@ -28,7 +28,8 @@ int cli_check_deform_options(options *o)
     if (o->resolution)
         return cli_usage_error("--resolution is for sampling bodies: --deform splits IN's "
                                "triangles to the tolerance (-t)");
-    if (cli_is_volume_format(o->format) && (o->output || o->format_arg))
+    if (cli_is_volume_format(o->format) && o->format != COONS_FORMAT_VTU &&
+        o->format != COONS_FORMAT_VTU_ASCII && (o->output || o->format_arg))
         return cli_usage_error("--deform writes a surface: use .stl, .off, .scad, .3mf or .vtu "
                                "(surface formats), not a volume-mesh format");
     if (o->frame_arg) {
