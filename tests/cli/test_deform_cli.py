@@ -349,6 +349,18 @@ def test_bent_bar(t):
     vol, ar = volume(Vo[Fo]), area(Vo[Fo])
     r.check(f"bent bar: volume {vol:.7g} = integral of det J {exact:.7g} within tol x area "
             f"({tol * ar:.3g})", abs(vol - exact) <= tol * ar)
+    # ten times finer: the error shrinks with the tolerance (chords: about
+    # tenfold), to the integral of det J
+    fine = t.path("bar-fine.off")
+    st, _, err = r.run([model, "--deform", stl, "--frame", "0,0,0,10,2,1", "-t", str(tol / 10),
+                        "-o", fine])
+    if r.check("bent bar at tol/10: exit 0", st == 0, err):
+        Vf, Ff = read_off(fine)
+        vf = volume(Vf[Ff])
+        r.check(f"bent bar at tol/10: volume {vf:.8g}, error {abs(vf - exact):.3g} < 1/4 of "
+                f"{abs(vol - exact):.3g} and within tol/10 x area",
+                abs(vf - exact) < abs(vol - exact) / 4 and
+                abs(vf - exact) <= tol / 10 * area(Vf[Ff]))
     # --info
     st, so, err = r.run(args + ["--info"])
     if r.check("bent bar --info: exit 0", st == 0, err):
