@@ -549,6 +549,11 @@ def test_errors(t):
         vtu = fh.read()
     r.check("--deform to .vtu: a surface (12 triangles, VTK_TRIANGLE cells)",
             st == 0 and b"UnstructuredGrid" in vtu and b'NumberOfCells="12"' in vtu, err)
+    two = parallelepiped()
+    two["bodies"].append(dict(two["bodies"][0], name="second"))
+    st, _, err = r.run([t.model("two.json", two), "--deform", good, "-o", t.path("two.stl")])
+    r.check("two bodies, no --body: body 0, with a warning naming it",
+            st == 0 and "deforming through body 0 ('box')" in err, err)
     st, _, err = r.run([model, "--deform", t.path("missing.stl"), "-o", t.path("y.stl")])
     r.check("a missing input: exit 1, names it", st == 1 and "missing.stl" in err and
             not os.path.exists(t.path("y.stl")), err)

@@ -179,6 +179,10 @@ int cli_deform(const coons_model *m, long body, const options *o)
     }
     size_t bi = body < 0 ? 0 : (size_t)body;
     const coons_body *b = coons_model_body(m, bi);
+    if (body < 0 && coons_model_body_count(m) > 1)
+        cli_message(1, "the model has %zu bodies: deforming through body 0 ('%s'); --body picks "
+                       "another",
+                    coons_model_body_count(m), coons_model_body_name(m, 0));
     coons_mesh_read_options ro = COONS_MESH_READ_OPTIONS_INIT;
     ro.max_triangles = o->max_triangles;
     coons_mesh *in = NULL, *out = NULL;
