@@ -408,9 +408,10 @@ COONS_EXPORT coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_repor
  * Free-form deformation (seed 000: Coons bodies as FFDs, after Sederberg
  * and Parry): a new mesh holding `in` mapped through body b, a point p
  * going to B((p - lo) / (hi - lo)). Triangles are split by edge bisection
- * until the image of every edge's parametric midpoint lies within
+ * until the image of every edge's parametric midpoint lies within 0.9 times
  * `tolerance` of the chord of its end images and the images of 4 inner
- * points of every triangle lie within `tolerance` of it; an edge is split
+ * points of every triangle lie within 0.9 times `tolerance` of it (the
+ * margin covers maxima between the samples); an edge is split
  * the same way in both its triangles, so a closed 2-manifold input stays
  * closed and 2-manifold, with its winding (reversed when b is left-handed,
  * so that an outward input stays outward). An affine body splits nothing
