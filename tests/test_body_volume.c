@@ -9,6 +9,7 @@
  * and a body 1 whose u edges are one polyline translated: F = P(u) +
  * (0, v Ly, w Lz), det J = x'(u) Ly Lz, a step function with a jump at
  * each of its many vertices, whose integral is (x(1) - x(0)) Ly Lz.
+ * The tensor volumes' det J grid is checked against det J point by point.
  */
 #include <math.h>
 #include <stdio.h>
@@ -186,6 +187,59 @@ static void test_polyline_body(void **state)
     free(q);
 }
 
+/* The polynomial tensor volumes' det J grid (contractions) agrees with
+ * det J point by point (coons_body_eval_jacobian): the smallest over a
+ * lattice, and where, as coons_body_min_jacobian() finds it. */
+static void check_min_jacobian(const coons_body *b, unsigned n)
+{
+    coons_error err = COONS_ERROR_INIT;
+    double mind = NAN, where[3];
+    assert_coons_ok(coons_body_min_jacobian(b, n, &mind, where, &err), &err);
+    double best = INFINITY, at[3] = {0, 0, 0}, scale = 0;
+    for (unsigned i = 0; i <= n; i++)
+        for (unsigned j = 0; j <= n; j++)
+            for (unsigned k = 0; k <= n; k++) {
+                double p[3], jac[3][3];
+                double d = coons_body_eval_jacobian(b, (double)i / n, (double)j / n,
+                                                    (double)k / n, p, jac);
+                scale = fmax(scale, fabs(d));
+                if (d < best) {
+                    best = d;
+                    at[0] = (double)i / n, at[1] = (double)j / n, at[2] = (double)k / n;
+                }
+            }
+    assert_near(mind, best, 1e-12 * scale);
+    for (int d = 0; d < 3; d++) assert_near(where[d], at[d], 1e-15);
+}
+
+static void test_tensor_det_grid(void **state)
+{
+    (void)state;
+    double truth;
+    coons_body *b = bezier_height(33, &truth);
+    check_min_jacobian(b, 12);
+    coons_body_free(b);
+    /* a B-spline volume of degrees 3, 2, 1 over a perturbed grid */
+    enum { NU = 6, NV = 5, NW = 3 };
+    double pts[NU * NV * NW * 3];
+    tb_rng rng = {99};
+    for (int i = 0; i < NU; i++)
+        for (int j = 0; j < NV; j++)
+            for (int k = 0; k < NW; k++) {
+                double *q = pts + 3 * ((i * NV + j) * NW + k);
+                q[0] = i + 0.3 * tb_rand(&rng);
+                q[1] = j + 0.3 * tb_rand(&rng) + 0.1 * i;
+                q[2] = k + 0.3 * tb_rand(&rng);
+            }
+    const int deg[3] = {3, 2, 1};
+    const size_t n[3] = {NU, NV, NW};
+    const double ku[] = {0, 0, 0, 0, 0.2, 0.7, 1, 1, 1, 1};
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons_body_new_bspline(deg, pts, n, ku, NULL, NULL, NULL, &b, &err), &err);
+    check_min_jacobian(b, 16);
+    coons_body_free(b);
+}
+
 static void test_null(void **state)
 {
     (void)state;
@@ -202,6 +256,7 @@ int main(void)
         cmocka_unit_test(test_bezier_cubic_exact),
         cmocka_unit_test(test_bezier_large),
         cmocka_unit_test(test_polyline_body),
+        cmocka_unit_test(test_tensor_det_grid),
         cmocka_unit_test(test_null),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
