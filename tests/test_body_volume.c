@@ -179,7 +179,7 @@ static void test_polyline_body(void **state)
     }
     double truth = Lx * Ly * Lz;
     size_t evals;
-    for (size_t budget = 1000; budget <= (size_t)1 << 17; budget *= 2)
+    for (size_t budget = 1000; budget <= (size_t)1 << 16; budget *= 2)
         check_bounded(b, truth, 1e-9, budget, 0, &evals);
     coons_body_free(b);
     for (int n = 0; n < 12; n++) coons_curve_free(e[n]);
