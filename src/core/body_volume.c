@@ -5,11 +5,16 @@
  * unit cube (change of variables), computed by tensor 5-point
  * Gauss-Legendre quadrature. Base cells are bounded by the breakpoints of
  * the body's data (knots, segment ends), where the map may be only finitely
- * smooth; each is split into c^3 sub-cells, c doubling until two
- * successive estimates agree. Within a base cell the map is smooth (a
- * polynomial for polynomial data) and the rule is exact for degree 9 per
- * variable: det J of a body of degree 3 per variable has degree 8, so
- * bicubic data converge at once and smooth data like h^10.
+ * smooth; each is split into c_u x c_v x c_w sub-cells, the c of one
+ * direction at a time doubling where the estimates show the error
+ * (coons_body_volume_bounded), within a budget of evaluations, and the
+ * achieved accuracy is returned with the volume. Within a base cell the
+ * map is smooth (a polynomial for polynomial data) and the rule is exact
+ * for degree 9 per variable: det J of a body of degree 3 per variable has
+ * degree 8, so bicubic data converge at once and smooth data like h^10.
+ * Where breakpoints are more than the list holds (a polyline of many
+ * segments), det J jumps inside cells and converges only like h: the
+ * budget ends the work, and the estimate says how far it got.
  * A negative det J somewhere means the body folds over itself.
  */
 #include <stdlib.h>
