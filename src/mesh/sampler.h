@@ -26,6 +26,8 @@ typedef struct sampler {
     double *t[3];          /* lattice values, n[d] + 1 of them, t[d][0] = 0, t[d][n] = 1 */
     size_t n[3];           /* intervals per direction */
     unsigned char *mark[3];/* intervals to halve */
+    double *need[3];       /* per interval: the factor by which the last scan
+                              predicts it must shrink (budget prediction) */
     size_t nv;             /* raw lattice vertices */
     double *pos;           /* 3 * nv */
     uint32_t *uf;          /* union-find parents over raw vertices */
