@@ -32,6 +32,7 @@
 
 #include <coons.h>
 #include <coons/io.h>
+#include <coons/volume.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -147,6 +148,41 @@ static void write_all(const coons_mesh *mesh)
     }
 }
 
+/* A hex mesh of the body on a 2 x 2 x 2 lattice (hex8, and hex20 or
+ * hex27 from the input's hash), through every volume writer. */
+static void volume_all(const coons_body *b, uint64_t h)
+{
+    static const coons_element E[] = {COONS_ELEMENT_HEX8, COONS_ELEMENT_HEX20,
+                                      COONS_ELEMENT_HEX27};
+    static const coons_format F[] = {COONS_FORMAT_VTK, COONS_FORMAT_MSH2, COONS_FORMAT_MSH4,
+                                     COONS_FORMAT_VTU, COONS_FORMAT_VTU_ASCII, COONS_FORMAT_INP};
+    coons_volume_options vo = COONS_VOLUME_OPTIONS_INIT;
+    vo.element = E[h % 3];
+    vo.resolution[0] = vo.resolution[1] = vo.resolution[2] = 2;
+    coons_volume_mesh *vm = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    coons_status rc = coons_body_volume_mesh(b, &vo, "fuzz", &vm, &err);
+    CHECK(rc == COONS_OK || rc == COONS_E_INVALID || rc == COONS_E_LIMIT,
+          "volume mesh: %d %s", rc, err.message);
+    if (rc) return;
+    for (size_t i = 0; i < sizeof F / sizeof F[0]; i++) {
+        char *text = NULL;
+        size_t len = 0;
+        FILE *fp = open_memstream(&text, &len);
+        if (!fp) break;
+        coons_write_options wo = COONS_WRITE_OPTIONS_INIT;
+        rc = coons_volume_mesh_write_stream(vm, fp, F[i], &wo, &err);
+        fclose(fp);
+        /* hex27 has no CalculiX element: refused, as documented */
+        CHECK(rc == COONS_OK || rc == COONS_E_UNSUPPORTED || rc == COONS_E_INVALID ||
+                  rc == COONS_E_LIMIT,
+              "writing %s: %d %s", coons_format_name(F[i]), rc, err.message);
+        if (rc == COONS_OK) CHECK(len > 0, "empty %s output", coons_format_name(F[i]));
+        free(text);
+    }
+    coons_volume_mesh_free(vm);
+}
+
 static void check_mesh(const coons_mesh *mesh)
 {
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
@@ -214,6 +250,7 @@ static void exercise_model(const coons_model *m, uint64_t h)
         long k = coons_model_find_body(m, name);
         CHECK(k >= 0 && (size_t)k <= i, "body %zu (%s) found at %ld", i, name, k);
         exercise_body(b);
+        volume_all(b, h);
         coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
         so.resolution = 2;
         so.max_triangles = 4000;
