@@ -51,6 +51,7 @@
 #include "coons_internal.h"
 #include "mesh_glue.h"
 #include "mesh_impl.h"
+#include "flat.h"
 #include "sampler.h"
 #include "union_find.h"
 
@@ -449,7 +450,9 @@ static void choose_diagonals(sampler *s)
 static void emit_cells(sampler *s)
 {
     size_t nt = 0;
+    s->flat_faces = 0;
     for (int f = 0; f < 6; f++) {
+        s->face_tri[f] = nt;
         if (s->glued & 1 << FACES[f].fixed || s->skip & 1u << f) continue;
         size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t p = 0; p < na; p++)
@@ -481,6 +484,7 @@ static void emit_cells(sampler *s)
                 }
             }
     }
+    s->face_tri[6] = nt;
     s->nt = nt;
 }
 
@@ -791,6 +795,8 @@ static coons_status run(sampler *s)
 
 static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
 {
+    coons_status fst = coons__flat_faces(s);
+    if (fst) return fst;
     if (!s->nt)
         return coons__error_set(s->err, COONS_E_INVALID,
                                 "body '%s' has no boundary surface: it collapses to a curve or "
@@ -877,7 +883,8 @@ coons_status coons__sampler_run(sampler *s)
     }
     s->measured = 0;
     s->dev = 0;
-    return run(s);
+    coons_status st = run(s);
+    return st ? st : coons__flat_faces(s);
 }
 
 void coons__sampler_free(sampler *s)

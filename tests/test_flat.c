@@ -1,0 +1,426 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Flat faces meshed from their boundary polygon (src/mesh/flat.c).
+ * The polygon mesher is checked on its own (white box, through the static
+ * library) against properties computed here: counter-clockwise triangles,
+ * every polygon edge used once, every other edge twice in opposite
+ * directions, areas summing to the shoelace area, m - 2 + 2s triangles for
+ * m boundary and s Steiner points (Euler's formula for a disc), Steiner
+ * points strictly inside, smallest angle above the bound. Bodies are
+ * checked through the public API: exact volume and area of boxes and
+ * parallelepipeds, every triangle in a face plane, per-face areas, a closed
+ * oriented shell, and a twisted face keeping its lattice. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mesh/flat.h"
+#include "test_util.h"
+
+#define PI 3.14159265358979323846
+
+/* The bound the tests hold the mesher to: the refinement aims at
+ * COONS__FLAT_MIN_ANGLE (20 degrees) and reaches it where the boundary
+ * allows; near polygon corners and spacing jumps a little less. */
+#define ANGLE_BOUND 18.0
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : (x > y);
+}
+
+static double tri_min_angle(const double *a, const double *b, const double *c, int dim)
+{
+    const double *p[3] = {a, b, c};
+    double best = 180;
+    for (int k = 0; k < 3; k++) {
+        double u[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) {
+            u[d] = p[(k + 1) % 3][d] - p[k][d];
+            v[d] = p[(k + 2) % 3][d] - p[k][d];
+        }
+        double uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+        double uu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        double vv = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        best = fmin(best, acos(fmax(-1, fmin(1, uv / (uu * vv)))) * 180 / PI);
+    }
+    return best;
+}
+
+/* Winding number of polygon xy (m points) around p: 1 inside (ccw). */
+static int winding(const double *xy, size_t m, const double p[2])
+{
+    int w = 0;
+    for (size_t i = 0; i < m; i++) {
+        const double *a = xy + 2 * i, *b = xy + 2 * ((i + 1) % m);
+        double o = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+        if (a[1] <= p[1] && b[1] > p[1] && o > 0) w++;
+        if (a[1] > p[1] && b[1] <= p[1] && o < 0) w--;
+    }
+    return w;
+}
+
+/* Meshes the polygon and checks it; returns the triangle count, and the
+ * smallest angle in *min_angle. */
+static size_t check_polygon(const double *xy, size_t m, double *min_angle)
+{
+    double *pts = NULL;
+    uint32_t *tri = NULL;
+    size_t ns = 0, nt = 0;
+    int ok = 0;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons__polygon_mesh(xy, m, COONS__FLAT_MIN_ANGLE, &pts, &ns, &tri, &nt,
+                                        &ok, &err),
+                    &err);
+    assert_true(ok);
+    size_t np = m + ns;
+    double *all = malloc(2 * np * sizeof *all);
+    memcpy(all, xy, 2 * m * sizeof *all);
+    if (ns) memcpy(all + 2 * m, pts, 2 * ns * sizeof *all);
+    for (size_t i = 0; i < ns; i++) assert_int_equal(winding(xy, m, pts + 2 * i), 1);
+    /* Euler: a triangulated disc with m boundary and s inner vertices */
+    assert_int_equal(nt, m - 2 + 2 * ns);
+    double area = 0, shoelace = 0, amin = 180;
+    uint64_t *e = malloc(3 * nt * sizeof *e);
+    for (size_t t = 0; t < nt; t++) {
+        const double *a = all + 2 * tri[3 * t], *b = all + 2 * tri[3 * t + 1],
+                     *c = all + 2 * tri[3 * t + 2];
+        for (int k = 0; k < 3; k++) assert_true(tri[3 * t + k] < np);
+        double o = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        assert_true(o > 0);
+        area += o / 2;
+        amin = fmin(amin, tri_min_angle(a, b, c, 2));
+        for (int k = 0; k < 3; k++)
+            e[3 * t + k] = (uint64_t)tri[3 * t + k] << 32 | tri[3 * t + (k + 1) % 3];
+    }
+    for (size_t i = 0; i < m; i++) {
+        const double *a = xy + 2 * i, *b = xy + 2 * ((i + 1) % m);
+        shoelace += (a[0] * b[1] - a[1] * b[0]) / 2;
+    }
+    assert_near(area, shoelace, 1e-12 * shoelace);
+    qsort(e, 3 * nt, sizeof *e, cmp_u64);
+    size_t boundary = 0;
+    for (size_t i = 0; i < 3 * nt; i++) {
+        if (i + 1 < 3 * nt) assert_true(e[i] != e[i + 1]);
+        uint32_t a = (uint32_t)(e[i] >> 32), b = (uint32_t)e[i];
+        uint64_t r = (uint64_t)b << 32 | a;
+        int seg = a < m && b == (a + 1) % m;
+        if (seg) {
+            boundary++;
+            assert_null(bsearch(&r, e, 3 * nt, sizeof *e, cmp_u64));
+        } else {
+            assert_non_null(bsearch(&r, e, 3 * nt, sizeof *e, cmp_u64));
+        }
+    }
+    assert_int_equal(boundary, m);
+    *min_angle = amin;
+    free(e);
+    free(all);
+    coons__free(pts);
+    coons__free(tri);
+    return nt;
+}
+
+static void square(double *xy, size_t k, double w, double h)
+{
+    /* k points per side, counter-clockwise from (0,0) */
+    for (size_t i = 0; i < k; i++) {
+        double s = (double)i / (double)k;
+        xy[2 * i] = s * w, xy[2 * i + 1] = 0;
+        xy[2 * (k + i)] = w, xy[2 * (k + i) + 1] = s * h;
+        xy[2 * (2 * k + i)] = (1 - s) * w, xy[2 * (2 * k + i) + 1] = h;
+        xy[2 * (3 * k + i)] = 0, xy[2 * (3 * k + i) + 1] = (1 - s) * h;
+    }
+}
+
+static void test_polygon_squares(void **state)
+{
+    (void)state;
+    double xy[2 * 4 * 64];
+    for (size_t k = 1; k <= 64; k = k < 8 ? k + 1 : 2 * k) {
+        double amin;
+        square(xy, k, 1, 1);
+        size_t nt = check_polygon(xy, 4 * k, &amin);
+        print_message("square, %2zu points a side: %4zu triangles (lattice %5zu), min angle %.1f\n",
+                      k, nt, 2 * k * k, amin);
+        assert_true(amin >= ANGLE_BOUND);
+        /* far fewer than the lattice's 2 k^2 */
+        if (k >= 8) assert_true(nt <= 2 * k * k / 2);
+        /* rectangles with square cells: 4 x 1 */
+        square(xy, k, 4, 1);
+        /* (k a side on both: cells 4 times longer than high, the lattice's
+         * own shape) */
+        nt = check_polygon(xy, 4 * k, &amin);
+        print_message("  4:1 rectangle: %4zu triangles, min angle %.1f\n", nt, amin);
+        assert_true(amin >= fmin(ANGLE_BOUND, atan(1.0 / 4.0) * 180 / PI));
+    }
+}
+
+static void test_polygon_shapes(void **state)
+{
+    (void)state;
+    enum { N = 96 };
+    double xy[2 * N], amin;
+    /* a disc (a cylinder's end face) */
+    for (int i = 0; i < N; i++) {
+        xy[2 * i] = cos(2 * PI * i / N);
+        xy[2 * i + 1] = sin(2 * PI * i / N);
+    }
+    size_t nt = check_polygon(xy, N, &amin);
+    print_message("disc of %d: %zu triangles, min angle %.1f\n", N, nt, amin);
+    assert_true(amin >= ANGLE_BOUND);
+    /* a graded side: intervals halving toward one corner (adaptive
+     * refinement), the other sides uniform */
+    size_t m = 0;
+    double x = 1;
+    while (x > 1.0 / 64) {
+        xy[2 * m] = x, xy[2 * m + 1] = 0, m++;
+        x /= 2;
+    }
+    xy[2 * m] = 0, xy[2 * m + 1] = 0, m++;
+    for (int i = 1; i < 4; i++) xy[2 * m] = 0, xy[2 * m + 1] = -i / 4.0, m++;
+    for (int i = 0; i < 4; i++) xy[2 * m] = i / 4.0, xy[2 * m + 1] = -1, m++;
+    for (int i = 0; i < 4; i++) xy[2 * m] = 1, xy[2 * m + 1] = -1 + i / 4.0, m++;
+    nt = check_polygon(xy, m, &amin);
+    print_message("graded square (%zu points): %zu triangles, min angle %.1f\n", m, nt, amin);
+    /* The corner where the 1/64 intervals meet an unsplittable 1/4 edge
+     * at 90 degrees bounds the angles there (measured 8.1 degrees). */
+    assert_true(amin >= 8.0);
+    /* an L (concave), unit spacing */
+    static const int L[][2] = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {3, 1}, {2, 1}, {1, 1},
+                               {1, 2}, {1, 3}, {0, 3}, {0, 2}, {0, 1}};
+    m = sizeof L / sizeof L[0];
+    for (size_t i = 0; i < m; i++) xy[2 * i] = L[i][0], xy[2 * i + 1] = L[i][1];
+    nt = check_polygon(xy, m, &amin);
+    assert_true(amin >= ANGLE_BOUND);
+}
+
+static void test_polygon_rejects(void **state)
+{
+    (void)state;
+    double *pts = NULL;
+    uint32_t *tri = NULL;
+    size_t ns = 0, nt = 0;
+    int ok = 1;
+    coons_error err = COONS_ERROR_INIT;
+    /* a bow tie: not simple (its signed area is 0 too) */
+    double bow[] = {0, 0, 1, 1, 1, 0, 0, 1};
+    assert_coons_ok(coons__polygon_mesh(bow, 4, 20, &pts, &ns, &tri, &nt, &ok, &err), &err);
+    assert_false(ok);
+    /* a folded ring: crossing edges with positive area */
+    double fold[] = {0, 0, 4, 0, 4, 4, 1, -1, 0, 4};
+    assert_coons_ok(coons__polygon_mesh(fold, 5, 20, &pts, &ns, &tri, &nt, &ok, &err), &err);
+    assert_false(ok);
+    /* a repeated point */
+    double rep[] = {0, 0, 1, 0, 1, 1, 1, 0, 0, 1};
+    assert_coons_ok(coons__polygon_mesh(rep, 5, 20, &pts, &ns, &tri, &nt, &ok, &err), &err);
+    assert_false(ok);
+    /* clockwise */
+    double cw[] = {0, 0, 0, 1, 1, 1, 1, 0};
+    assert_coons_ok(coons__polygon_mesh(cw, 4, 20, &pts, &ns, &tri, &nt, &ok, &err), &err);
+    assert_false(ok);
+    assert_null(pts);
+    assert_null(tri);
+}
+
+/* ---------- bodies ---------- */
+
+static coons_body *hexahedron(double c[8][3])
+{
+    coons_body *b = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
+    return b;
+}
+
+/* Corner (i, j, k) of the box [0,L0] x [0,L1] x [0,L2] sheared by s
+ * (x += s z): a parallelepiped of volume L0 L1 L2. */
+static coons_body *parallelepiped(const double L[3], double s)
+{
+    double c[8][3];
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 2; k++) {
+                double *p = c[4 * i + 2 * j + k];
+                p[0] = i * L[0] + s * k * L[2];
+                p[1] = j * L[1];
+                p[2] = k * L[2];
+            }
+    return hexahedron(c);
+}
+
+static void assert_closed(const coons_mesh *m)
+{
+    size_t nt = coons_mesh_triangle_count(m);
+    const uint32_t *t = coons_mesh_triangles(m);
+    uint64_t *e = malloc(3 * nt * sizeof *e);
+    for (size_t i = 0; i < nt; i++)
+        for (int k = 0; k < 3; k++)
+            e[3 * i + k] = (uint64_t)t[3 * i + k] << 32 | t[3 * i + (k + 1) % 3];
+    qsort(e, 3 * nt, sizeof *e, cmp_u64);
+    for (size_t i = 0; i < 3 * nt; i++) {
+        if (i + 1 < 3 * nt) assert_true(e[i] != e[i + 1]);
+        uint64_t r = (e[i] & 0xffffffffu) << 32 | e[i] >> 32;
+        assert_non_null(bsearch(&r, e, 3 * nt, sizeof *e, cmp_u64));
+    }
+    free(e);
+}
+
+/* Signed volume and area of the mesh, computed here. */
+static void volume_area(const coons_mesh *m, double *vol, double *area)
+{
+    const double *v = coons_mesh_vertices(m);
+    const uint32_t *t = coons_mesh_triangles(m);
+    *vol = *area = 0;
+    for (size_t i = 0; i < coons_mesh_triangle_count(m); i++) {
+        const double *a = v + 3 * t[3 * i], *b = v + 3 * t[3 * i + 1], *c = v + 3 * t[3 * i + 2];
+        double u[3], w[3], n[3];
+        for (int d = 0; d < 3; d++) u[d] = b[d] - a[d], w[d] = c[d] - a[d];
+        n[0] = u[1] * w[2] - u[2] * w[1];
+        n[1] = u[2] * w[0] - u[0] * w[2];
+        n[2] = u[0] * w[1] - u[1] * w[0];
+        *vol += (a[0] * n[0] + a[1] * n[1] + a[2] * n[2]) / 6;
+        *area += sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 2;
+    }
+}
+
+static void test_box_faces(void **state)
+{
+    (void)state;
+    const double L[3] = {2, 3, 5};
+    for (unsigned N = 1; N <= 32; N *= 2) {
+        coons_body *b = parallelepiped(L, 0);
+        coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+        o.resolution = N;
+        coons_mesh *m = NULL;
+        coons_error err = COONS_ERROR_INIT;
+        assert_coons_ok(coons_body_sample(b, &o, "box", &m, &err), &err);
+        assert_closed(m);
+        double vol, area;
+        volume_area(m, &vol, &area);
+        assert_near(vol, 30, 1e-12 * 30);
+        assert_near(area, 62, 1e-12 * 62);
+        /* every triangle in one face plane (the three vertices share a
+         * coordinate at 0 or L), and the per-face areas are exact */
+        const double *v = coons_mesh_vertices(m);
+        const uint32_t *t = coons_mesh_triangles(m);
+        size_t nt = coons_mesh_triangle_count(m), nv = coons_mesh_vertex_count(m);
+        double fa[6] = {0};
+        double amin = 180;
+        for (size_t i = 0; i < nt; i++) {
+            const double *p[3] = {v + 3 * t[3 * i], v + 3 * t[3 * i + 1], v + 3 * t[3 * i + 2]};
+            int face = -1;
+            for (int d = 0; d < 3 && face < 0; d++)
+                for (int e = 0; e < 2 && face < 0; e++)
+                    if (p[0][d] == e * L[d] && p[1][d] == e * L[d] && p[2][d] == e * L[d])
+                        face = 2 * d + e;
+            assert_true(face >= 0);
+            int a = (face / 2 + 1) % 3, c = (face / 2 + 2) % 3;
+            fa[face] += fabs((p[1][a] - p[0][a]) * (p[2][c] - p[0][c]) -
+                             (p[1][c] - p[0][c]) * (p[2][a] - p[0][a])) / 2;
+            amin = fmin(amin, tri_min_angle(p[0], p[1], p[2], 3));
+        }
+        for (int f = 0; f < 6; f++)
+            assert_near(fa[f], L[(f / 2 + 1) % 3] * L[(f / 2 + 2) % 3], 1e-12 * 30);
+        /* Euler for a closed genus-0 surface; the vertices are the lattice
+         * points on the 12 edges plus Steiner points inside the faces */
+        assert_int_equal(nt, 2 * nv - 4);
+        size_t on_edges = 0;
+        for (size_t i = 0; i < nv; i++) {
+            int at = 0;
+            for (int d = 0; d < 3; d++) at += v[3 * i + d] == 0 || v[3 * i + d] == L[d];
+            on_edges += at >= 2;
+        }
+        assert_int_equal(on_edges, 8 + 12 * (N - 1));
+        /* the cells are 2:3:5 (their aspect bounds the lattice's angles) */
+        assert_true(amin >= fmin(ANGLE_BOUND, atan(2.0 / 5.0) * 180 / PI));
+        print_message("box N=%2u: %5zu triangles (lattice %6u), %zu Steiner, min angle %.1f\n",
+                      N, nt, 12 * N * N, nv - on_edges, amin);
+        if (N >= 8) assert_true(nt < 12 * N * N / 2);
+        coons_mesh_free(m);
+        coons_body_free(b);
+    }
+}
+
+static void test_parallelepiped_adaptive(void **state)
+{
+    (void)state;
+    const double L[3] = {1, 2, 3};
+    coons_body *b = parallelepiped(L, 0.5);
+    coons_mesh *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+    o.tolerance = 1e-3;
+    o.resolution = 12;
+    assert_coons_ok(coons_body_sample(b, &o, NULL, &m, &err), &err);
+    assert_closed(m);
+    double vol, area;
+    volume_area(m, &vol, &area);
+    assert_near(vol, 6, 1e-12 * 6);
+    /* faces: 2 of 1 x 2, 2 of 2 x 3 sqrt(1.25), 2 of 1 x 3 */
+    assert_near(area, 2 * (2 + 2 * 3 * sqrt(1.25) + 3), 1e-12 * 30);
+    assert_int_equal(coons_mesh_triangle_count(m), 2 * coons_mesh_vertex_count(m) - 4);
+    assert_true(coons_mesh_triangle_count(m) < 12 * 12 * 12 / 3);
+    coons_mesh_free(m);
+    coons_body_free(b);
+}
+
+/* A twisted top (one corner raised): that face is not flat and keeps its
+ * lattice, N^2 cells, with (N-1)^2 vertices inside it; the five flat faces
+ * have none of the lattice's inner points. */
+static void test_twisted_face_keeps_lattice(void **state)
+{
+    (void)state;
+    double c[8][3];
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 2; k++) {
+                double *p = c[4 * i + 2 * j + k];
+                p[0] = i, p[1] = j, p[2] = k ? 1 + 0.5 * (i && j) : 0;
+            }
+    coons_body *b = hexahedron(c);
+    const unsigned N = 8;
+    coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+    o.resolution = N;
+    coons_mesh *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons_body_sample(b, &o, NULL, &m, &err), &err);
+    assert_closed(m);
+    const double *v = coons_mesh_vertices(m);
+    size_t nv = coons_mesh_vertex_count(m), top_inner = 0, lattice_inner = 0;
+    for (size_t i = 0; i < nv; i++) {
+        const double *p = v + 3 * i;
+        int edge = (p[0] == 0 || p[0] == 1) + (p[1] == 0 || p[1] == 1);
+        if (p[2] > 0 && edge == 0) top_inner++;
+        /* a flat face's inner point on the lattice (multiples of 1/N) */
+        double g[3];
+        for (int d = 0; d < 3; d++) g[d] = p[d] * N;
+        if (p[2] == 0 && edge == 0 && g[0] == floor(g[0]) && g[1] == floor(g[1]))
+            lattice_inner++;
+    }
+    assert_int_equal(top_inner, (N - 1) * (N - 1));
+    assert_int_equal(lattice_inner, 0);
+    /* the volume of a bilinear-topped prism: mean height 1 + 0.5/4 */
+    double vol, area;
+    volume_area(m, &vol, &area);
+    double exact;
+    assert_coons_ok(coons_body_volume(b, 1e-12, &exact, &err), &err);
+    assert_near(exact, 1.125, 1e-9);
+    assert_near(vol, exact, 1e-2);
+    coons_mesh_free(m);
+    coons_body_free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_polygon_squares),
+        cmocka_unit_test(test_polygon_shapes),
+        cmocka_unit_test(test_polygon_rejects),
+        cmocka_unit_test(test_box_faces),
+        cmocka_unit_test(test_parallelepiped_adaptive),
+        cmocka_unit_test(test_twisted_face_keeps_lattice),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
