@@ -33,8 +33,6 @@
  * whose check fails keeps its lattice triangles. */
 #include <math.h>
 #include <string.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 #include "coons_internal.h"
 #include "flat.h"
@@ -506,7 +504,7 @@ coons_status coons__polygon_mesh(const double *xy, size_t m, double min_angle, d
     dt_free(&d);
     return COONS_OK;
 reject:
-    if (getenv("FLAT_DEBUG")) fprintf(stderr, "flat reject line %d\n", why);
+    (void)why; /* the check that failed (kept for debugging) */
     dt_free(&d);
     return COONS_OK;
 nomem:
@@ -687,6 +685,9 @@ coons_status coons__flat_faces(sampler *s)
                                      s->err);
         coons__free(xy);
         if (!st && ok && ns + np + s->nv > UINT32_MAX) ok = 0;
+        /* Only where it saves triangles: a coarse face whose lattice cells
+         * are long keeps them rather than gain Steiner points. */
+        if (!st && ok && nt >= s->face_tri[f + 1] - s->face_tri[f]) ok = 0;
         if (!st && ok && np) {
             size_t need = 3 * (ns + np);
             if (need > scap) {
