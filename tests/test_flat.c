@@ -412,6 +412,36 @@ static void test_twisted_face_keeps_lattice(void **state)
     coons_body_free(b);
 }
 
+/* Every allocation of sampling a box with flat faces (the polygon mesher's
+ * included) fails in turn: COONS_E_NOMEM, nothing leaked. */
+static void test_flat_allocation_failures(void **state)
+{
+    (void)state;
+    const double L[3] = {1, 2, 3};
+    coons_body *b = parallelepiped(L, 0.25);
+    coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+    o.resolution = 6;
+    int done = 0;
+    for (long n = 0; !done; n++) {
+        coons_mesh *m = NULL;
+        coons_error err = COONS_ERROR_INIT;
+        coons_test_fail_after(n);
+        coons_status st = coons_body_sample(b, &o, NULL, &m, &err);
+        if (st == COONS_OK) {
+            done = 1;
+            coons_test_fail_after(-1);
+            assert_true(coons_mesh_triangle_count(m) < 12 * 36);
+            coons_mesh_free(m);
+        } else {
+            assert_int_equal(st, COONS_E_NOMEM);
+            assert_null(m);
+            assert_int_equal(coons_test_live_allocs(), 0);
+        }
+    }
+    coons_test_fail_after(-1);
+    coons_body_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -421,6 +451,7 @@ int main(void)
         cmocka_unit_test(test_box_faces),
         cmocka_unit_test(test_parallelepiped_adaptive),
         cmocka_unit_test(test_twisted_face_keeps_lattice),
+        cmocka_unit_test(test_flat_allocation_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

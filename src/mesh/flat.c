@@ -290,7 +290,10 @@ static int refine_quality(dt *d, double min_angle, size_t max_steiner)
     int r = INS_OK;
     for (size_t i = 0; i < d->nt; i++)
         if (d->t[i].alive && d->t[i].inside) {
-            if (grow((void **)&queue, &qcap, qt + 1, 4)) return INS_NOMEM;
+            if (grow((void **)&queue, &qcap, qt + 1, 4)) {
+                coons__free(queue);
+                return INS_NOMEM;
+            }
             queue[qt++] = (uint32_t)i;
         }
     while (qh < qt && steiner < max_steiner) {
@@ -616,7 +619,10 @@ static coons_status face_ring(sampler *s, int f, unsigned char *seen, uint32_t *
 
 coons_status coons__flat_faces(sampler *s)
 {
-    if (s->o->flags & (COONS__SAMPLE_PARAMS | COONS__SAMPLE_LATTICE_FACES) || !s->nt)
+    /* Morph bodies keep the lattice: all their frames share one mesh
+     * topology (the OpenSCAD animation, scad_morph.c). */
+    if (s->o->flags & (COONS__SAMPLE_PARAMS | COONS__SAMPLE_LATTICE_FACES) || !s->nt ||
+        coons_body_get_type(s->body) == COONS_BODY_MORPH)
         return COONS_OK;
     uint32_t *ftri[6] = {NULL};
     size_t fnt[6] = {0}, ns = 0, scap = 0;
