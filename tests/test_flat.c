@@ -412,6 +412,83 @@ static void test_twisted_face_keeps_lattice(void **state)
     coons_body_free(b);
 }
 
+/* Flat faces with per-vertex parameters (the isoparametric output with the
+ * boundary): the boundary part is coons_model_sample()'s mesh bit for bit,
+ * Steiner points included, and every vertex's (u,v,w) maps back to it:
+ * the body's exact map at the parameters is the vertex to 1e-12 (relative
+ * to a body of size ~3), for an affine box (barycentric interpolation in
+ * the lattice is exact) and for the frustum of a pyramid, whose sides are
+ * planar trapezoids with a bilinear, not affine, map (interpolation alone
+ * is off by up to the lattice's in-plane error; Newton's method on the
+ * map makes it exact). Returns the count of Steiner points. */
+static size_t check_flat_params(const char *corners, unsigned N)
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"coons\": 1, \"tolerance\": 0.01, \"operation\": \"none\", \"bodies\": ["
+             "{\"type\": \"body0\", \"name\": \"b\", \"corners\": %s}]}",
+             corners);
+    coons_error err = COONS_ERROR_INIT;
+    coons_model *model;
+    assert_coons_ok(coons_model_load_memory(json, strlen(json), NULL, NULL, &model, &err), &err);
+    const coons_body *b = coons_model_body(model, 0);
+    coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+    o.resolution = N;
+    coons_mesh *ref, *m;
+    assert_coons_ok(coons_model_sample(model, &o, &ref, &err), &err);
+    assert_coons_ok(coons_model_iso_surfaces(model, NULL, 0, &o, COONS_ISO_WITH_BOUNDARY, &m,
+                                             &err),
+                    &err);
+    size_t nv = coons_mesh_vertex_count(m), nt = coons_mesh_triangle_count(m);
+    assert_int_equal(nv, coons_mesh_vertex_count(ref));
+    assert_int_equal(nt, coons_mesh_triangle_count(ref));
+    assert_memory_equal(coons_mesh_vertices(m), coons_mesh_vertices(ref), 3 * nv * sizeof(double));
+    assert_memory_equal(coons_mesh_triangles(m), coons_mesh_triangles(ref),
+                        3 * nt * sizeof(uint32_t));
+    assert_closed(m);
+    /* far fewer triangles than the lattice's 12 N^2 */
+    assert_true(nt < 12 * N * N / 2);
+    const double *x = coons_mesh_vertices(m), *uvw = coons_mesh_vertex_parameters(m);
+    assert_non_null(uvw);
+    size_t steiner = 0;
+    double worst = 0;
+    for (size_t i = 0; i < nv; i++) {
+        const double *q = uvw + 3 * i;
+        double y[3];
+        coons_body_eval(b, q[0], q[1], q[2], y);
+        for (int d = 0; d < 3; d++) worst = fmax(worst, fabs(y[d] - x[3 * i + d]));
+        /* on a face (one parameter at 0 or 1), off the lattice lines */
+        int on = 0, lattice = 0;
+        for (int d = 0; d < 3; d++) {
+            on += q[d] == 0.0 || q[d] == 1.0;
+            lattice += q[d] * N == floor(q[d] * N);
+        }
+        assert_true(on >= 1);
+        if (on == 1 && lattice < 3) steiner++;
+    }
+    print_message("%s N=%u: %zu triangles (lattice %u), %zu Steiner points, |F(u,v,w) - x| <= "
+                  "%.2g\n",
+                  corners, N, nt, 12 * N * N, steiner, worst);
+    assert_true(worst <= 1e-12);
+    coons_mesh_free(m);
+    coons_mesh_free(ref);
+    coons_model_free(model);
+    return steiner;
+}
+
+static void test_flat_params(void **state)
+{
+    (void)state;
+    static const char box[] = "[[0,0,0],[0,0,3],[0,2,0],[0,2,3],"
+                              "[1,0,0],[1,0,3],[1,2,0],[1,2,3]]";
+    static const char frustum[] = "[[0,0,0],[0.5,0.5,1],[0,2,0],[0.5,1.5,1],"
+                                  "[2,0,0],[1.5,0.5,1],[2,2,0],[1.5,1.5,1]]";
+    for (unsigned N = 8; N <= 16; N += 8) {
+        assert_true(check_flat_params(box, N) > 0);
+        assert_true(check_flat_params(frustum, N) > 0);
+    }
+}
+
 /* Every allocation of sampling a box with flat faces (the polygon mesher's
  * included) fails in turn: COONS_E_NOMEM, nothing leaked. */
 static void test_flat_allocation_failures(void **state)
@@ -451,6 +528,7 @@ int main(void)
         cmocka_unit_test(test_box_faces),
         cmocka_unit_test(test_parallelepiped_adaptive),
         cmocka_unit_test(test_twisted_face_keeps_lattice),
+        cmocka_unit_test(test_flat_params),
         cmocka_unit_test(test_flat_allocation_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -617,17 +617,212 @@ static coons_status face_ring(sampler *s, int f, unsigned char *seen, uint32_t *
     return COONS_OK;
 }
 
+/* ---- Parameters of the Steiner points -------------------------------- */
+
+/* Twice the signed area of abc in the plane. */
+static inline double orient2(const double *a, const double *b, const double *c)
+{
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* The corners (ia, ib) of triangle k (0, 1) of cell (p, q) split by
+ * diagonal dg (as emit_cells() in sample.c splits it). */
+static void cell_tri(size_t p, size_t q, unsigned char dg, int k, size_t ia[3], size_t ib[3])
+{
+    /* A = (p,q), B = (p+1,q), C = (p+1,q+1), D = (p,q+1) */
+    static const int ca[2][2][3] = {{{0, 1, 1}, {0, 1, 0}}, {{0, 1, 0}, {1, 1, 0}}};
+    static const int cb[2][2][3] = {{{0, 0, 1}, {0, 1, 1}}, {{0, 0, 1}, {0, 1, 1}}};
+    for (int j = 0; j < 3; j++) {
+        ia[j] = p + (size_t)ca[dg][k][j];
+        ib[j] = q + (size_t)cb[dg][k][j];
+    }
+}
+
+/* The face's parameters (a, b) of the point p of its plane: the lattice
+ * triangle of face f (in the plane, 2-D points xy of its lattice points)
+ * holding p, found by a walk over the lattice cells from `*cell`, gives
+ * them by barycentric interpolation, exact where the face is affine;
+ * Newton's method on the body's map (its Jacobian) then solves
+ * F(a, b) = p to rounding. *found = 0 when it does not converge. */
+static void locate_params(sampler *s, int f, const double *xy, double sigma, const double p[2],
+                          const double o[3], const double e1[3], const double e2[3],
+                          const double n[3], size_t *cell, double ab[2], int *found)
+{
+    const face_desc *F = &coons__faces[f];
+    size_t na = s->n[F->a], nb = s->n[F->b], cp = *cell / nb, cq = *cell % nb;
+    const double *ta = s->t[F->a], *tb = s->t[F->b];
+    double best = -INFINITY;
+    *found = 0;
+    ab[0] = ab[1] = 0.5;
+    for (size_t step = 0, limit = 2 * (na + nb) + 8; step < limit; step++) {
+        /* The cell's two triangles: barycentric coordinates of p. */
+        for (int k = 0; k < 2; k++) {
+            size_t ia[3], ib[3];
+            cell_tri(cp, cq, s->diag[f][cp * nb + cq], k, ia, ib);
+            const double *c[3];
+            for (int j = 0; j < 3; j++) c[j] = xy + 2 * (ia[j] * (nb + 1) + ib[j]);
+            double ar = orient2(c[0], c[1], c[2]);
+            if (!(fabs(ar) > 0)) continue; /* collapsed */
+            double l[3] = {orient2(c[1], c[2], p) / ar, orient2(c[2], c[0], p) / ar,
+                           orient2(c[0], c[1], p) / ar};
+            double mn = fmin(l[0], fmin(l[1], l[2]));
+            if (mn > best) {
+                best = mn;
+                ab[0] = ab[1] = 0;
+                for (int j = 0; j < 3; j++) {
+                    ab[0] += l[j] * ta[ia[j]];
+                    ab[1] += l[j] * tb[ib[j]];
+                }
+                *cell = cp * nb + cq;
+            }
+        }
+        if (best >= -1e-9) break;
+        /* Out of the cell: across an edge that p lies beyond (the cell
+         * runs A B C D counter-clockwise when sigma > 0). */
+        const double *A = xy + 2 * (cp * (nb + 1) + cq), *B = xy + 2 * ((cp + 1) * (nb + 1) + cq);
+        const double *C = B + 2, *D = A + 2;
+        const double *ed[4][2] = {{A, B}, {B, C}, {C, D}, {D, A}};
+        int ok[4] = {cq > 0, cp + 1 < na, cq + 1 < nb, cp > 0}, moved = 0;
+        for (int j = 0; j < 4 && !moved; j++) {
+            int k = (int)((step + (size_t)j) % 4);
+            if (!ok[k] || !(sigma * orient2(ed[k][0], ed[k][1], p) < 0)) continue;
+            if (k == 0) cq--;
+            else if (k == 1) cp++;
+            else if (k == 2) cq++;
+            else cp--;
+            moved = 1;
+        }
+        if (!moved) break;
+    }
+    double P3[3];
+    v3_copy(P3, o);
+    v3_axpy(P3, p[0], e1);
+    v3_axpy(P3, p[1], e2);
+    double a = fmin(1, fmax(0, ab[0])), b = fmin(1, fmax(0, ab[1]));
+    for (int it = 0; it < 40; it++) {
+        double q[3], x[3], jac[3][3], d[3], xa[3], xb[3];
+        q[F->fixed] = F->val;
+        q[F->a] = a;
+        q[F->b] = b;
+        coons_body_eval_jacobian(s->body, q[0], q[1], q[2], x, jac);
+        v3_scale(x, x, s->scale);
+        v3_sub(d, x, P3);
+        double r1 = v3_dot(d, e1), r2 = v3_dot(d, e2);
+        if (hypot(r1, r2) <= 4e-14 && fabs(v3_dot(d, n)) <= FLAT_EPS) {
+            ab[0] = a;
+            ab[1] = b;
+            *found = 1;
+            return;
+        }
+        for (int r = 0; r < 3; r++) {
+            xa[r] = jac[r][F->a] * s->scale;
+            xb[r] = jac[r][F->b] * s->scale;
+        }
+        double j11 = v3_dot(e1, xa), j12 = v3_dot(e1, xb), j21 = v3_dot(e2, xa),
+               j22 = v3_dot(e2, xb), det = j11 * j22 - j12 * j21;
+        if (!(fabs(det) > 0) || !isfinite(det)) return;
+        a = fmin(1, fmax(0, a - (j22 * r1 - j12 * r2) / det));
+        b = fmin(1, fmax(0, b - (j11 * r2 - j21 * r1) / det));
+    }
+}
+
+/* Parameters (u, v, w) of the np points pts (2-D, in the frame o, e1, e2
+ * of flat face f) into uvw (3 each). *ok = 0 when the face's lattice folds
+ * over itself in the plane (its triangles' areas do not all have one
+ * sign) or a point's parameters are not found: the face keeps its
+ * lattice. Locating a point is a walk from the cell whose centre lies in
+ * its bucket of a uniform grid over the face (O(1) cells for a lattice of
+ * cells of similar sizes; from the last point's cell otherwise). */
+static coons_status steiner_params(sampler *s, int f, const double o[3], const double e1[3],
+                                   const double e2[3], const double n[3], const double *pts,
+                                   size_t np, double *uvw, int *ok)
+{
+    const face_desc *F = &coons__faces[f];
+    size_t na = s->n[F->a], nb = s->n[F->b], nq = (na + 1) * (nb + 1), nc = na * nb;
+    *ok = 0;
+    size_t K = (size_t)ceil(sqrt((double)nc));
+    double *xy = coons__malloc_array(nq, 2 * sizeof(double));
+    uint32_t *bucket = coons__malloc_array(K * K, sizeof(uint32_t));
+    if (!xy || !bucket) {
+        coons__free(xy);
+        coons__free(bucket);
+        return coons__error_nomem(s->err);
+    }
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (size_t ia = 0; ia <= na; ia++)
+        for (size_t ib = 0; ib <= nb; ib++) {
+            double q[3], *c = xy + 2 * (ia * (nb + 1) + ib);
+            v3_sub(q, s->pos + 3 * (size_t)coons__uf_find(s->uf, coons__sampler_id(s, f, ia, ib)),
+                   o);
+            c[0] = v3_dot(q, e1);
+            c[1] = v3_dot(q, e2);
+            for (int d = 0; d < 2; d++) lo[d] = fmin(lo[d], c[d]), hi[d] = fmax(hi[d], c[d]);
+        }
+    /* No fold: the areas of the lattice triangles all of one sign. */
+    double sum = 0, sabs = 0;
+    for (size_t p = 0; p < na; p++)
+        for (size_t q = 0; q < nb; q++)
+            for (int k = 0; k < 2; k++) {
+                size_t ia[3], ib[3];
+                cell_tri(p, q, s->diag[f][p * nb + q], k, ia, ib);
+                double ar = orient2(xy + 2 * (ia[0] * (nb + 1) + ib[0]),
+                                    xy + 2 * (ia[1] * (nb + 1) + ib[1]),
+                                    xy + 2 * (ia[2] * (nb + 1) + ib[2]));
+                sum += ar;
+                sabs += fabs(ar);
+            }
+    int good = fabs(sum) > 0 && sabs <= fabs(sum) * (1 + 1e-9);
+    double sigma = sum > 0 ? 1 : -1;
+    double w0 = (hi[0] - lo[0]) / (double)K, w1 = (hi[1] - lo[1]) / (double)K;
+    size_t K1 = K - 1;
+#define BUCKET(x, y)                                                                          \
+    (fmin((double)K1, fmax(0, floor(((x) - lo[0]) / w0))) +                                   \
+     (double)K * fmin((double)K1, fmax(0, floor(((y) - lo[1]) / w1))))
+    for (size_t i = 0; i < K * K; i++) bucket[i] = NONE;
+    if (good && w0 > 0 && w1 > 0)
+        for (size_t p = 0; p < na; p++)
+            for (size_t q = 0; q < nb; q++) {
+                const double *A = xy + 2 * (p * (nb + 1) + q), *C = xy + 2 * ((p + 1) * (nb + 1) + q + 1);
+                bucket[(size_t)BUCKET(0.5 * (A[0] + C[0]), 0.5 * (A[1] + C[1]))] =
+                    (uint32_t)(p * nb + q);
+            }
+    size_t cell = 0;
+    for (size_t i = 0; i < np && good; i++) {
+        const double *p = pts + 2 * i;
+        if (w0 > 0 && w1 > 0) {
+            uint32_t c = bucket[(size_t)BUCKET(p[0], p[1])];
+            if (c != NONE) cell = c;
+        }
+        double ab[2];
+        int found;
+        locate_params(s, f, xy, sigma, p, o, e1, e2, n, &cell, ab, &found);
+        if (!found) good = 0;
+        double *q = uvw + 3 * i;
+        q[F->fixed] = F->val;
+        q[F->a] = ab[0];
+        q[F->b] = ab[1];
+    }
+#undef BUCKET
+    coons__free(xy);
+    coons__free(bucket);
+    *ok = good;
+    return COONS_OK;
+}
+
 coons_status coons__flat_faces(sampler *s)
 {
     /* Morph bodies keep the lattice: all their frames share one mesh
      * topology (the OpenSCAD animation, scad_morph.c). */
-    if (s->o->flags & (COONS__SAMPLE_PARAMS | COONS__SAMPLE_LATTICE_FACES) || !s->nt ||
+    coons__free(s->flat_uvw);
+    s->flat_uvw = NULL;
+    s->flat_v0 = s->nv;
+    if (s->o->flags & COONS__SAMPLE_LATTICE_FACES || !s->nt ||
         coons_body_get_type(s->body) == COONS_BODY_MORPH)
         return COONS_OK;
     uint32_t *ftri[6] = {NULL};
     size_t fnt[6] = {0}, ns = 0, scap = 0;
     int flat[6] = {0};
-    double *spos = NULL;
+    double *spos = NULL, *suvw = NULL;
     coons_status st = COONS_OK;
     unsigned char *seen = coons__calloc(s->nv, 1);
     if (!seen) return coons__error_nomem(s->err);
@@ -700,10 +895,19 @@ coons_status coons__flat_faces(sampler *s)
                 size_t c = scap ? scap : 48;
                 while (c < need) c *= 2;
                 double *q = coons__realloc(spos, c * sizeof(double));
-                if (!q) st = coons__error_nomem(s->err);
-                else spos = q, scap = c;
+                if (q) spos = q;
+                double *r = q ? coons__realloc(suvw, c * sizeof(double)) : NULL;
+                if (r) suvw = r;
+                if (!q || !r) st = coons__error_nomem(s->err);
+                else scap = c;
             }
         }
+        /* The Steiner points' parameters: with them, the isoparametric
+         * output (which keeps every vertex's (u,v,w)) meshes flat faces
+         * as the boundary does; a face whose points have none keeps its
+         * lattice, whether parameters are asked for or not. */
+        if (!st && ok && np)
+            st = steiner_params(s, f, o, e1, e2, n, pts, np, suvw + 3 * ns, &ok);
         if (!st && ok) {
             for (size_t i = 0; i < np; i++) {
                 double *q = spos + 3 * (ns + i);
@@ -758,6 +962,8 @@ coons_status coons__flat_faces(sampler *s)
         face_tri[6] = k;
         memcpy(s->face_tri, face_tri, sizeof face_tri);
         if (ns) memcpy(s->pos + 3 * s->nv, spos, 3 * ns * sizeof(double));
+        s->flat_uvw = suvw; /* 3 ns: raw vertices s->nv .. s->nv + ns - 1 */
+        suvw = NULL;
         for (size_t i = 0; i < ns; i++) {
             s->uf[s->nv + i] = (uint32_t)(s->nv + i);
             s->evaluated[s->nv + i] = 1;
@@ -772,6 +978,7 @@ coons_status coons__flat_faces(sampler *s)
     }
     coons__free(tri);
     coons__free(spos);
+    coons__free(suvw);
     for (int f = 0; f < 6; f++) coons__free(ftri[f]);
     return st;
 }

@@ -288,6 +288,8 @@ static void free_mesh(sampler *s)
     coons__free(s->uf);
     coons__free(s->tri);
     coons__free(s->evaluated);
+    coons__free(s->flat_uvw);
+    s->flat_uvw = NULL;
     s->pos = NULL;
     s->uf = NULL;
     s->tri = NULL;
@@ -813,7 +815,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
         st = coons__error_nomem(s->err);
         goto done;
     }
-    if (params) /* raw vertex parameters in uvw[3 nv ..], then compacted */
+    if (params) { /* raw vertex parameters in uvw[3 nv ..], then compacted */
         for (int f = 0; f < 6; f++) {
             const face_desc *F = &FACES[f];
             for (size_t ia = 0; ia <= s->n[F->a]; ia++)
@@ -824,6 +826,10 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
                     q[F->b] = s->t[F->b][ib];
                 }
         }
+        /* and the Steiner points of flat faces (flat.c) */
+        for (size_t v = s->flat_v0; s->flat_uvw && v < s->nv; v++)
+            v3_copy(uvw + 3 * (s->nv + v), s->flat_uvw + 3 * (v - s->flat_v0));
+    }
     memset(map, 0xff, s->nv * sizeof(uint32_t));
     uint32_t nv = 0;
     for (size_t i = 0; i < 3 * s->nt; i++) {

@@ -57,6 +57,10 @@ typedef struct sampler {
      * face f is meshed from its boundary polygon. */
     size_t face_tri[7];
     unsigned flat_faces;
+    /* The parameters (u,v,w) of the Steiner points of flat faces, raw
+     * vertices flat_v0 .. nv-1 (3 each; NULL when there are none). */
+    double *flat_uvw;
+    size_t flat_v0;
 } sampler;
 
 /* Internal flag of coons__sample_opts: every face keeps its lattice
