@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "body_fixtures.h"
 #include "mesh/flat.h"
 #include "test_util.h"
 
@@ -489,6 +490,161 @@ static void test_flat_params(void **state)
     }
 }
 
+/* Distance from p to triangle abc, computed here: the foot of the
+ * perpendicular when it falls inside, else the nearest side. */
+static double point_tri_dist(const double p[3], const double *a, const double *b, const double *c)
+{
+    double ab[3], ac[3], ap[3], n[3];
+    for (int d = 0; d < 3; d++) ab[d] = b[d] - a[d], ac[d] = c[d] - a[d], ap[d] = p[d] - a[d];
+    n[0] = ab[1] * ac[2] - ab[2] * ac[1];
+    n[1] = ab[2] * ac[0] - ab[0] * ac[2];
+    n[2] = ab[0] * ac[1] - ab[1] * ac[0];
+    double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    double best = INFINITY;
+    if (nn > 0) {
+        double h = (ap[0] * n[0] + ap[1] * n[1] + ap[2] * n[2]) / nn, f[3];
+        for (int d = 0; d < 3; d++) f[d] = p[d] - h * n[d];
+        const double *q[3] = {a, b, c};
+        int inside = 1;
+        for (int k = 0; k < 3; k++) {
+            const double *u = q[k], *v = q[(k + 1) % 3];
+            double e[3] = {v[0] - u[0], v[1] - u[1], v[2] - u[2]};
+            double g[3] = {f[0] - u[0], f[1] - u[1], f[2] - u[2]};
+            double x[3] = {e[1] * g[2] - e[2] * g[1], e[2] * g[0] - e[0] * g[2],
+                           e[0] * g[1] - e[1] * g[0]};
+            if (x[0] * n[0] + x[1] * n[1] + x[2] * n[2] < 0) inside = 0;
+        }
+        if (inside) return fabs(h) * sqrt(nn);
+    }
+    const double *q[3] = {a, b, c};
+    for (int k = 0; k < 3; k++) {
+        const double *u = q[k], *v = q[(k + 1) % 3];
+        double e[3], g[3], ee = 0, eg = 0;
+        for (int d = 0; d < 3; d++) e[d] = v[d] - u[d], g[d] = p[d] - u[d], ee += e[d] * e[d];
+        for (int d = 0; d < 3; d++) eg += e[d] * g[d];
+        double t = ee > 0 ? fmin(1, fmax(0, eg / ee)) : 0, s2 = 0;
+        for (int d = 0; d < 3; d++) s2 += (g[d] - t * e[d]) * (g[d] - t * e[d]);
+        best = fmin(best, sqrt(s2));
+    }
+    return best;
+}
+
+/* Largest distance from the exact points F(q) of one face (parameter
+ * `fixed` at `val`, the other two on a k x k grid) to the mesh. */
+static double face_to_mesh(const coons_body *b, const coons_mesh *m, int fixed, double val, int k)
+{
+    const double *v = coons_mesh_vertices(m);
+    const uint32_t *t = coons_mesh_triangles(m);
+    size_t nt = coons_mesh_triangle_count(m);
+    double worst = 0;
+    for (int i = 0; i <= k; i++)
+        for (int j = 0; j <= k; j++) {
+            double q[3], x[3];
+            q[fixed] = val;
+            q[(fixed + 1) % 3] = (double)i / k;
+            q[(fixed + 2) % 3] = (double)j / k;
+            coons_body_eval(b, q[0], q[1], q[2], x);
+            double d = INFINITY;
+            for (size_t n = 0; n < nt; n++)
+                d = fmin(d, point_tri_dist(x, v + 3 * t[3 * n], v + 3 * t[3 * n + 1],
+                                           v + 3 * t[3 * n + 2]));
+            worst = fmax(worst, d);
+        }
+    return worst;
+}
+
+/* Faces ruled between two straight lines. The side of a NURBS cylinder
+ * (u around, v out, w up; straight along w): with max_aspect INFINITY it
+ * is one strip, no vertex inside it but the seam's lattice points (x = r,
+ * y = 0), which both end fans use; with the default max_aspect its strips
+ * keep lattice lines across (cells at most 4 times longer than wide: here
+ * all of them, as the lattice's own cells are that shape already). Both are closed and
+ * their exact surface points lie within the tolerance of the mesh
+ * (measured here, brute force). The twisted top of the prism (a
+ * hyperbolic paraboloid, straight both ways but not along parallel
+ * rulings) becomes strips only at a tolerance its twist fits in. */
+static void test_ruled_faces(void **state)
+{
+    (void)state;
+    const double R = 1.5, H = 6.0;
+    coons_body *b;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(tb_nurbs_cylinder_rc(R, H, &b, &err), &err);
+    size_t counts[3];
+    for (int pass = 0; pass < 3; pass++) {
+        coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+        o.tolerance = 0.01;
+        o.max_aspect = pass == 1 ? INFINITY : 0;
+        coons_mesh *m = NULL;
+        if (pass == 2) { /* the lattice itself, for the counts */
+            coons__sample_opts io;
+            assert_coons_ok(coons__sample_opts_resolve(&o, &io, &err), &err);
+            io.flags |= COONS__SAMPLE_LATTICE_FACES;
+            assert_coons_ok(coons_mesh_new(&m, &err), &err);
+            assert_coons_ok(coons__body_sample_into(b, &io, "b", m, NULL, &err), &err);
+        } else {
+            assert_coons_ok(coons_body_sample(b, &o, NULL, &m, &err), &err);
+        }
+        assert_closed(m);
+        counts[pass] = coons_mesh_triangle_count(m);
+        const double *v = coons_mesh_vertices(m);
+        size_t inside = 0, seam = 0;
+        for (size_t i = 0; i < coons_mesh_vertex_count(m); i++) {
+            const double *p = v + 3 * i;
+            if (fabs(hypot(p[0], p[1]) - R) < 1e-9 && p[2] > 1e-9 && p[2] < H - 1e-9) {
+                inside++;
+                seam += fabs(p[0] - R) < 1e-12 && fabs(p[1]) < 1e-12;
+            }
+        }
+        if (pass == 1) assert_int_equal(inside, seam);
+        if (pass == 2) assert_true(inside > seam);
+        double dev = face_to_mesh(b, m, 1, 1.0, 48);
+        print_message("cylinder side, %s: %zu triangles, %zu vertices inside the side (%zu on "
+                      "the seam), surface to mesh %.4f (tolerance 0.01)\n",
+                      pass == 0 ? "max_aspect 4" : pass == 1 ? "max_aspect inf" : "lattice",
+                      counts[pass], inside, seam, dev);
+        assert_true(dev <= 0.01);
+        coons_mesh_free(m);
+    }
+    assert_true(counts[1] < counts[0]);
+    assert_true(counts[0] <= counts[2]);
+    coons_body_free(b);
+    /* the twisted top */
+    double c[8][3];
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 2; k++) {
+                double *p = c[4 * i + 2 * j + k];
+                p[0] = i, p[1] = j, p[2] = k ? 1 + 0.5 * (i && j) : 0;
+            }
+    b = hexahedron(c);
+    for (int pass = 0; pass < 2; pass++) {
+        const unsigned N = 8;
+        coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+        o.resolution = N;
+        o.tolerance = pass ? 0.05 : 0.0025;
+        coons_mesh *m = NULL;
+        assert_coons_ok(coons_body_sample(b, &o, NULL, &m, &err), &err);
+        assert_closed(m);
+        const double *v = coons_mesh_vertices(m);
+        size_t top_inner = 0;
+        for (size_t i = 0; i < coons_mesh_vertex_count(m); i++) {
+            const double *p = v + 3 * i;
+            top_inner += p[2] > 0 && p[0] > 0 && p[0] < 1 && p[1] > 0 && p[1] < 1;
+        }
+        double dev = face_to_mesh(b, m, 2, 1.0, 32);
+        print_message("twisted top, tolerance %g: %zu triangles, %zu inner top vertices "
+                      "(lattice %u), surface to mesh %.4f\n",
+                      o.tolerance, coons_mesh_triangle_count(m), top_inner, (N - 1) * (N - 1),
+                      dev);
+        if (pass) assert_true(top_inner < (N - 1) * (N - 1));
+        else assert_int_equal(top_inner, (N - 1) * (N - 1));
+        assert_true(dev <= o.tolerance);
+        coons_mesh_free(m);
+    }
+    coons_body_free(b);
+}
+
 /* Every allocation of sampling a box with flat faces (the polygon mesher's
  * included) fails in turn: COONS_E_NOMEM, nothing leaked. */
 static void test_flat_allocation_failures(void **state)
@@ -517,6 +673,30 @@ static void test_flat_allocation_failures(void **state)
     }
     coons_test_fail_after(-1);
     coons_body_free(b);
+    /* and of a ruled face's strips (the cylinder's side) */
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(tb_nurbs_cylinder_rc(1.0, 3.0, &b, &err), &err);
+    o.resolution = 0;
+    o.tolerance = 0.05;
+    o.max_aspect = INFINITY;
+    done = 0;
+    for (long n = 0; !done; n++) {
+        coons_mesh *m = NULL;
+        coons_test_fail_after(n);
+        coons_status st = coons_body_sample(b, &o, NULL, &m, &err);
+        if (st == COONS_OK) {
+            done = 1;
+            coons_test_fail_after(-1);
+            assert_closed(m);
+            coons_mesh_free(m);
+        } else {
+            assert_int_equal(st, COONS_E_NOMEM);
+            assert_null(m);
+            assert_int_equal(coons_test_live_allocs(), 0);
+        }
+    }
+    coons_test_fail_after(-1);
+    coons_body_free(b);
 }
 
 int main(void)
@@ -529,6 +709,7 @@ int main(void)
         cmocka_unit_test(test_parallelepiped_adaptive),
         cmocka_unit_test(test_twisted_face_keeps_lattice),
         cmocka_unit_test(test_flat_params),
+        cmocka_unit_test(test_ruled_faces),
         cmocka_unit_test(test_flat_allocation_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -61,6 +61,9 @@ typedef struct sampler {
      * vertices flat_v0 .. nv-1 (3 each; NULL when there are none). */
     double *flat_uvw;
     size_t flat_v0;
+    /* bit f: face f, ruled between two straight lines, is meshed as one
+     * strip of quads spanning its rulings (flat.c). */
+    unsigned ruled_faces;
 } sampler;
 
 /* Internal flag of coons__sample_opts: every face keeps its lattice
