@@ -158,6 +158,82 @@ static void test_polygon_squares(void **state)
     }
 }
 
+/* Rounding does not decide: the boundary of a square grid is collinear
+ * along its sides and cocircular in fours, and a model scaled by 10^k
+ * rounds its coordinates differently. The same square with every
+ * coordinate a few ulps off (fixed pseudo-random patterns; squares of 4
+ * to 32 points a side and 4:1 rectangles) gets the same triangulation:
+ * the same Steiner points to 1e-12, the same triangles. */
+static void test_polygon_rounding(void **state)
+{
+    (void)state;
+    double xy[2 * 4 * 32], yx[2 * 4 * 32];
+    for (size_t run = 0; run < 12; run++) {
+        size_t k = (size_t)4 << run % 4;
+        square(xy, k, run < 8 ? 1 : 4, 1);
+        unsigned x = 12345u + 977u * (unsigned)run;
+        for (size_t i = 0; i < 8 * k; i++) {
+            yx[i] = xy[i];
+            for (int u = 0, n = (int)((x = x * 1103515245u + 12345u) >> 16) % 7 - 3; u < abs(n);
+                 u++)
+                yx[i] = nextafter(yx[i], n > 0 ? INFINITY : -INFINITY);
+        }
+        double *p[2] = {NULL, NULL};
+        uint32_t *t[2] = {NULL, NULL};
+        size_t ns[2], nt[2];
+        int ok[2];
+        coons_error err = COONS_ERROR_INIT;
+        for (int r = 0; r < 2; r++)
+            assert_coons_ok(coons__polygon_mesh(r ? yx : xy, 4 * k, COONS__FLAT_MIN_ANGLE, &p[r],
+                                                &ns[r], &t[r], &nt[r], &ok[r], &err),
+                            &err);
+        assert_true(ok[0] && ok[1]);
+        assert_int_equal(nt[0], nt[1]);
+        assert_int_equal(ns[0], ns[1]);
+        /* the same Steiner points (numbered in the order of their
+         * coordinates) and the same triangles (rotated to their smallest
+         * corner, sorted) */
+        uint64_t *key[2];
+        for (int r = 0; r < 2; r++) {
+            size_t m = 4 * k, n = ns[r];
+            uint64_t *ord = malloc((n ? n : 1) * sizeof *ord);
+            uint32_t *to = malloc((n ? n : 1) * sizeof *to);
+            for (size_t i = 0; i < n; i++)
+                ord[i] = (uint64_t)llround(p[r][2 * i] * 1e6 + 0.1234567) << 40 |
+                         (uint64_t)llround(p[r][2 * i + 1] * 1e6 + 0.1234567) << 16 | i;
+            qsort(ord, n, sizeof *ord, cmp_u64);
+            for (size_t i = 0; i < n; i++) to[ord[i] & 0xffff] = (uint32_t)(m + i);
+            if (r) /* the points match in that order */
+                for (size_t i = 0; i < n; i++) {
+                    size_t a = ord[i] & 0xffff, b = key[0][nt[0] + i];
+                    assert_near(p[1][2 * a], p[0][2 * b], 1e-12);
+                    assert_near(p[1][2 * a + 1], p[0][2 * b + 1], 1e-12);
+                }
+            key[r] = malloc((nt[r] + n) * sizeof *key[r]);
+            for (size_t i = 0; i < nt[r]; i++) {
+                uint32_t v[3];
+                for (int c = 0; c < 3; c++) {
+                    v[c] = t[r][3 * i + c];
+                    if (v[c] >= m) v[c] = to[v[c] - m];
+                }
+                int j = v[0] < v[1] ? (v[0] < v[2] ? 0 : 2) : (v[1] < v[2] ? 1 : 2);
+                key[r][i] = (uint64_t)v[j] << 42 | (uint64_t)v[(j + 1) % 3] << 21 | v[(j + 2) % 3];
+            }
+            qsort(key[r], nt[r], sizeof *key[r], cmp_u64);
+            for (size_t i = 0; i < n; i++) key[r][nt[r] + i] = ord[i] & 0xffff;
+            free(ord);
+            free(to);
+        }
+        assert_memory_equal(key[0], key[1], nt[0] * sizeof *key[0]);
+        free(key[0]);
+        free(key[1]);
+        for (int r = 0; r < 2; r++) {
+            coons__free(p[r]);
+            coons__free(t[r]);
+        }
+    }
+}
+
 static void test_polygon_shapes(void **state)
 {
     (void)state;
@@ -703,6 +779,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_polygon_squares),
+        cmocka_unit_test(test_polygon_rounding),
         cmocka_unit_test(test_polygon_shapes),
         cmocka_unit_test(test_polygon_rejects),
         cmocka_unit_test(test_box_faces),

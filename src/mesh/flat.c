@@ -82,18 +82,30 @@ static int grow(void **p, size_t *cap, size_t need, size_t size)
 
 static inline const double *P(const dt *d, uint32_t i) { return d->xy + 2 * (size_t)i; }
 
+/* The predicates treat values within a relative DEGENERATE of their
+ * terms' magnitude as zero (collinear, cocircular): the lattice's
+ * boundary points are collinear along straight edges and cocircular on
+ * grids, and the rounding of their coordinates (a model scaled by 10^k
+ * rounds differently from the unscaled one) must not decide how they are
+ * triangulated; only exact ties are broken, and always the same way. */
+#define DEGENERATE 1e-10
+
 static inline double orient(const double *a, const double *b, const double *c)
 {
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    double l = (b[0] - a[0]) * (c[1] - a[1]), r = (b[1] - a[1]) * (c[0] - a[0]);
+    return fabs(l - r) <= DEGENERATE * (fabs(l) + fabs(r)) ? 0.0 : l - r;
 }
 
-/* > 0 when p is strictly inside the circle through a, b, c (ccw). */
+/* > 0 when p is inside the circle through a, b, c (ccw). */
 static double incircle(const double *a, const double *b, const double *c, const double *p)
 {
     double ax = a[0] - p[0], ay = a[1] - p[1], bx = b[0] - p[0], by = b[1] - p[1];
     double cx = c[0] - p[0], cy = c[1] - p[1];
     double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-    return ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
+    double det = ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
+    double perm = (fabs(bx * cy) + fabs(by * cx)) * a2 + (fabs(cx * ay) + fabs(cy * ax)) * b2 +
+                  (fabs(ax * by) + fabs(ay * bx)) * c2;
+    return fabs(det) <= DEGENERATE * perm ? 0.0 : det;
 }
 
 /* Is ab an edge of the polygon (in either direction)? */
@@ -190,6 +202,15 @@ static int insert(dt *d, double px, double py, uint32_t start, double mindist)
             d->cav[d->ncav++] = n;
         }
     }
+    /* The cavity in index order: the new triangles' slots and order then
+     * depend on the cavity alone, not on the triangle the walk ended in
+     * (of two, when p lies on their common edge). */
+    for (size_t i = 1; i < d->ncav; i++)
+        for (size_t j = i; j > 0 && d->cav[j - 1] > d->cav[j]; j--) {
+            uint32_t x = d->cav[j];
+            d->cav[j] = d->cav[j - 1];
+            d->cav[j - 1] = x;
+        }
     /* Cavity boundary: (a, b, outside neighbour, cavity triangle). */
     d->nbe = 0;
     for (size_t i = 0; i < d->ncav; i++) {
@@ -198,11 +219,11 @@ static int insert(dt *d, double px, double py, uint32_t start, double mindist)
             uint32_t n = T->nb[k], a = T->v[(k + 1) % 3], b = T->v[(k + 2) % 3];
             if (n != NONE && d->t[n].stamp == d->stamp && !seg_barrier(d, a, b)) continue;
             const double *A = P(d, a), *B = P(d, b);
-            if (!(orient(A, B, p) > 0)) return INS_FAIL;
             double da = hypot(p[0] - A[0], p[1] - A[1]);
-            if (!(da > mindist)) return INS_FAIL;
             /* Encroachment: p in the edge's diametral lens (it sees the
-             * edge under more than 120 degrees; Shewchuk 2002, 3.1). */
+             * edge under more than 120 degrees; Shewchuk 2002, 3.1), also
+             * on the edge itself (a circumcentre of a right triangle on
+             * it): before the orientation test, which fails there. */
             double db = hypot(p[0] - B[0], p[1] - B[1]);
             if (d->constrained && is_seg(d, a, b) &&
                 (p[0] - A[0]) * (p[0] - B[0]) + (p[1] - A[1]) * (p[1] - B[1]) < -0.5 * da * db) {
@@ -210,6 +231,8 @@ static int insert(dt *d, double px, double py, uint32_t start, double mindist)
                 d->enc_b = b;
                 return INS_ENCROACH;
             }
+            if (!(orient(A, B, p) > 0)) return INS_FAIL;
+            if (!(da > mindist)) return INS_FAIL;
             if (grow((void **)&d->be, &d->becap, 4 * (d->nbe + 1), 4)) return INS_NOMEM;
             uint32_t *e = d->be + 4 * d->nbe++;
             e[0] = a, e[1] = b, e[2] = n, e[3] = d->cav[i];
