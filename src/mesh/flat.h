@@ -18,10 +18,14 @@
  * (not shared, not glued; planar within FLAT_EPS of the body's extent at
  * the lattice points and at 3 x 3 sub-samples of every cell) by a
  * triangulation of its boundary polygon, with Steiner points appended to
- * s's raw vertices (evaluated, their own union-find roots). A face whose
- * polygon the mesher cannot triangulate exactly keeps its lattice
- * triangles. Nothing happens with COONS__SAMPLE_PARAMS (Steiner points
- * have no parameters) or COONS__SAMPLE_LATTICE_FACES.
+ * s's raw vertices (evaluated, their own union-find roots) with their
+ * parameters in s->flat_uvw. A face whose polygon the mesher cannot
+ * triangulate exactly, or whose Steiner points' parameters are not found,
+ * keeps its lattice triangles. A face that is not flat but straight along
+ * one direction (ruled between two straight lines) is meshed as strips
+ * spanning its rulings where their measured deviation stays within the
+ * tolerance (s->ruled_faces; s->dev takes their deviation). Nothing
+ * happens with COONS__SAMPLE_LATTICE_FACES or for morph bodies.
  * Returns COONS_OK, COONS_E_NOMEM, or an evaluation error of the body. */
 coons_status coons__flat_faces(sampler *s);
 
