@@ -51,6 +51,7 @@
 #include "coons_internal.h"
 #include "mesh_glue.h"
 #include "mesh_impl.h"
+#include "flat.h"
 #include "sampler.h"
 #include "union_find.h"
 
@@ -308,6 +309,8 @@ static void free_mesh(sampler *s)
     coons__free(s->uf);
     coons__free(s->tri);
     coons__free(s->evaluated);
+    coons__free(s->flat_uvw);
+    s->flat_uvw = NULL;
     s->pos = NULL;
     s->uf = NULL;
     s->tri = NULL;
@@ -470,7 +473,9 @@ static void choose_diagonals(sampler *s)
 static void emit_cells(sampler *s)
 {
     size_t nt = 0;
+    s->flat_faces = 0;
     for (int f = 0; f < 6; f++) {
+        s->face_tri[f] = nt;
         if (s->glued & 1 << FACES[f].fixed || s->skip & 1u << f) continue;
         size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
         for (size_t p = 0; p < na; p++)
@@ -502,6 +507,7 @@ static void emit_cells(sampler *s)
                 }
             }
     }
+    s->face_tri[6] = nt;
     s->nt = nt;
 }
 
@@ -866,6 +872,8 @@ static coons_status run(sampler *s)
 
 static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
 {
+    coons_status fst = coons__flat_faces(s);
+    if (fst) return fst;
     if (!s->nt)
         return coons__error_set(s->err, COONS_E_INVALID,
                                 "body '%s' has no boundary surface: it collapses to a curve or "
@@ -882,7 +890,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
         st = coons__error_nomem(s->err);
         goto done;
     }
-    if (params) /* raw vertex parameters in uvw[3 nv ..], then compacted */
+    if (params) { /* raw vertex parameters in uvw[3 nv ..], then compacted */
         for (int f = 0; f < 6; f++) {
             const face_desc *F = &FACES[f];
             for (size_t ia = 0; ia <= s->n[F->a]; ia++)
@@ -893,6 +901,10 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
                     q[F->b] = s->t[F->b][ib];
                 }
         }
+        /* and the Steiner points of flat faces (flat.c) */
+        for (size_t v = s->flat_v0; s->flat_uvw && v < s->nv; v++)
+            v3_copy(uvw + 3 * (s->nv + v), s->flat_uvw + 3 * (v - s->flat_v0));
+    }
     memset(map, 0xff, s->nv * sizeof(uint32_t));
     uint32_t nv = 0;
     for (size_t i = 0; i < 3 * s->nt; i++) {
@@ -947,7 +959,8 @@ coons_status coons__sampler_run(sampler *s)
     free_lattices(s);
     s->measured = 0;
     s->dev = 0;
-    return run(s);
+    coons_status st = run(s);
+    return st ? st : coons__flat_faces(s);
 }
 
 void coons__sampler_free(sampler *s)
