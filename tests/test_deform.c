@@ -186,6 +186,62 @@ static void test_curved_body2(void **state)
     coons_body_free(b);
 }
 
+/* The report: the frame used, the counts of the mesh returned, the
+ * deviation within 0.9 x the tolerance, the winding reversed for a
+ * mirrored body; an affine body splits nothing and deviates by rounding
+ * only. */
+static void test_report(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_patch *f[6];
+    coons_body *b, *mirror;
+    assert_coons_ok(tb_bspline_faces(5, f, &err), &err);
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_LINEAR, 1e-9, &b, &err), &err);
+    for (int k = 0; k < 6; k++) coons_patch_free(f[k]);
+    const double m[12] = {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    assert_coons_ok(coons_body_new_transformed(b, m, &mirror, &err), &err);
+    coons_mesh *in = unit_cube(), *out = NULL;
+    const double lo[3] = {-0.5, 0, 0}, hi[3] = {1, 1, 1.5};
+    for (int k = 0; k < 2; k++) {
+        coons_deform_report rep = COONS_DEFORM_REPORT_INIT;
+        assert_coons_ok(coons_body_deform_mesh_report(k ? mirror : b, in, lo, hi, 8e-3, 0, &out,
+                                                      &rep, &err),
+                        &err);
+        assert_memory_equal(rep.lo, lo, sizeof lo);
+        assert_memory_equal(rep.hi, hi, sizeof hi);
+        assert_int_equal(rep.triangles_in, 12);
+        assert_int_equal(rep.vertices_in, 8);
+        assert_int_equal(rep.triangles_out, coons_mesh_triangle_count(out));
+        assert_int_equal(rep.vertices_out, coons_mesh_vertex_count(out));
+        assert_true(rep.rounds >= 1);
+        assert_true(rep.deviation > 0 && rep.deviation <= 0.9 * 8e-3 * (1 + 1e-6));
+        assert_int_equal(rep.reversed, k);
+        assert_true(coons_mesh_volume(out) > 0);
+        assert_true(closed_oriented(out));
+        coons_mesh_free(out);
+    }
+    /* an affine body measures (next to) nothing */
+    coons_body *hex;
+    const double c[8][3] = {{0, 0, 0}, {0, 0, 2}, {0, 3, 0}, {0, 3, 2},
+                            {1, 0, 0}, {1, 0, 2}, {1, 3, 0}, {1, 3, 2}};
+    assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &hex, &err), &err);
+    coons_deform_report rep = COONS_DEFORM_REPORT_INIT;
+    assert_coons_ok(coons_body_deform_mesh_report(hex, in, NULL, NULL, 1e-9, 0, &out, &rep, &err),
+                    &err);
+    assert_int_equal(rep.rounds, 0);
+    assert_true(rep.deviation <= 1e-14);
+    coons_mesh_free(out);
+    rep.version = 7;
+    assert_int_equal(coons_body_deform_mesh_report(hex, in, NULL, NULL, 1e-3, 0, &out, &rep, &err),
+                     COONS_E_INVALID);
+    assert_null(out);
+    coons_body_free(hex);
+    coons_mesh_free(in);
+    coons_body_free(mirror);
+    coons_body_free(b);
+}
+
 static void test_outside_and_invalid(void **state)
 {
     (void)state;
@@ -243,6 +299,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_affine_exact),
         cmocka_unit_test(test_curved_body2),
+        cmocka_unit_test(test_report),
         cmocka_unit_test(test_outside_and_invalid),
         cmocka_unit_test(test_budget_and_alloc),
     };

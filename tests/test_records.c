@@ -83,7 +83,8 @@ static void test_csg_report_init(void **state)
     SAME(version), SAME(triangles_in), SAME(degenerate_dropped), SAME(intersecting_pairs),
         SAME(parts_in), SAME(groups), SAME(passed_through), SAME(patches), SAME(patches_kept),
         SAME(fast_unions), SAME(fallbacks), SAME(triangles_out), SAME(rounding_merged),
-        SAME(close_merged), SAME(slivers_fixed), SAME(closed), SAME(nonmanifold_edges);
+        SAME(close_merged), SAME(slivers_fixed), SAME(closed), SAME(nonmanifold_edges),
+        SAME(pinch_edges_split), SAME(pinch_vertices_split);
     assert_int_equal(a.version, COONS_CSG_REPORT_VERSION);
     /* the version comes first, as in every record */
     assert_int_equal(offsetof(coons_csg_report, version), 0);

@@ -213,16 +213,37 @@ COONS_EXPORT void coons_body_control_bbox(const coons_body *b, double lo[3], dou
  * Volume of the body, the integral of det J over the unit cube, by
  * tensor Gauss-Legendre quadrature (5 points per direction and cell) on
  * cells bounded by the breakpoints of the body's data (knots of B-spline
- * curves, surfaces and volumes, Coons cubic segment ends), each split
- * into c^3 sub-cells with c doubling until two successive estimates
- * differ by less than `rel_tol` (relative; <= 0 means 1e-9), or until the
- * next level would take more than 2^21 Jacobian evaluations (the last
- * estimate is then returned). The volume is signed: negative for a
+ * curves, surfaces and volumes, Coons cubic segment ends), refined along
+ * each direction where needed until the error estimate is below `rel_tol`
+ * (relative; <= 0 means 1e-9), within ::COONS_BODY_VOLUME_MAX_EVALS
+ * Jacobian evaluations (coons_body_volume_bounded() with its defaults; it
+ * also reports the achieved accuracy). The volume is signed: negative for a
  * left-handed body (det J < 0), and folded regions count with their sign.
  * @return ::COONS_OK, ::COONS_E_INVALID (NULL arguments), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_volume(const coons_body *b, double rel_tol,
                                             double *volume, coons_error *err);
+
+/** Default evaluation budget of coons_body_volume_bounded(). */
+#define COONS_BODY_VOLUME_MAX_EVALS ((size_t)1 << 20)
+
+/**
+ * The signed volume (as coons_body_volume()) with bounded work and its
+ * achieved accuracy. Gauss-Legendre (5 points) on the cells bounded by
+ * the breakpoints of the body's data; each direction's sub-cells are
+ * doubled where the estimates show the error, until the error estimate
+ * is below `rel_tol` relative (<= 0 means 1e-9), or until the next step
+ * would take the Jacobian evaluations past `max_evals` (0 means
+ * ::COONS_BODY_VOLUME_MAX_EVALS): the best estimate so far is then
+ * returned, with its estimate. `error` (may be NULL) receives the error
+ * estimate (absolute; infinite if the budget allowed none), `evaluations`
+ * (may be NULL) the number of det J evaluations made.
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL arguments), ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_volume_bounded(const coons_body *b, double rel_tol,
+                                                    size_t max_evals, double *volume,
+                                                    double *error, size_t *evaluations,
+                                                    coons_error *err);
 
 /**
  * Smallest det J over an (n+1)^3 sampling of the unit cube (n >= 1), and

@@ -74,7 +74,8 @@ typedef struct coons_csg_options {
  */
 COONS_EXPORT void coons_csg_options_init(coons_csg_options *o);
 
-#define COONS_CSG_REPORT_VERSION 1
+/** Version 2: adds `pinch_edges_split` and `pinch_vertices_split`. */
+#define COONS_CSG_REPORT_VERSION 2
 
 /**
  * What coons_mesh_solidify() found and did. The caller sets `version` (use
@@ -98,10 +99,14 @@ typedef struct coons_csg_report {
     size_t slivers_fixed;       /**< triangles flattened by rounding, removed by an edge split */
     int closed;                 /**< the result has no border edge */
     size_t nonmanifold_edges;   /**< edges with more than two faces in the result */
+    size_t pinch_edges_split;   /**< edges of 2k > 2 faces (solids touching along a curve)
+                                     split into k edges of two faces each (model solids) */
+    size_t pinch_vertices_split; /**< vertices whose triangles formed more than one fan,
+                                      written once per fan (copies moved apart slightly) */
 } coons_csg_report;
 
 #define COONS_CSG_REPORT_INIT {COONS_CSG_REPORT_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
-                               0, 0, 0}
+                               0, 0, 0, 0, 0}
 
 /**
  * Sets `*r` to ::COONS_CSG_REPORT_INIT; NULL is a harmless no-op.
@@ -149,6 +154,17 @@ COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_
  * bodies' solids as one part named after `copts->name` (default "union"),
  * with "none" each body's solid as its own part. Bodies that meet nothing
  * else and do not cross themselves are written as sampled.
+ * With CGAL, every part of the result is a 2-manifold: where the solid
+ * touches itself along a curve or at a point (a repaired fold whose
+ * sheets touch, bodies meeting along an edge), each edge of 2k > 2
+ * triangles is split into k edges, pairing the triangles around it that
+ * bound the same wedge of solid, and each vertex whose triangles form
+ * several fans is written once per fan, the copies moved apart into their
+ * own fans' solids by 1e-3 of the shortest edge there, so that readers
+ * that weld by position see a 2-manifold too; kept only when the exact
+ * count then finds no crossing (report: `pinch_edges_split`,
+ * `pinch_vertices_split`; `nonmanifold_edges` is what is left).
+ * coons_mesh_solidify() itself leaves pinches as they are.
  * @param[in] sopts  sampling options (NULL: defaults, model tolerance)
  * @param[in] copts  repair/union options (NULL: defaults); its `unite`
  *                   field is ignored: the model's operation decides. Its
@@ -175,6 +191,7 @@ COONS_EXPORT coons_status coons_model_solidify(const coons_model *model,
  * coons_model_solidify() samples it (the model's tolerance unless `sopts`
  * sets one) and repaired on its own; the model's operation is not applied
  * (one body needs no union). Without CGAL the shell is returned as sampled.
+ * Pinches are split as coons_model_solidify() splits them.
  * This is what coons2stl --body writes.
  * @param[in] index  0-based body index, below coons_model_body_count()
  * @param[in] sopts  sampling options (NULL: defaults, model tolerance)

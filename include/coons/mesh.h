@@ -408,9 +408,10 @@ COONS_EXPORT coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_repor
  * Free-form deformation (seed 000: Coons bodies as FFDs, after Sederberg
  * and Parry): a new mesh holding `in` mapped through body b, a point p
  * going to B((p - lo) / (hi - lo)). Triangles are split by edge bisection
- * until the image of every edge's parametric midpoint lies within
+ * until the image of every edge's parametric midpoint lies within 0.9 times
  * `tolerance` of the chord of its end images and the images of 4 inner
- * points of every triangle lie within `tolerance` of it; an edge is split
+ * points of every triangle lie within 0.9 times `tolerance` of it (the
+ * margin covers maxima between the samples); an edge is split
  * the same way in both its triangles, so a closed 2-manifold input stays
  * closed and 2-manifold, with its winding (reversed when b is left-handed,
  * so that an outward input stays outward). An affine body splits nothing
@@ -425,6 +426,97 @@ COONS_EXPORT coons_status coons_mesh_check(const coons_mesh *m, coons_mesh_repor
 COONS_EXPORT coons_status coons_body_deform_mesh(const coons_body *b, const coons_mesh *in,
                                                  const double *lo, const double *hi,
                                                  double tolerance, size_t max_triangles,
+                                                 coons_mesh **out, coons_error *err);
+
+/** Version of ::coons_deform_report this header describes. */
+#define COONS_DEFORM_REPORT_VERSION 1
+
+/** What a deformation did (coons_body_deform_mesh_report()). */
+typedef struct coons_deform_report {
+    /** ::COONS_DEFORM_REPORT_VERSION, set by the caller. */
+    unsigned int version;
+    /** The frame used (given, or the input's bounding box). */
+    double lo[3], hi[3];
+    /**
+     * Largest distance measured from exact image points (every edge's
+     * parametric midpoint and 4 inner points of every output triangle) to
+     * the output triangle they belong to; refinement keeps it within 0.9
+     * times the tolerance, the margin covering maxima between the samples.
+     */
+    double deviation;
+    size_t triangles_in, triangles_out, vertices_in, vertices_out;
+    /** Rounds of edge bisection that split something. */
+    unsigned int rounds;
+    /** 1 when the body is left-handed and the winding was reversed. */
+    int reversed;
+} coons_deform_report;
+
+#define COONS_DEFORM_REPORT_INIT \
+    {COONS_DEFORM_REPORT_VERSION, {0, 0, 0}, {0, 0, 0}, 0.0, 0u, 0u, 0u, 0u, 0u, 0}
+
+/**
+ * coons_body_deform_mesh() that also fills `report` (NULL: none; its
+ * version must be ::COONS_DEFORM_REPORT_VERSION, else ::COONS_E_INVALID).
+ */
+COONS_EXPORT coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh *in,
+                                                        const double *lo, const double *hi,
+                                                        double tolerance, size_t max_triangles,
+                                                        coons_mesh **out,
+                                                        coons_deform_report *report,
+                                                        coons_error *err);
+
+/* ------------------------------------------------------------------------ */
+/* Reading triangle meshes: STL and OFF (src/io/read/mesh_read.c)           */
+/* ------------------------------------------------------------------------ */
+
+/** Default largest mesh file coons_mesh_read_file() reads (1 GiB). */
+#define COONS_MESH_READ_MAX_BYTES ((size_t)1 << 30)
+
+/** Version of ::coons_mesh_read_options this header describes. */
+#define COONS_MESH_READ_OPTIONS_VERSION 1
+
+/** Limits of the mesh reader; NULL instead of options means the defaults. */
+typedef struct coons_mesh_read_options {
+    /** ::COONS_MESH_READ_OPTIONS_VERSION. */
+    unsigned int version;
+    /** Largest file, in bytes; 0: ::COONS_MESH_READ_MAX_BYTES. */
+    size_t max_bytes;
+    /** Largest number of triangles; 0: ::COONS_MESH_MAX_TRIANGLES. */
+    size_t max_triangles;
+} coons_mesh_read_options;
+
+#define COONS_MESH_READ_OPTIONS_INIT {COONS_MESH_READ_OPTIONS_VERSION, 0u, 0u}
+
+/**
+ * Reads a triangle mesh: binary STL (exactly 84 + 50 * count bytes), ASCII
+ * STL (`solid` ... `endsolid`, several solids allowed) or OFF (`OFF`, the
+ * counts, vertices, polygons fanned into triangles; `#` comments), told
+ * apart by their content. STL vertices are welded by exact coordinate
+ * equality (so a closed STL gives a closed indexed mesh); triangles whose
+ * corners coincide are dropped. One part, named after the file (without
+ * directory and extension).
+ *
+ * Errors name the file and, for binary STL, the byte offset
+ * (`FILE: byte N: ...`), for text the line and column (`FILE:LINE:COL:
+ * ...`; also in err->file, err->line, err->column): a truncated file, a
+ * triangle count that disagrees with the file size, a non-finite
+ * coordinate, a token that is not what the format needs there, a face
+ * index out of range. Limits are checked before anything is allocated
+ * from a count (every count is first checked against the file size).
+ * @return ::COONS_OK; ::COONS_E_IO (cannot open or read); ::COONS_E_PARSE
+ *         (malformed); ::COONS_E_LIMIT (more than `max_bytes` or
+ *         `max_triangles`; the message says which); ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_mesh_read_file(const char *path,
+                                               const coons_mesh_read_options *opts,
+                                               coons_mesh **out, coons_error *err);
+
+/**
+ * coons_mesh_read_file() of `size` bytes at `data`; `name` (NULL:
+ * "<memory>") names the input in messages and the part.
+ */
+COONS_EXPORT coons_status coons_mesh_read_memory(const void *data, size_t size, const char *name,
+                                                 const coons_mesh_read_options *opts,
                                                  coons_mesh **out, coons_error *err);
 
 #ifdef __cplusplus

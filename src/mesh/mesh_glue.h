@@ -18,6 +18,9 @@ typedef struct coons__sample_opts {
     size_t max_triangles;
     double max_aspect;
     unsigned flags;
+    /* A volume mesh's cell budget (volume/lattice.c): 0 for none; else the
+     * sampler refuses at once a lattice predicted far above it. */
+    size_t max_cells;
 } coons__sample_opts;
 
 /* Internal flag of coons__sample_opts: coons__body_sample_into() stores

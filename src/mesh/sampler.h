@@ -26,6 +26,8 @@ typedef struct sampler {
     double *t[3];          /* lattice values, n[d] + 1 of them, t[d][0] = 0, t[d][n] = 1 */
     size_t n[3];           /* intervals per direction */
     unsigned char *mark[3];/* intervals to halve */
+    double *need[3];       /* per interval: the factor by which the last scan
+                              predicts it must shrink (budget prediction) */
     size_t nv;             /* raw lattice vertices */
     double *pos;           /* 3 * nv */
     uint32_t *uf;          /* union-find parents over raw vertices */
@@ -52,7 +54,23 @@ typedef struct sampler {
      * overflow nor underflow at any size the format allows; `tol` is the
      * tolerance in those units. */
     double scale, tol;
+    /* Flat faces (flat.c): the triangles of face f are tri[face_tri[f] ..
+     * face_tri[f+1]-1] (emit_cells(), in face order); bit f of flat_faces:
+     * face f is meshed from its boundary polygon. */
+    size_t face_tri[7];
+    unsigned flat_faces;
+    /* The parameters (u,v,w) of the Steiner points of flat faces, raw
+     * vertices flat_v0 .. nv-1 (3 each; NULL when there are none). */
+    double *flat_uvw;
+    size_t flat_v0;
+    /* bit f: face f, ruled between two straight lines, is meshed as one
+     * strip of quads spanning its rulings (flat.c). */
+    unsigned ruled_faces;
 } sampler;
+
+/* Internal flag of coons__sample_opts: every face keeps its lattice
+ * triangles, also where it is flat (flat.c). */
+#define COONS__SAMPLE_LATTICE_FACES (1u << 30)
 
 
 /* A sampler for body b (name may be NULL); run it, read it, free it. */

@@ -152,7 +152,7 @@ def main():
             try:
                 p = subprocess.run(
                     ["unshare", "-rm", "sh", "-c", script, "sh", mnt, old_text, T.bin, "-f", fmt,
-                     "--resolution", "24", "-o", os.path.join(mnt, "out.stl"), spool],
+                     "--resolution", "32", "-o", os.path.join(mnt, "out.stl"), spool],
                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=600)
             except (OSError, subprocess.TimeoutExpired) as e:
                 print(f"note: full disk: skipped ({e})")

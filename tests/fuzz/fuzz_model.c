@@ -32,6 +32,7 @@
 
 #include <coons.h>
 #include <coons/io.h>
+#include <coons/volume.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -47,53 +48,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
         }                                                               \
     } while (0)
 
-/* ---- counting, failing allocator ------------------------------------------ */
-
-static long g_fail_at = -1; /* fail the allocation with this index; -1: never */
-static long g_count, g_live;
-
-static void *f_malloc(size_t n)
-{
-    if (g_fail_at >= 0 && g_count++ == g_fail_at) return NULL;
-    void *p = malloc(n);
-    if (p) g_live++;
-    return p;
-}
-
-static void *f_realloc(void *p, size_t n)
-{
-    if (g_fail_at >= 0 && g_count++ == g_fail_at) return NULL;
-    void *q = realloc(p, n);
-    if (q && !p) g_live++;
-    return q;
-}
-
-static void f_free(void *p)
-{
-    if (p) g_live--;
-    free(p);
-}
-
-/* Counts from zero with a new failure point, keeping the live count. */
-static void alloc_reset_keep(long fail_at)
-{
-    g_fail_at = fail_at;
-    g_count = 0;
-}
-
-static void alloc_reset(long fail_at)
-{
-    g_fail_at = fail_at;
-    g_count = 0;
-    g_live = 0;
-}
-
-static uint64_t fnv1a(const uint8_t *d, size_t n)
-{
-    uint64_t h = 1469598103934665603ull;
-    for (size_t i = 0; i < n; i++) h = (h ^ d[i]) * 1099511628211ull;
-    return h;
-}
+#include "fuzz_alloc.h"
 
 /* ---- evaluation of what loaded ------------------------------------------- */
 
@@ -193,6 +148,41 @@ static void write_all(const coons_mesh *mesh)
     }
 }
 
+/* A hex mesh of the body on a 2 x 2 x 2 lattice (hex8, and hex20 or
+ * hex27 from the input's hash), through every volume writer. */
+static void volume_all(const coons_body *b, uint64_t h)
+{
+    static const coons_element E[] = {COONS_ELEMENT_HEX8, COONS_ELEMENT_HEX20,
+                                      COONS_ELEMENT_HEX27};
+    static const coons_format F[] = {COONS_FORMAT_VTK, COONS_FORMAT_MSH2, COONS_FORMAT_MSH4,
+                                     COONS_FORMAT_VTU, COONS_FORMAT_VTU_ASCII, COONS_FORMAT_INP};
+    coons_volume_options vo = COONS_VOLUME_OPTIONS_INIT;
+    vo.element = E[h % 3];
+    vo.resolution[0] = vo.resolution[1] = vo.resolution[2] = 2;
+    coons_volume_mesh *vm = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    coons_status rc = coons_body_volume_mesh(b, &vo, "fuzz", &vm, &err);
+    CHECK(rc == COONS_OK || rc == COONS_E_INVALID || rc == COONS_E_LIMIT,
+          "volume mesh: %d %s", rc, err.message);
+    if (rc) return;
+    for (size_t i = 0; i < sizeof F / sizeof F[0]; i++) {
+        char *text = NULL;
+        size_t len = 0;
+        FILE *fp = open_memstream(&text, &len);
+        if (!fp) break;
+        coons_write_options wo = COONS_WRITE_OPTIONS_INIT;
+        rc = coons_volume_mesh_write_stream(vm, fp, F[i], &wo, &err);
+        fclose(fp);
+        /* hex27 has no CalculiX element: refused, as documented */
+        CHECK(rc == COONS_OK || rc == COONS_E_UNSUPPORTED || rc == COONS_E_INVALID ||
+                  rc == COONS_E_LIMIT,
+              "writing %s: %d %s", coons_format_name(F[i]), rc, err.message);
+        if (rc == COONS_OK) CHECK(len > 0, "empty %s output", coons_format_name(F[i]));
+        free(text);
+    }
+    coons_volume_mesh_free(vm);
+}
+
 static void check_mesh(const coons_mesh *mesh)
 {
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
@@ -260,6 +250,7 @@ static void exercise_model(const coons_model *m, uint64_t h)
         long k = coons_model_find_body(m, name);
         CHECK(k >= 0 && (size_t)k <= i, "body %zu (%s) found at %ld", i, name, k);
         exercise_body(b);
+        volume_all(b, h);
         coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
         so.resolution = 2;
         so.max_triangles = 4000;
@@ -291,6 +282,105 @@ static void exercise_model(const coons_model *m, uint64_t h)
     }
     coons_mesh_free(mesh);
 }
+
+/* ---- structure-aware mutation ------------------------------------------- */
+
+#ifdef COONS_FUZZ_LIBFUZZER
+size_t LLVMFuzzerMutate(uint8_t *data, size_t size, size_t max_size);
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned seed);
+
+/* Replaces bytes [a, b) of data by the text r, if it fits. */
+static size_t splice(uint8_t *data, size_t size, size_t max_size, size_t a, size_t b,
+                     const char *r)
+{
+    size_t n = strlen(r);
+    if (size - (b - a) + n > max_size) return 0;
+    memmove(data + a + n, data + b, size - b);
+    memcpy(data + a, r, n);
+    return size - (b - a) + n;
+}
+
+/* Half of the mutations keep a model's JSON valid and move one of its
+ * numbers across scales: to an extreme or special value (+-1e300,
+ * denormals, -0, huge degrees and multiplicities within the limits), by a
+ * power of ten, or to a neighbouring double. The rest are libFuzzer's own
+ * byte-level mutations (with the dictionary). */
+size_t LLVMFuzzerCustomMutator(uint8_t *data, size_t size, size_t max_size, unsigned seed)
+{
+    static const char *special[] = {
+        "1e300", "-1e300", "1e-300", "5e-324", "-5e-324", "-0", "0", "1e150", "1e-150",
+        "2.2250738585072014e-308", "1.7976931348623157e308", "1e16", "-1", "1", "2", "3",
+        "4", "7", "31", "64", "1000", "65536", "4294967297", "0.9999999999999999",
+        "1.0000000000000002", "0.5", "1e-9", "-1e-16"};
+    uint64_t r = (uint64_t)seed * 6364136223846793005ull + 1442695040888963407ull;
+    if ((r >> 33) & 1) return LLVMFuzzerMutate(data, size, max_size);
+    /* the numbers outside strings */
+    size_t count = 0;
+    int in_str = 0;
+    for (size_t i = 0; i < size; i++) {
+        uint8_t c = data[i];
+        if (in_str) {
+            if (c == '\\') i++;
+            else if (c == '"') in_str = 0;
+        } else if (c == '"') {
+            in_str = 1;
+        } else if ((c == '-' || (c >= '0' && c <= '9')) &&
+                   (i == 0 || !((data[i - 1] >= '0' && data[i - 1] <= '9') ||
+                                data[i - 1] == '.' || data[i - 1] == 'e' ||
+                                data[i - 1] == 'E' || data[i - 1] == '-' ||
+                                data[i - 1] == '+'))) {
+            count++;
+        }
+    }
+    if (count == 0) return LLVMFuzzerMutate(data, size, max_size);
+    size_t want = (size_t)((r >> 40) % count), k = 0, a = 0, b = 0;
+    in_str = 0;
+    for (size_t i = 0; i < size; i++) {
+        uint8_t c = data[i];
+        if (in_str) {
+            if (c == '\\') i++;
+            else if (c == '"') in_str = 0;
+            continue;
+        }
+        if (c == '"') {
+            in_str = 1;
+            continue;
+        }
+        if ((c == '-' || (c >= '0' && c <= '9')) &&
+            (i == 0 || !((data[i - 1] >= '0' && data[i - 1] <= '9') || data[i - 1] == '.' ||
+                         data[i - 1] == 'e' || data[i - 1] == 'E' || data[i - 1] == '-' ||
+                         data[i - 1] == '+'))) {
+            if (k++ == want) {
+                a = i;
+                b = i + 1;
+                while (b < size && strchr("0123456789.eE+-", data[b])) b++;
+                break;
+            }
+        }
+    }
+    char old[64], text[64];
+    size_t len = b - a < sizeof old - 1 ? b - a : sizeof old - 1;
+    memcpy(old, data + a, len);
+    old[len] = '\0';
+    double x = strtod(old, NULL);
+    switch ((r >> 20) % 4) {
+    case 0:
+    case 1:
+        snprintf(text, sizeof text, "%s", special[(r >> 8) % (sizeof special / sizeof *special)]);
+        break;
+    case 2: /* a power of ten, -300..300 */
+        snprintf(text, sizeof text, "%.17g", x * pow(10.0, (double)((int)((r >> 8) % 601) - 300)));
+        break;
+    default: /* the next double up or down */
+        snprintf(text, sizeof text, "%.17g", nextafter(x, ((r >> 8) & 1) ? INFINITY : -INFINITY));
+        break;
+    }
+    if (!strchr("-0123456789", text[0]) || strstr(text, "inf") || strstr(text, "nan"))
+        snprintf(text, sizeof text, "1e308");
+    size_t n = splice(data, size, max_size, a, b, text);
+    return n ? n : LLVMFuzzerMutate(data, size, max_size);
+}
+#endif
 
 /* ---- the target ------------------------------------------------------------ */
 

@@ -51,6 +51,9 @@ typedef struct options {
     double time;          /* --time T (when time_arg) */
     unsigned frames;      /* --frames N: 0 = none */
     unsigned jobs;        /* -j N: 0 = the number of cores */
+    const char *deform;   /* --deform IN (STL or OFF), or NULL */
+    const char *frame_arg; /* --frame x0,y0,z0,x1,y1,z1 as given, or NULL */
+    double frame[6];      /* --frame's corners (when frame_arg) */
 } options;
 /* -j N as parsed (options.c), for cli_make_solid(); 0 = the number of cores. */
 extern unsigned cli_jobs;
@@ -144,5 +147,12 @@ int cli_print_morph_info(const coons_body *b, double fold_threshold, const char 
  * OpenSCAD animation; the exit status. */
 int cli_write_scad_animation(const coons_model *m, long body, const options *o,
                              const coons_sample_options *so);
+
+/* deform.c: --deform and --frame checked (and --frame parsed); -1 to go
+ * on, else the status. */
+int cli_check_deform_options(options *o);
+/* deform.c: --deform IN: IN mapped through the body (--body, default 0),
+ * written to -o like any surface, or described by --info; the status. */
+int cli_deform(const coons_model *m, long body, const options *o);
 
 #endif

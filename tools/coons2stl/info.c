@@ -215,9 +215,10 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
     const coons_body *b = coons_model_body(m, i);
     const char *name = coons_model_body_name(m, i);
     coons_error err = COONS_ERROR_INIT;
-    double lo[3], hi[3], blo[3], bhi[3], mindet = NAN, where[3] = {0, 0, 0};
+    double lo[3], hi[3], blo[3], bhi[3], mindet = NAN, where[3] = {0, 0, 0}, vol_err = NAN;
     *vol = NAN;
-    if (sampled_box(b, lo, hi, &err) || coons_body_volume(b, rel, vol, &err) ||
+    if (sampled_box(b, lo, hi, &err) ||
+        coons_body_volume_bounded(b, rel, 0, vol, &vol_err, NULL, &err) ||
         coons_body_min_jacobian(b, INFO_JAC, &mindet, where, &err)) {
         cli_message(0, "body %zu (%s): %s", i, name, err.message);
         return EXIT_GEOMETRY;
@@ -237,6 +238,8 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
     json_box(blo, bhi);
     printf(",\n     \"volume\": ");
     json_number(*vol);
+    printf(", \"volume_error\": "); /* the integral's error estimate (absolute) */
+    json_number(vol_err);
     printf(", \"min_det_jacobian\": ");
     json_number(mindet);
     printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
@@ -287,7 +290,9 @@ static void print_csg_report(const coons_csg_report *rep)
            rep->fallbacks, rep->triangles_out, rep->rounding_merged, rep->close_merged,
            rep->slivers_fixed);
     json_bool("closed", rep->closed);
-    printf(", \"nonmanifold_edges\": %zu}}", rep->nonmanifold_edges);
+    printf(", \"nonmanifold_edges\": %zu, \"pinch_edges_split\": %zu, "
+           "\"pinch_vertices_split\": %zu}}",
+           rep->nonmanifold_edges, rep->pinch_edges_split, rep->pinch_vertices_split);
 }
 
 /* The object after "solid": (the mesh checks, then the CSG report). */

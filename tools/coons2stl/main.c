@@ -32,6 +32,7 @@ static coons_sample_options sample_options(const options *o, const coons_model *
 static int run_mode(const options *o, coons_model *m, long body)
 {
     coons_sample_options so = sample_options(o, m);
+    if (o->deform) return cli_deform(m, body, o);
     if (o->frames) return cli_write_frames(m, body, o, &so);
     if (o->eval) return cli_eval(coons_model_body(m, body < 0 ? 0 : (size_t)body), o->jacobian);
     if (o->info) return cli_info(m, body, &so, o);

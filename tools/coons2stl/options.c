@@ -147,6 +147,15 @@ static const option_row OPTIONS[] = {
      "-o PATTERN holding one integer field (frame-%03d.stl);\n"
      "with .vtu also a ParaView .pvd index",
      "a whole number from 2 to {max}", 0, 100000, NULL},
+    {"deform", 0, "IN", V_TEXT, AT(deform),
+     "map the mesh IN (STL or OFF) through the body (--body,\n"
+     "default 0) instead of meshing the model: free-form\n"
+     "deformation, split to the tolerance",
+     NULL, 0, 0, NULL},
+    {"frame", 0, "X0,Y0,Z0,X1,Y1,Z1", V_TEXT, AT(frame_arg),
+     "with --deform, the box of IN mapped to the unit cube of\n"
+     "the body's parameters (default: IN's bounding box)",
+     NULL, 0, 0, NULL},
     {"help", 'h', NULL, V_ACTION, 0, "show this help and exit", NULL, 0, 0, show_help},
     {"version", 0, NULL, V_ACTION, 0, "show the version and exit", NULL, 0, 0, show_version},
 };
@@ -555,5 +564,6 @@ int cli_parse_args(int argc, char **argv, options *o)
     if ((rc = resolve_element(o)) >= 0) return rc;
     if ((rc = resolve_iso(o)) >= 0) return rc;
     cli_jobs = o->jobs;
+    if ((rc = cli_check_deform_options(o)) >= 0) return rc;
     return cli_check_time_options(o);
 }

@@ -3,7 +3,10 @@
  * -o: the mesh written to a file or standard output. A file is written to
  * a temporary file in the same directory and renamed into place only after
  * everything succeeded (coons_mesh_write()); the model file itself is
- * never overwritten; signals during the write cancel it cleanly.
+ * never overwritten; signals during the write cancel it cleanly. STL
+ * stores float32: with CGAL, a mesh that does not cross itself in double
+ * precision but would once rounded to float32 is refused (exit 3, nothing
+ * written); OFF and SCAD keep double precision.
  */
 #define _POSIX_C_SOURCE 200809L /* sigaction */
 
@@ -128,6 +131,94 @@ static int write_named(const coons_model *m, coons_mesh *mesh, coons_format form
                        const char *output, const char *input, const char *shown);
 
 /*
+ * Whether the STL of `mesh` must be refused (reported): its triangles do
+ * not cross in double precision, but rounded to float32 as STL stores them
+ * some pairs would. One exact count (CGAL's box intersection, exact
+ * predicates) on the float32 coordinates; a second, on the double ones,
+ * only when that finds a crossing: a mesh that already crosses (written
+ * with --no-repair, isoparametric surfaces) is written as it is. Without
+ * CGAL there is no exact test and no check. Coordinates outside float32's
+ * range are left to the writer, which refuses them with its own message.
+ */
+static int stl_rounding_refused(const coons_mesh *mesh, coons_format format, const char *shown)
+{
+    if ((format != COONS_FORMAT_STL_BINARY && format != COONS_FORMAT_STL_ASCII) ||
+        !coons_csg_is_available())
+        return 0;
+    coons_error err = COONS_ERROR_INIT;
+    size_t pairs32 = 0, pairs = 0;
+    coons_status rc = coons_mesh_count_self_intersections_float(mesh, &pairs32, &err);
+    if (rc == COONS_OK && pairs32) rc = coons_mesh_count_self_intersections(mesh, &pairs, &err);
+    if (rc == COONS_E_LIMIT) return 0;
+    if (rc != COONS_OK) {
+        cli_message(0, "%s: checking the STL's float32 coordinates for crossings failed: %s; "
+                       "nothing was written",
+                    shown, err.message);
+        return 1;
+    }
+    if (pairs32 && !pairs) {
+        cli_message(0,
+                    "%s: rounding the coordinates to float32, as STL stores them, would make %zu "
+                    "pair%s of triangles cross (in double precision none do); nothing was "
+                    "written. Write OFF or SCAD (-o FILE.off, -o FILE.scad: double precision), "
+                    "or try a coarser tolerance (-t)",
+                    shown, pairs32, pairs32 == 1 ? "" : "s");
+        return 1;
+    }
+    return 0;
+}
+
+/*
+ * A failed repair or union in words: what failed (the repair of a body that
+ * crosses itself, or the union), on which bodies, and what to try. CGAL's
+ * own reason (an assertion's expression or explanation: "CGAL could not
+ * complete the operation on bodies 'a', 'b': REASON") is left to --info
+ * (its solid.error keeps the library's whole message); a reason the
+ * library wrote itself ("bodies 'a': a surface patch could not be
+ * classified ...") is shown, it is meant for the user.
+ */
+static void csg_failure(const coons_model *m, long body, int repair, const char *shown,
+                        const char *msg)
+{
+    static const char cgal[] = "CGAL could not complete the operation on bodies ";
+    static const char ours[] = "bodies ";
+    int unite = body < 0 && coons_model_operation(m) == COONS_OP_UNION;
+    const char *names = NULL;
+    int from_cgal = 0;
+    if (strncmp(msg, cgal, sizeof cgal - 1) == 0) {
+        names = msg + sizeof cgal - 1;
+        from_cgal = 1;
+    } else if (strncmp(msg, ours, sizeof ours - 1) == 0) {
+        names = msg + sizeof ours - 1;
+    }
+    /* the names, 'a', 'b' (, ...), end at the first "': " or ", ...: " */
+    const char *end = names ? strstr(names, "': ") : NULL;
+    const char *dots = names ? strstr(names, ", ...: ") : NULL;
+    if (dots && (!end || dots < end))
+        end = dots + 5;
+    else if (end)
+        end += 1;
+    int len = end ? (int)(end - names) : 0;
+    int several = end && memchr(names, ',', (size_t)len) != NULL;
+    /* several bodies at once: their union (or repair) failed; one: its repair */
+    const char *what = several || (!end && unite) ? "repair or union" : "repair";
+    const char *hint = several ? "Try another tolerance (-t), or write the bodies one at a time "
+                                 "(--body NAME)"
+                       : repair ? "Try another tolerance (-t), or --no-repair to write the "
+                                  "shell as sampled (crossing itself)"
+                                : "Try another tolerance (-t)";
+    if (!end)
+        cli_message(0, "%s: %s failed: %s; nothing was written. %s", shown, what, msg, hint);
+    else if (from_cgal)
+        cli_message(0, "%s: the %s of bod%s %.*s failed: CGAL could not complete it; nothing "
+                       "was written. %s; --info shows CGAL's reason",
+                    shown, what, several ? "ies" : "y", len, names, hint);
+    else
+        cli_message(0, "%s: the %s of bod%s %.*s failed: %s; nothing was written. %s", shown,
+                    what, several ? "ies" : "y", len, names, end + 2, hint);
+}
+
+/*
  * Writes the boundary mesh of the model (all bodies, or only body `body`
  * when >= 0) to `output` (NULL or "-": standard output) in `format`,
  * sampled with `so` (its tolerance is set: -t or the model's;
@@ -150,9 +241,13 @@ int cli_write_output(const coons_model *m, long body, coons_format format, const
     coons_csg_report rep = COONS_CSG_REPORT_INIT;
     coons_status rc = cli_make_solid(m, body, so, repair, &mesh, &rep, &err);
     cli_progress_end();
+    if (rc == COONS_E_CSG) {
+        csg_failure(m, body, repair, shown, err.message);
+        coons_mesh_free(mesh);
+        return EXIT_GEOMETRY;
+    }
     if (rc != COONS_OK) {
-        cli_message(0, "%s: %s%s; nothing was written", shown,
-                    rc == COONS_E_CSG ? "repair or union failed: " : "", err.message);
+        cli_message(0, "%s: %s; nothing was written", shown, err.message);
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }
@@ -183,6 +278,10 @@ static int write_named(const coons_model *m, coons_mesh *mesh, coons_format form
     wopts.name = name[0] ? name : NULL;
     wopts.protect_path = from_file ? input : NULL;
     wopts.cancel = write_cancelled;
+    if (stl_rounding_refused(mesh, format, shown)) {
+        coons_mesh_free(mesh);
+        return EXIT_GEOMETRY;
+    }
     rc = write_mesh(mesh, to_stdout ? NULL : output, format, &wopts, &err);
     if (caught_signal) cli_die_of_caught_signal(rc, shown);
     if (rc != COONS_OK) {

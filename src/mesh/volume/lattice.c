@@ -146,6 +146,7 @@ static coons_status body_lattice(vbuild *v, vbody *B, const coons_volume_options
         coons__sample_opts so;
         if ((st = coons__sample_opts_resolve(NULL, &so, v->err))) return st;
         so.tolerance = tolerance;
+        so.max_cells = o->max_cells; /* a lattice far above it is refused at once */
         st = coons__body_sample_lattice(B->b, &so, B->name, t, B->n, NULL, v->err);
     }
     return st;
