@@ -285,12 +285,15 @@ static int plan_part(const coons_mesh *m, size_t pi, plan *pl, slot *sl, uint32_
 /* The copies of a split vertex moved apart, each into its own fan's solid
  * (against the sum of its triangles' outward normals) by a small fraction
  * of the fan's shortest edge, at least a few float32 units of the
- * coordinate: readers that weld vertices by position (every STL reader,
- * OpenSCAD's Booleans, which snap to a grid of 2^-20) would otherwise make
- * the pinch again. acc: 4 doubles per vertex. */
+ * coordinate and at least 2^-19 model units where that stays below
+ * PINCH_SHIFT_MAX of the edge: readers that weld vertices by position
+ * (every STL reader, OpenSCAD's Booleans, which snap to a grid of 2^-20
+ * units, so copies must differ by more than that in some coordinate) would
+ * otherwise make the pinch again. acc: 4 doubles per vertex. */
 #define PINCH_SHIFT 1e-3 /* of the fan's shortest edge */
-#define PINCH_SHIFT_MAX 1e-2
+#define PINCH_SHIFT_MAX 1e-1
 #define PINCH_FLOAT_ULPS 16.0
+#define PINCH_OPENSCAD_GRID 0x1p-19
 
 static void separate(coons_mesh *m, const unsigned char *split, const uint32_t *orig, double *acc)
 {
@@ -330,6 +333,7 @@ static void separate(coons_mesh *m, const unsigned char *split, const uint32_t *
         double big = fmax(fabs(q[0]), fmax(fabs(q[1]), fabs(q[2])));
         double h = acc[4 * x + 3];
         double step = fmax(PINCH_SHIFT * h, PINCH_FLOAT_ULPS * ldexp(big, -23));
+        step = fmax(step, PINCH_OPENSCAD_GRID);
         step = fmin(step, PINCH_SHIFT_MAX * h);
         for (int d = 0; d < 3; d++) q[d] -= step * n[d] / len;
     }

@@ -24,7 +24,8 @@ extern "C" {
  *    triangles of each fan use their own copy, and every copy is moved
  *    into its fan's solid (against the sum of the fan's unit normals) by
  *    1e-3 of the fan's shortest edge, at least 16 float32 units of its
- *    largest coordinate, at most 1e-2 of that edge: readers that weld
+ *    largest coordinate and 2^-19 model units (OpenSCAD's grid is 2^-20),
+ *    at most 1/10 of that edge: readers that weld
  *    vertices by position (STL, OpenSCAD's Booleans) see a 2-manifold.
  *    The move could in principle make triangles cross: the caller checks.
  * An edge whose triangles cannot be paired so (an odd number, unequal

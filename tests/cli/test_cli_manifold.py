@@ -91,8 +91,28 @@ def read_stl(path):
 
 
 def weld_close(verts, faces, eps):
-    """(vertices, faces) with vertices closer than eps merged (grid hash,
-    union-find): the copies of a split pinch become one vertex again."""
+    """(vertices, faces) with the copies of split pinch vertices merged
+    again: pairs of vertices closer than eps, not joined by an edge, each
+    the other's nearest such vertex (grid hash, union-find). The mutual
+    nearest pairs are the copies; a copy's neighbour across a short edge
+    is nearer to that edge's end than to the other copy."""
+    edges = {frozenset((f[k], f[(k + 1) % 3])) for f in faces for k in range(3)}
+    grid = {}
+    for i, p in enumerate(verts):
+        grid.setdefault(tuple(int(math.floor(x / eps)) for x in p), []).append(i)
+    nearest = {}
+    for key, ids in grid.items():
+        near = [j for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)
+                for j in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), [])]
+        for i in ids:
+            best = None
+            for j in near:
+                if j != i and frozenset((i, j)) not in edges:
+                    d = math.dist(verts[i], verts[j])
+                    if d < eps and (best is None or d < best[0]):
+                        best = (d, j)
+            if best:
+                nearest[i] = best[1]
     parent = list(range(len(verts)))
 
     def find(x):
@@ -100,16 +120,9 @@ def weld_close(verts, faces, eps):
             parent[x] = parent[parent[x]]
             x = parent[x]
         return x
-    grid = {}
-    for i, p in enumerate(verts):
-        grid.setdefault(tuple(int(math.floor(x / eps)) for x in p), []).append(i)
-    for key, ids in grid.items():
-        near = [j for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)
-                for j in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), [])]
-        for i in ids:
-            for j in near:
-                if i < j and math.dist(verts[i], verts[j]) < eps:
-                    parent[find(j)] = find(i)
+    for i, j in nearest.items():
+        if i < j and nearest.get(j) == i:
+            parent[find(j)] = find(i)
     roots = sorted(set(find(i) for i in range(len(verts))))
     index = {r: k for k, r in enumerate(roots)}
     return ([verts[r] for r in roots],
