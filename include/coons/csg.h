@@ -53,11 +53,20 @@ typedef struct coons_csg_options {
     const char *name;           /**< name of the united part (NULL: "union") */
     coons_progress_fn progress; /**< NULL: no progress reports */
     void *userdata;             /**< passed to progress */
+    unsigned threads;           /**< (version 3) threads for sampling the bodies
+                                     (coons_model_solidify()), the checks and the
+                                     unions of groups of bodies that do not meet;
+                                     0 or 1: the calling thread only (default). The
+                                     result does not depend on it, byte for byte.
+                                     With more, progress is still reported from the
+                                     calling thread, and an allocator set with
+                                     coons_set_allocator() must be thread-safe */
 } coons_csg_options;
 
-/** Version 2: the testing field `inject_failure` of version 1 is gone. */
-#define COONS_CSG_OPTIONS_VERSION 2
-#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 1, 0, 0, 0}
+/** Version 2: the testing field `inject_failure` of version 1 is gone.
+ *  Version 3: `threads`; records of version 2 are still accepted (as one thread). */
+#define COONS_CSG_OPTIONS_VERSION 3
+#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 1, 0, 0, 0, 1}
 
 /**
  * Sets `*o` to ::COONS_CSG_OPTIONS_INIT (for language bindings that cannot

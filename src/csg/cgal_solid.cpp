@@ -1,14 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Repair and union of body shells with CGAL (Surface_mesh, Polygon Mesh
-// Processing, AABB tree; Debian's CGAL 5.5). The only translation unit that
-// includes CGAL: it costs ~40 s and 1.6 GB to compile. Every extern "C"
+// Processing, AABB tree; Debian's CGAL 5.5). One of the two translation
+// units that include CGAL (the other, cgal_fast.cpp, holds the fast path,
+// compiled without CGAL's assertions; cgal_common.hpp is their interface,
+// free of CGAL types); it costs ~40 s and 1.6 GB to compile. Every extern "C"
 // entry runs through coons::guard (cxx_guard.hpp); describe_failure() is the
 // part of the boundary that knows CGAL's exception.
 //
 // The solid of a shell is where its winding number is non-zero (model
 // format, "Solids and outputs"); the solid of a model is the union of its
-// bodies' solids. Per group of parts whose boxes meet (GroupSolidifier):
+// bodies' solids. Parts meet when boxes of their triangles meet or one lies
+// inside the other (a winding number); parts that meet nothing need no
+// Boolean. Groups of parts that meet are independent: with
+// coons_csg_options.threads they run at once, and each result is put in a
+// canonical order, so that it does not depend on threads or on the heap.
+// Per group (GroupSolidifier):
 //  0. a part that meets nothing and does not cross itself (exact check of
 //     the double mesh, count_self_intersections) passes through unchanged;
 //     the others are first snapped to a power-of-two grid near 1e-12 of the
@@ -16,7 +23,10 @@
 //     than doubles;
 //  1. parts that do not cross themselves are united by chained
 //     corefinement on the inexact-constructions kernel (fast_union); the
-//     result is kept only if the exact check of it finds nothing;
+//     result is kept only if the exact check of it finds nothing (a local
+//     check: only pairs with a triangle that is not an input triangle
+//     unchanged are tested; the inputs were checked, and corefinement
+//     splits every input pair that crosses);
 //  2. otherwise each part becomes an exact (Epeck) closed 2-manifold: as it
 //     is, or repaired by the soup pass (Solidifier) when it crosses itself,
 //     and the parts are united by chained exact corefinement;
@@ -33,7 +43,8 @@
 //  4. an exact result is rounded to doubles once (round_soup), vertices
 //     closer than 1e-11 of the size are merged and triangles the rounding
 //     flattened are removed by an edge split, and the rounded mesh is
-//     checked again with exact predicates: a crossing left is an error.
+//     checked again with exact predicates (the same local check): a
+//     crossing left is an error.
 // Trials with chained corefinement unions (inexact kernel) left
 // self-intersections, and exact results rounded later reintroduced some
 // (BUILD-NOTES): the final checks make that an error instead of a silent
@@ -69,6 +80,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "csg/cgal_common.hpp"
 #include "cxx_guard.hpp"
 
 extern "C" {
@@ -81,6 +93,16 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 namespace {
 
+using coons_csg::Failure;
+using coons_csg::InputTriangles;
+using coons_csg::Part;
+using coons_csg::Progress;
+using coons_csg::Soup;
+using coons_csg::count_self_intersections;
+using coons_csg::fix_slivers;
+using coons_csg::merge_close;
+using coons_csg::parallel_for;
+
 typedef CGAL::Exact_predicates_exact_constructions_kernel EK;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel IK;
 typedef EK::Point_3 EPoint;
@@ -89,30 +111,9 @@ typedef CGAL::Surface_mesh<IK::Point_3> IMesh;
 typedef EMesh::Face_index EFace;
 typedef EMesh::Vertex_index EVert;
 
-struct Failure : std::runtime_error {
-    coons_status code;
-    Failure(coons_status c, const std::string &m) : std::runtime_error(m), code(c) {}
-};
 
-struct Part {
-    std::string name;
-    size_t tri_first, tri_count, vert_first, vert_count;
-    double lo[3], hi[3];
-};
 
-struct Progress {
-    const coons_csg_options *o;
-    void operator()(const char *stage, double f) const
-    {
-        if (o && o->progress) o->progress(o->userdata, stage, f < 0 ? 0 : (f > 1 ? 1 : f));
-    }
-};
 
-// Output triangles of one group or part, in double coordinates.
-struct Soup {
-    std::vector<double> xyz;
-    std::vector<uint32_t> tri;
-};
 
 struct Key3 {
     double v[3];
@@ -136,98 +137,6 @@ struct BodyVisitor : PMP::Corefinement::Default_visitor<EMesh> {
     void before_subface_creations(EFace f, EMesh &) { *parent = (*body)[f]; }
     void after_subface_created(EFace f, EMesh &) { (*body)[f] = *parent; }
 };
-
-// Is e (in the plane of v, c, d) in the closed angle c-v-d, off v?
-bool in_wedge(const IK::Point_3 &v, const IK::Point_3 &c, const IK::Point_3 &d,
-              const IK::Point_3 &e)
-{
-    CGAL::Orientation o1 = CGAL::coplanar_orientation(v, c, d, e);
-    CGAL::Orientation o2 = CGAL::coplanar_orientation(v, d, c, e);
-    if (o1 == CGAL::NEGATIVE || o2 == CGAL::NEGATIVE) return false;
-    if (o1 == CGAL::COLLINEAR) return (e - v) * (c - v) > 0;
-    if (o2 == CGAL::COLLINEAR) return (e - v) * (d - v) > 0;
-    return true;
-}
-
-// Two triangles of a soup given by vertex indices intersect other than in
-// what their shared indices allow (a shared edge, a shared vertex)?
-bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const uint32_t *t)
-{
-    int shared = 0, si[3] = {-1, -1, -1}, ti[3] = {-1, -1, -1};
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-            if (s[i] == t[j]) {
-                si[shared] = i;
-                ti[shared] = j;
-                shared++;
-            }
-    const IK::Point_3 &a = P[s[0]], &b = P[s[1]], &c = P[s[2]];
-    const IK::Point_3 &d = P[t[0]], &e = P[t[1]], &f = P[t[2]];
-    if (shared == 0) return CGAL::do_intersect(IK::Triangle_3(a, b, c), IK::Triangle_3(d, e, f));
-    if (shared >= 3) return true;
-    if (shared == 2) {
-        int so = 3 - si[0] - si[1], to = 3 - ti[0] - ti[1];
-        const IK::Point_3 &p = P[s[si[0]]], &q = P[s[si[1]]], &x = P[s[so]], &y = P[t[to]];
-        if (CGAL::orientation(p, q, x, y) != CGAL::COPLANAR) return false;
-        return CGAL::coplanar_orientation(p, q, x, y) == CGAL::POSITIVE;
-    }
-    const IK::Point_3 &v = P[s[si[0]]];
-    const IK::Point_3 &s1 = P[s[(si[0] + 1) % 3]], &s2 = P[s[(si[0] + 2) % 3]];
-    const IK::Point_3 &t1 = P[t[(ti[0] + 1) % 3]], &t2 = P[t[(ti[0] + 2) % 3]];
-    // One triangle strictly on one side of the other's plane (but for v):
-    // they meet only at v. This settles almost every pair of a fan.
-    CGAL::Orientation a1 = CGAL::orientation(v, s1, s2, t1), a2 = CGAL::orientation(v, s1, s2, t2);
-    if (a1 == a2 && a1 != CGAL::COPLANAR) return false;
-    CGAL::Orientation b1 = CGAL::orientation(v, t1, t2, s1), b2 = CGAL::orientation(v, t1, t2, s2);
-    if (b1 == b2 && b1 != CGAL::COPLANAR) return false;
-    if (a1 == CGAL::COPLANAR && a2 == CGAL::COPLANAR) {
-        // Coplanar, sharing v: each lies in its angle at v (< 180 degrees),
-        // so they overlap exactly when a side of one enters the other's angle.
-        return in_wedge(v, t1, t2, s1) || in_wedge(v, t1, t2, s2) || in_wedge(v, s1, s2, t1) ||
-               in_wedge(v, s1, s2, t2);
-    }
-    IK::Triangle_3 S(v, s1, s2), T(v, t1, t2);
-    if (CGAL::do_intersect(IK::Segment_3(s1, s2), T)) return true;
-    if (CGAL::do_intersect(IK::Segment_3(t1, t2), S)) return true;
-    for (const IK::Point_3 *e2 : {&s1, &s2})
-        if (CGAL::orientation(v, t1, t2, *e2) == CGAL::COPLANAR && in_wedge(v, t1, t2, *e2))
-            return true;
-    for (const IK::Point_3 *e2 : {&t1, &t2})
-        if (CGAL::orientation(v, s1, s2, *e2) == CGAL::COPLANAR && in_wedge(v, s1, s2, *e2))
-            return true;
-    return false;
-}
-
-// Pairs of triangles of an indexed soup that intersect other than along
-// shared edges or at shared vertices, with exact predicates on the double
-// coordinates. Works on non-manifold soups (a pinched solid) as they are.
-size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tri, size_t nt,
-                                size_t *degenerate = nullptr)
-{
-    std::vector<IK::Point_3> P;
-    P.reserve(nv);
-    for (size_t i = 0; i < nv; i++) P.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, size_t> Box;
-    std::vector<Box> boxes;
-    boxes.reserve(nt);
-    for (size_t t = 0; t < nt; t++) {
-        const uint32_t *q = tri + 3 * t;
-        if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
-        if (CGAL::collinear(P[q[0]], P[q[1]], P[q[2]])) {
-            // A zero-area triangle bounds nothing; it is counted, not tested.
-            if (degenerate) (*degenerate)++;
-            continue;
-        }
-        CGAL::Bbox_3 bb = P[q[0]].bbox() + P[q[1]].bbox() + P[q[2]].bbox();
-        boxes.emplace_back(bb, t);
-    }
-    size_t count = 0;
-    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(
-        boxes.begin(), boxes.end(), [&](const Box &x, const Box &y) {
-            if (pair_intersects(P, tri + 3 * x.info(), tri + 3 * y.info())) count++;
-        });
-    return count;
-}
 
 struct LessXYZ {
     bool operator()(const EPoint &a, const EPoint &b) const
@@ -560,9 +469,9 @@ class Solidifier {
     }
 };
 
-void collect_parts(const coons_mesh *m, std::vector<Part> &parts)
+// The parts of m, with their boxes in the coordinates xyz (m's, scaled).
+void collect_parts(const coons_mesh *m, const double *xyz, std::vector<Part> &parts)
 {
-    const double *xyz = coons_mesh_vertices(m);
     size_t np = coons_mesh_part_count(m);
     for (size_t i = 0; i < np; i++) {
         Part p;
@@ -574,12 +483,6 @@ void collect_parts(const coons_mesh *m, std::vector<Part> &parts)
     }
 }
 
-bool boxes_meet(const Part &a, const Part &b)
-{
-    for (int c = 0; c < 3; c++)
-        if (a.hi[c] < b.lo[c] || b.hi[c] < a.lo[c]) return false;
-    return true;
-}
 
 // "'a', 'b', ..." (the first 8 names of the parts ids) into buf, cut to
 // its size; allocates nothing (it runs in the guard's catch path).
@@ -603,17 +506,24 @@ void names_into(char *buf, size_t size, const std::vector<Part> &parts,
 
 void edge_stats(const Soup &s, coons_csg_report &rep)
 {
-    std::unordered_map<uint64_t, int> count;
+    // Undirected edges sorted: runs of one are border edges, of more than
+    // two non-manifold ones.
+    std::vector<uint64_t> e;
+    e.reserve(s.tri.size());
     for (size_t t = 0; t < s.tri.size() / 3; t++)
         for (int k = 0; k < 3; k++) {
             uint64_t a = s.tri[3 * t + k], b = s.tri[3 * t + (k + 1) % 3];
             if (a > b) std::swap(a, b);
-            count[(a << 32) | b]++;
+            e.push_back((a << 32) | b);
         }
+    std::sort(e.begin(), e.end());
     size_t border = 0, nonman = 0;
-    for (auto &kv : count) {
-        if (kv.second == 1) border++;
-        if (kv.second > 2) nonman++;
+    for (size_t i = 0; i < e.size();) {
+        size_t j = i;
+        while (j < e.size() && e[j] == e[i]) j++;
+        if (j - i == 1) border++;
+        if (j - i > 2) nonman++;
+        i = j;
     }
     rep.closed = border == 0;
     rep.nonmanifold_edges += nonman;
@@ -636,139 +546,6 @@ void soup_of(const EMesh &m, ExactSoup &e)
         int i = 0;
         for (EVert v : CGAL::vertices_around_face(m.halfedge(f), m)) t[i++] = id[v];
         e.tri.push_back(t);
-    }
-}
-
-// Exact intersections of inputs whose own rounding noise differs (a NURBS
-// point at x = 2e-16 against a wall at x = 0) give features narrower than
-// doubles can hold, which rounding turns into overlaps. Vertices closer
-// than 1e-11 of the part's size (far below any tolerance) are merged, and
-// the triangles that this collapses or doubles (two opposite copies) go.
-void merge_close(Soup &s, coons_csg_report &rep)
-{
-    size_t nv = s.xyz.size() / 3;
-    if (!nv) return;
-    double lo[3], hi[3];
-    bbox_empty(lo, hi);
-    for (size_t v = 0; v < nv; v++) bbox_add(lo, hi, &s.xyz[3 * v]);
-    double eps = 1e-11 * bbox_diag(lo, hi);
-    if (!(eps > 0)) return;
-    auto cell = [&](size_t v, int c) { return (int64_t)std::floor((s.xyz[3 * v + c] - lo[c]) / eps); };
-    struct H {
-        size_t operator()(const std::array<int64_t, 3> &k) const
-        {
-            return (size_t)(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
-        }
-    };
-    std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, H> grid;
-    std::vector<uint32_t> rep_of(nv);
-    for (size_t v = 0; v < nv; v++) {
-        std::array<int64_t, 3> k{cell(v, 0), cell(v, 1), cell(v, 2)};
-        uint32_t found = UINT32_MAX;
-        for (int dx = -1; dx <= 1 && found == UINT32_MAX; dx++)
-            for (int dy = -1; dy <= 1 && found == UINT32_MAX; dy++)
-                for (int dz = -1; dz <= 1 && found == UINT32_MAX; dz++) {
-                    auto it = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
-                    if (it == grid.end()) continue;
-                    for (uint32_t w : it->second) {
-                        double d = 0;
-                        for (int c = 0; c < 3; c++) d = std::max(d, std::fabs(s.xyz[3 * v + c] - s.xyz[3 * w + c]));
-                        if (d <= eps) {
-                            found = w;
-                            break;
-                        }
-                    }
-                }
-        if (found != UINT32_MAX) {
-            rep_of[v] = found;
-            rep.close_merged++;
-        } else {
-            rep_of[v] = (uint32_t)v;
-            grid[k].push_back((uint32_t)v);
-        }
-    }
-    if (!rep.close_merged) return;
-    std::vector<uint32_t> out;
-    std::unordered_map<uint64_t, size_t> seen; // sorted vertex triple -> index in out/3
-    std::vector<char> dead;
-    auto key = [](uint32_t a, uint32_t b, uint32_t c) {
-        uint32_t v[3] = {a, b, c};
-        std::sort(v, v + 3);
-        return ((uint64_t)v[0] * 2654435761u) ^ ((uint64_t)v[1] << 21) ^ ((uint64_t)v[2] << 42);
-    };
-    for (size_t t = 0; t < s.tri.size() / 3; t++) {
-        uint32_t a = rep_of[s.tri[3 * t]], b = rep_of[s.tri[3 * t + 1]], c = rep_of[s.tri[3 * t + 2]];
-        if (a == b || b == c || a == c) continue;
-        uint64_t k = key(a, b, c);
-        auto it = seen.find(k);
-        if (it != seen.end() && !dead[it->second]) {
-            const uint32_t *o = &out[3 * it->second];
-            uint32_t x[3] = {a, b, c}, y[3] = {o[0], o[1], o[2]};
-            std::sort(x, x + 3);
-            std::sort(y, y + 3);
-            if (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) {
-                dead[it->second] = 1; // two copies: opposite ones cancel, equal ones are one
-                bool same = (o[0] == a && o[1] == b) || (o[1] == a && o[2] == b) || (o[2] == a && o[0] == b);
-                if (same) dead[it->second] = 0;
-                continue;
-            }
-        }
-        seen[k] = out.size() / 3;
-        out.insert(out.end(), {a, b, c});
-        dead.push_back(0);
-    }
-    s.tri.clear();
-    for (size_t t = 0; t < out.size() / 3; t++)
-        if (!dead[t]) s.tri.insert(s.tri.end(), out.begin() + 3 * t, out.begin() + 3 * t + 3);
-}
-
-// Rounding can flatten a thin exact triangle (a, b, c) so that one vertex
-// m lies on the segment between the other two, p and q. Such a sliver is
-// removed and the triangle across its long edge (q, p, d) is split at m into
-// (q, m, d) and (m, p, d): the surface stays closed and oriented, and the
-// split triangles lie in the plane of the old one.
-void fix_slivers(Soup &s, coons_csg_report &rep)
-{
-    auto P = [&](uint32_t i) { return IK::Point_3(s.xyz[3 * i], s.xyz[3 * i + 1], s.xyz[3 * i + 2]); };
-    for (int round = 0; round < 8; round++) {
-        size_t nt = s.tri.size() / 3;
-        std::unordered_map<uint64_t, size_t> edge; // directed edge -> triangle
-        for (size_t t = 0; t < nt; t++)
-            for (int k = 0; k < 3; k++)
-                edge[((uint64_t)s.tri[3 * t + k] << 32) | s.tri[3 * t + (k + 1) % 3]] = t;
-        std::vector<char> dead(nt, 0);
-        std::vector<uint32_t> extra;
-        size_t fixed = 0;
-        for (size_t t = 0; t < nt; t++) {
-            if (dead[t]) continue;
-            uint32_t v[3] = {s.tri[3 * t], s.tri[3 * t + 1], s.tri[3 * t + 2]};
-            if (!CGAL::collinear(P(v[0]), P(v[1]), P(v[2]))) continue;
-            // k: index of the middle vertex m; the long edge is v[k+1] -> v[k+2].
-            int k = -1;
-            for (int i = 0; i < 3 && k < 0; i++)
-                if (CGAL::collinear_are_ordered_along_line(P(v[(i + 1) % 3]), P(v[i]), P(v[(i + 2) % 3])))
-                    k = i;
-            if (k < 0) continue;
-            uint32_t m = v[k], p = v[(k + 1) % 3], q = v[(k + 2) % 3];
-            auto it = edge.find(((uint64_t)q << 32) | p);
-            if (it == edge.end() || dead[it->second] || it->second == t) continue;
-            size_t n = it->second;
-            uint32_t d = UINT32_MAX;
-            for (int i = 0; i < 3; i++)
-                if (s.tri[3 * n + i] != q && s.tri[3 * n + i] != p) d = s.tri[3 * n + i];
-            if (d == UINT32_MAX || d == m) continue;
-            dead[t] = dead[n] = 1;
-            extra.insert(extra.end(), {q, m, d, m, p, d});
-            fixed++;
-        }
-        if (!fixed) return;
-        rep.slivers_fixed += fixed;
-        std::vector<uint32_t> keep;
-        keep.reserve(s.tri.size());
-        for (size_t t = 0; t < nt; t++)
-            if (!dead[t]) keep.insert(keep.end(), s.tri.begin() + 3 * t, s.tri.begin() + 3 * t + 3);
-        keep.insert(keep.end(), extra.begin(), extra.end());
-        s.tri.swap(keep);
     }
 }
 
@@ -799,69 +576,9 @@ void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep)
         if (a == b || b == c || a == c) continue;
         out.tri.insert(out.tri.end(), {a, b, c});
     }
+    coons_csg::canonical_order(out);
     merge_close(out, rep);
     fix_slivers(out, rep);
-}
-
-// The fast path for bodies that do not cross themselves: chained
-// corefinement on the inexact-constructions kernel (exact predicates,
-// intersection points rounded as they are made). Such chains can leave
-// crossings (BUILD-NOTES), so the result is accepted only when the exact
-// check of the finished double mesh finds none; otherwise the exact path
-// runs. Returns true with `s` filled, or false.
-bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part> &parts,
-                const std::vector<size_t> &ids, coons_csg_report &rep, Progress prog, double p0,
-                double p1, Soup &s)
-{
-    try {
-        std::vector<IMesh> ms(ids.size());
-        for (size_t k = 0; k < ids.size(); k++) {
-            const Part &p = parts[ids[k]];
-            std::vector<IMesh::Vertex_index> vs;
-            for (size_t v = 0; v < p.vert_count; v++) {
-                const double *q = sxyz + 3 * (p.vert_first + v);
-                vs.push_back(ms[k].add_vertex(IK::Point_3(q[0], q[1], q[2])));
-            }
-            for (size_t t = 0; t < p.tri_count; t++) {
-                const uint32_t *q = tri + 3 * (p.tri_first + t);
-                auto a = vs[q[0] - p.vert_first], b = vs[q[1] - p.vert_first], c = vs[q[2] - p.vert_first];
-                if (CGAL::collinear(ms[k].point(a), ms[k].point(b), ms[k].point(c)) ||
-                    ms[k].add_face(a, b, c) == IMesh::null_face())
-                    return false;
-            }
-            if (!CGAL::is_closed(ms[k])) return false;
-        }
-        IMesh acc = std::move(ms[0]);
-        for (size_t k = 1; k < ids.size(); k++) {
-            prog("union", p0 + (p1 - p0) * k / ids.size());
-            if (!PMP::corefine_and_compute_union(acc, ms[k], acc)) return false;
-        }
-        Soup r;
-        std::vector<uint32_t> id(acc.num_vertices(), UINT32_MAX);
-        for (auto v : acc.vertices()) {
-            id[v] = (uint32_t)(r.xyz.size() / 3);
-            const IK::Point_3 &q = acc.point(v);
-            r.xyz.insert(r.xyz.end(), {q.x(), q.y(), q.z()});
-        }
-        for (auto f : acc.faces())
-            for (auto v : CGAL::vertices_around_face(acc.halfedge(f), acc)) r.tri.push_back(id[v]);
-        coons_csg_report scratch = rep;
-        merge_close(r, scratch);
-        fix_slivers(r, scratch);
-        size_t degenerate = 0;
-        if (count_self_intersections(r.xyz.data(), r.xyz.size() / 3, r.tri.data(),
-                                     r.tri.size() / 3, &degenerate) ||
-            degenerate)
-            return false;
-        rep = scratch;
-        rep.fast_unions++;
-        s = std::move(r);
-        return true;
-    } catch (const std::bad_alloc &) {
-        throw;
-    } catch (...) {
-        return false;
-    }
 }
 
 // The triangles of part p, with vertex indices local to the part.
@@ -886,9 +603,10 @@ class GroupSolidifier {
     GroupSolidifier(const double *xyz, const double *sxyz, const uint32_t *tri,
                     const std::vector<Part> &parts, const std::vector<size_t> &ids,
                     const coons_csg_options &o, coons_csg_report &rep, Progress prog, double p0,
-                    double p1)
+                    double p1, unsigned threads)
         : xyz_(xyz), sxyz_(sxyz), tri_(tri), parts_(parts), ids_(ids), o_(o), rep_(rep),
-          prog_(prog), p0_(p0), p1_(p1), solids_(ids.size()), crossing_(ids.size())
+          prog_(prog), p0_(p0), p1_(p1), threads_(threads), solids_(ids.size()),
+          crossing_(ids.size())
     {
     }
 
@@ -896,7 +614,7 @@ class GroupSolidifier {
     {
         bool clean = count_crossings();
         if (clean && ids_.size() > 1 &&
-            fast_union(sxyz_, tri_, parts_, ids_, rep_, prog_, p0_, p1_, s))
+            coons_csg::fast_union(sxyz_, tri_, parts_, ids_, rep_, prog_, p0_, p1_, threads_, s))
             return true;
         ExactSoup result;
         bool manifold_all = true;
@@ -921,6 +639,7 @@ class GroupSolidifier {
     coons_csg_report &rep_;
     Progress prog_;
     double p0_, p1_;
+    unsigned threads_;
     std::vector<EMesh> solids_;    // per part of the group
     std::vector<size_t> crossing_; // its self-intersecting pairs
 
@@ -934,7 +653,8 @@ class GroupSolidifier {
             std::vector<uint32_t> local = local_triangles(tri_, p);
             crossing_[k] = o_.repair || ids_.size() > 1
                                ? count_self_intersections(xyz_ + 3 * p.vert_first, p.vert_count,
-                                                          local.data(), p.tri_count)
+                                                          local.data(), p.tri_count, nullptr,
+                                                          threads_)
                                : 0;
             rep_.intersecting_pairs += crossing_[k];
             if (crossing_[k]) clean = false;
@@ -1042,8 +762,11 @@ std::vector<double> snapped(const double *xyz, size_t nv)
     return sxyz;
 }
 
-// Groups of parts whose boxes meet, transitively (unite), or each part alone.
-std::vector<std::vector<size_t>> group_parts(const std::vector<Part> &parts, bool unite)
+// Groups of parts that meet, transitively (unite), or each part alone:
+// parts meet when boxes of their triangles meet or one lies inside the
+// other (coons_csg::parts_interact); the others need no Boolean together.
+std::vector<std::vector<size_t>> group_parts(const double *xyz, const uint32_t *tri,
+                                             const std::vector<Part> &parts, bool unite)
 {
     std::vector<int> group(parts.size(), -1);
     std::vector<std::vector<size_t>> groups;
@@ -1054,7 +777,8 @@ std::vector<std::vector<size_t>> group_parts(const std::vector<Part> &parts, boo
         if (!unite) continue;
         for (size_t q = 0; q < groups.back().size(); q++)
             for (size_t j = 0; j < parts.size(); j++)
-                if (group[j] < 0 && boxes_meet(parts[groups.back()[q]], parts[j])) {
+                if (group[j] < 0 &&
+                    coons_csg::parts_interact(xyz, tri, parts[groups.back()[q]], parts[j])) {
                     group[j] = group[i];
                     groups.back().push_back(j);
                 }
@@ -1064,11 +788,14 @@ std::vector<std::vector<size_t>> group_parts(const std::vector<Part> &parts, boo
 
 // The exact check of a rounded result: a crossing or a flat triangle that
 // the rounding made is an error, never a silent result.
-void check_rounding(const Soup &s)
+// Local: pairs of two triangles taken unchanged from the input shells
+// (`old`) are not tested (the inputs were checked, and autorefinement or
+// corefinement split every input pair that crosses).
+void check_rounding(const Soup &s, const InputTriangles &old, unsigned threads)
 {
     size_t degenerate = 0;
     size_t pairs = count_self_intersections(s.xyz.data(), s.xyz.size() / 3, s.tri.data(),
-                                            s.tri.size() / 3, &degenerate);
+                                            s.tri.size() / 3, &degenerate, threads, &old);
     if (pairs || degenerate)
         throw Failure(COONS_E_CSG, "rounding the exact result to doubles made " +
                                        std::to_string(pairs) + " triangle pairs intersect and " +
@@ -1118,7 +845,7 @@ coons_status solidify(const coons_mesh *in, const coons_csg_options &o, std::vec
     const std::vector<double> unit = scaled(coons_mesh_vertices(in), coons_mesh_vertex_count(in), scale);
     const double *xyz = unit.data();
     const uint32_t *tri = coons_mesh_triangles(in);
-    collect_parts(in, parts);
+    collect_parts(in, xyz, parts);
     // Until the groups are known, a failure concerns every part.
     for (size_t i = 0; i < parts.size(); i++) current.push_back(i);
     rep.parts_in = parts.size();
@@ -1127,32 +854,84 @@ coons_status solidify(const coons_mesh *in, const coons_csg_options &o, std::vec
         throw CGAL::Failure_exception("libcoons", "injected", __FILE__, __LINE__,
                                       "injected failure (testing)");
     std::vector<double> sxyz = snapped(xyz, coons_mesh_vertex_count(in));
-    std::vector<std::vector<size_t>> groups = group_parts(parts, o.unite != 0);
+    std::vector<std::vector<size_t>> groups = group_parts(xyz, tri, parts, o.unite != 0);
     rep.groups = groups.size();
 
     coons_mesh *made = nullptr;
     coons_status rc = coons_mesh_new(&made, err);
     if (rc) return rc;
     MeshPtr res(made);
+    // Groups that do not meet are independent: with threads, they run at
+    // once (progress is then reported from this thread as groups finish);
+    // each has its own report and result, gathered in group order, so the
+    // result does not depend on the number of threads.
+    const size_t ng = groups.size();
+    const unsigned threads = o.threads > 1 ? o.threads : 1;
+    std::vector<Soup> results(ng);
+    std::vector<coons_csg_report> reps(ng);
+    for (coons_csg_report &r : reps) coons_csg_report_init(&r);
+    auto one_group = [&](size_t gi, Progress pr, unsigned inner) {
+        double p0 = (double)gi / ng, p1 = (double)(gi + 1) / ng;
+        pr("check", p0);
+        Soup &s = results[gi];
+        GroupSolidifier g(xyz, sxyz.data(), tri, parts, groups[gi], o, reps[gi], pr, p0, p1,
+                          inner);
+        if (!g.run(s)) {
+            pr("verify", p0 + (p1 - p0) * 0.95);
+            InputTriangles old;
+            coons_csg::input_triangles(sxyz.data(), tri, parts, groups[gi], old);
+            check_rounding(s, old, inner);
+        }
+        edge_stats(s, reps[gi]);
+    };
+    if (threads > 1 && ng > 1) {
+        unsigned inner = threads / (unsigned)std::min<size_t>(threads, ng);
+        prog("check", 0.0);
+        std::vector<std::exception_ptr> errors;
+        parallel_for(threads, ng, [&](size_t gi) { one_group(gi, Progress{nullptr}, inner); },
+                     errors);
+        for (size_t gi = 0; gi < ng; gi++) {
+            if (errors[gi]) {
+                current = groups[gi];
+                std::rethrow_exception(errors[gi]);
+            }
+            prog("check", (double)(gi + 1) / ng);
+        }
+    } else {
+        for (size_t gi = 0; gi < ng; gi++) {
+            current = groups[gi];
+            one_group(gi, prog, threads);
+        }
+    }
     Soup all;
-    for (size_t gi = 0; gi < groups.size(); gi++) {
-        current = groups[gi];
-        double p0 = (double)gi / groups.size(), p1 = (double)(gi + 1) / groups.size();
-        prog("check", p0);
-        Soup s;
-        GroupSolidifier g(xyz, sxyz.data(), tri, parts, current, o, rep, prog, p0, p1);
-        if (!g.run(s)) check_rounding(s);
-        edge_stats(s, rep);
+    rep.closed = ng > 0;
+    for (size_t gi = 0; gi < ng; gi++) {
+        const coons_csg_report &r = reps[gi];
+        rep.degenerate_dropped += r.degenerate_dropped;
+        rep.intersecting_pairs += r.intersecting_pairs;
+        rep.passed_through += r.passed_through;
+        rep.patches += r.patches;
+        rep.patches_kept += r.patches_kept;
+        rep.fast_unions += r.fast_unions;
+        rep.fallbacks += r.fallbacks;
+        rep.rounding_merged += r.rounding_merged;
+        rep.close_merged += r.close_merged;
+        rep.slivers_fixed += r.slivers_fixed;
+        rep.nonmanifold_edges += r.nonmanifold_edges;
+        rep.closed = rep.closed && r.closed;
+        Soup &s = results[gi];
         for (double &x : s.xyz) x /= scale;
         if (o.unite) {
             uint32_t base = (uint32_t)(all.xyz.size() / 3);
             all.xyz.insert(all.xyz.end(), s.xyz.begin(), s.xyz.end());
             for (uint32_t v : s.tri) all.tri.push_back(v + base);
         } else {
-            rc = coons_mesh_add_part(res.get(), parts[current[0]].name.c_str(), s.xyz.data(),
+            rc = coons_mesh_add_part(res.get(), parts[groups[gi][0]].name.c_str(), s.xyz.data(),
                                      s.xyz.size() / 3, s.tri.data(), s.tri.size() / 3, err);
             if (rc) return rc;
         }
+        std::vector<double>().swap(s.xyz);
+        std::vector<uint32_t>().swap(s.tri);
     }
     if (o.unite) {
         rc = coons_mesh_add_part(res.get(), o.name ? o.name : "union", all.xyz.data(),
@@ -1265,7 +1044,7 @@ coons_status self_int(const char *entry, const coons_mesh *m, size_t *pairs, boo
         for (double &x : f) x *= scale;
         xyz = f.data();
         *pairs = count_self_intersections(xyz, nv, coons_mesh_triangles(m),
-                                          coons_mesh_triangle_count(m));
+                                          coons_mesh_triangle_count(m), nullptr, 1);
         return COONS_OK;
     }, [](coons_error *e, const std::exception &x) noexcept { return describe_self_int(e, x); });
 }
@@ -1284,8 +1063,9 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
         [&]() -> coons_status {
             coons_status st = coons__csg_records_check(opts, report, err);
             if (st) return st;
-            const coons_csg_options defaults = COONS_CSG_OPTIONS_INIT;
-            return solidify(in, opts ? *opts : defaults, parts, current, out, report, err);
+            coons_csg_options o;
+            coons__csg_options_read(opts, &o);
+            return solidify(in, o, parts, current, out, report, err);
         },
         [&](coons_error *e, const std::exception &x) noexcept {
             return describe_failure(e, x, parts, current);

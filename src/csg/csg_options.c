@@ -2,6 +2,7 @@
 /* The records of the repair/union layer (coons/csg.h): options and report,
  * their _init() functions and the version checks shared by every function
  * that takes them, with CGAL and without (csg/nocgal) alike. */
+#include <stddef.h>
 #include <string.h>
 
 #include "coons_internal.h"
@@ -22,7 +23,7 @@ void coons_csg_report_init(coons_csg_report *r)
 coons_status coons__csg_records_check(const coons_csg_options *opts, const coons_csg_report *report,
                                       coons_error *err)
 {
-    if (opts && opts->version != COONS_CSG_OPTIONS_VERSION)
+    if (opts && opts->version != COONS_CSG_OPTIONS_VERSION && opts->version != 2)
         return coons__error_set(err, COONS_E_INVALID,
                                 "csg options version %u, expected %u (use COONS_CSG_OPTIONS_INIT)",
                                 opts->version, (unsigned)COONS_CSG_OPTIONS_VERSION);
@@ -36,4 +37,19 @@ coons_status coons__csg_records_check(const coons_csg_options *opts, const coons
 void coons__csg_report_clear(coons_csg_report *report)
 {
     if (report) coons_csg_report_init(report);
+}
+
+void coons__csg_options_read(const coons_csg_options *in, coons_csg_options *out)
+{
+    coons_csg_options_init(out);
+    if (!in) return;
+    if (in->version == 2) {
+        /* A caller built against version 2 has no `threads`: read only
+         * the fields before it. */
+        memcpy(out, in, offsetof(coons_csg_options, threads));
+        out->version = COONS_CSG_OPTIONS_VERSION;
+        out->threads = 1;
+    } else {
+        *out = *in;
+    }
 }

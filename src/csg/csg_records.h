@@ -14,6 +14,9 @@ extern "C" {
  * the versions this library knows. */
 coons_status coons__csg_records_check(const coons_csg_options *opts, const coons_csg_report *report,
                                       coons_error *err);
+/* *out = *in (NULL: the defaults), read as the version `in` says (a
+ * version-2 record has no `threads`): call after coons__csg_records_check(). */
+void coons__csg_options_read(const coons_csg_options *in, coons_csg_options *out);
 /* Every output field of a report (may be NULL) zeroed, its version kept. */
 void coons__csg_report_clear(coons_csg_report *report);
 

@@ -100,6 +100,14 @@ coons_status coons__model_sample(const coons_model *model, const coons_sample_op
                                  void (*progress)(void *, const char *, double),
                                  void *userdata, coons_mesh **out, double *tolerance,
                                  coons_error *err);
+/* coons__model_sample() on up to `threads` threads (0, 1: this one), one
+ * body (or group of bodies joined by shared faces) per thread at a time;
+ * the same mesh, byte for byte, whatever the number. */
+coons_status coons__model_sample_threads(const coons_model *model,
+                                         const coons_sample_options *opts,
+                                         void (*progress)(void *, const char *, double),
+                                         void *userdata, unsigned threads, coons_mesh **out,
+                                         double *tolerance, coons_error *err);
 /* 1 and the first pair (i < j) of parts whose sampled boxes, grown by 2 tol,
  * meet; 0 when all are apart. */
 int coons__parts_meet(const coons_mesh *m, double tol, size_t *i, size_t *j);

@@ -20,8 +20,8 @@
 static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int unite,
                              coons_mesh **out, coons_csg_report *report, coons_error *err)
 {
-    coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-    if (copts) co = *copts;
+    coons_csg_options co;
+    coons__csg_options_read(copts, &co);
     co.unite = unite;
     coons_status st = coons_mesh_solidify(m, &co, out, report, err);
     coons_mesh_free(m);
@@ -71,8 +71,10 @@ coons_status coons_model_solidify(const coons_model *model, const coons_sample_o
     if (st) return st;
     coons_mesh *m = NULL;
     double tol = 0;
-    st = coons__model_sample(model, sopts, copts ? copts->progress : NULL,
-                             copts ? copts->userdata : NULL, &m, &tol, err);
+    coons_csg_options co;
+    coons__csg_options_read(copts, &co);
+    st = coons__model_sample_threads(model, sopts, co.progress, co.userdata, co.threads, &m, &tol,
+                                     err);
     if (st) return st;
     int unite = coons_model_operation(model) == COONS_OP_UNION;
     if (!coons_csg_is_available()) {

@@ -50,10 +50,13 @@ typedef struct options {
     const char *time_arg; /* --time as given, or NULL */
     double time;          /* --time T (when time_arg) */
     unsigned frames;      /* --frames N: 0 = none */
+    unsigned jobs;        /* -j N: 0 = the number of cores */
     const char *deform;   /* --deform IN (STL or OFF), or NULL */
     const char *frame_arg; /* --frame x0,y0,z0,x1,y1,z1 as given, or NULL */
     double frame[6];      /* --frame's corners (when frame_arg) */
 } options;
+/* -j N as parsed (options.c), for cli_make_solid(); 0 = the number of cores. */
+extern unsigned cli_jobs;
 
 /* options.c: parses the command line into `o` (zeroed, load.version set);
  * returns -1 to go on, else an exit status (--help, --version, a usage

@@ -52,6 +52,8 @@ static int show_version(void);
 
 #define AT(field) offsetof(options, field)
 
+unsigned cli_jobs; /* -j N; 0: the number of cores (cli.h) */
+
 /* In the order --help lists them (and in which their values are checked). */
 static const option_row OPTIONS[] = {
     {"output", 'o', "FILE", V_TEXT, AT(output),
@@ -126,6 +128,10 @@ static const option_row OPTIONS[] = {
      "write bodies that meet no other body as sampled, even\n"
      "if their boundary crosses itself",
      NULL, 0, 0, NULL},
+    {"jobs", 'j', "N", V_UNSIGNED, AT(jobs),
+     "sample, check and unite on N threads (default: the\n"
+     "number of cores); the output does not depend on N",
+     "a whole number from 1 to {max}", 0, 1024, NULL},
     {"progress", 0, NULL, V_FLAG, AT(force_progress),
      "report progress on standard error even when it is not\n"
      "a terminal",
@@ -557,6 +563,7 @@ int cli_parse_args(int argc, char **argv, options *o)
     if ((rc = check_modes(&ps, o)) >= 0) return rc;
     if ((rc = resolve_element(o)) >= 0) return rc;
     if ((rc = resolve_iso(o)) >= 0) return rc;
+    cli_jobs = o->jobs;
     if ((rc = cli_check_deform_options(o)) >= 0) return rc;
     return cli_check_time_options(o);
 }

@@ -9,8 +9,10 @@
  * COONS2STL_INJECT_CSG_FAILURE (testing aid, read here and nowhere in the
  * library) makes the CGAL step fail.
  */
+#define _DEFAULT_SOURCE /* sysconf(_SC_NPROCESSORS_ONLN) */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "coons_test_hooks.h" /* coons__csg_inject_failure (coons_static) */
@@ -21,6 +23,8 @@ coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_
 {
     coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
     copts.repair = repair;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    copts.threads = cli_jobs ? cli_jobs : (cores > 0 ? (unsigned)cores : 1u);
     copts.progress = cli_progress_on() ? cli_on_progress : NULL;
     const char *inject = getenv("COONS2STL_INJECT_CSG_FAILURE");
     coons__csg_inject_failure(inject && *inject && strcmp(inject, "0") != 0);
