@@ -11,6 +11,7 @@
  *    passed through (one group, the inner shell is gone);
  *  - a version-2 options record (no `threads`) is still accepted. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -182,6 +183,55 @@ static void test_options_v2(void **state)
     coons_model_free(m);
 }
 
+/* A caller built against version 1 of the report (no pinch fields),
+ * followed by memory the library must not touch. */
+typedef struct {
+    unsigned version;
+    size_t triangles_in, degenerate_dropped, intersecting_pairs, parts_in, groups,
+        passed_through, patches, patches_kept, fast_unions, fallbacks, triangles_out,
+        rounding_merged, close_merged, slivers_fixed;
+    int closed;
+    size_t nonmanifold_edges;
+} report_v1;
+
+static void test_report_v1(void **state)
+{
+    (void)state;
+    assert_int_equal(sizeof(report_v1), offsetof(coons_csg_report, pinch_edges_split));
+    const double lo[2][3] = {{0, 0, 0}, {0.5, 0.5, 0.5}};
+    const double hi[2][3] = {{1, 1, 1}, {1.5, 1.5, 1.5}};
+    coons_model *m = boxes(lo, hi, NULL, 2);
+    for (int entry = 0; entry < 3; entry++) {
+        struct {
+            report_v1 r;
+            unsigned char canary[64];
+        } buf;
+        memset(&buf, 0xA5, sizeof buf);
+        buf.r.version = 1;
+        coons_mesh *out = NULL, *in = NULL;
+        coons_error err;
+        coons_csg_report *r = (coons_csg_report *)(void *)&buf.r;
+        if (entry == 0) {
+            assert_coons_ok(coons_model_solidify(m, NULL, NULL, &out, r, &err), &err);
+        } else if (entry == 1) {
+            assert_coons_ok(coons_model_solidify_body(m, 1, NULL, NULL, &out, r, &err), &err);
+        } else {
+            assert_coons_ok(coons_body_sample(coons_model_body(m, 0), NULL, "b0", &in, &err),
+                            &err);
+            assert_coons_ok(coons_mesh_solidify(in, NULL, &out, r, &err), &err);
+        }
+        assert_int_equal(buf.r.version, 1);
+        assert_int_equal(buf.r.triangles_out, coons_mesh_triangle_count(out));
+        assert_int_equal(buf.r.parts_in, entry == 0 ? 2 : 1);
+        assert_int_equal(buf.r.closed, 1);
+        assert_int_equal(buf.r.nonmanifold_edges, 0);
+        for (size_t i = 0; i < sizeof buf.canary; i++) assert_int_equal(buf.canary[i], 0xA5);
+        coons_mesh_free(in);
+        coons_mesh_free(out);
+    }
+    coons_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -189,6 +239,7 @@ int main(void)
         cmocka_unit_test(test_groups),
         cmocka_unit_test(test_nested),
         cmocka_unit_test(test_options_v2),
+        cmocka_unit_test(test_report_v1),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

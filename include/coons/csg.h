@@ -74,7 +74,8 @@ typedef struct coons_csg_options {
  */
 COONS_EXPORT void coons_csg_options_init(coons_csg_options *o);
 
-/** Version 2: adds `pinch_edges_split` and `pinch_vertices_split`. */
+/** Version 2: adds `pinch_edges_split` and `pinch_vertices_split`; a
+ *  version-1 record (without them) is still accepted and filled. */
 #define COONS_CSG_REPORT_VERSION 2
 
 /**

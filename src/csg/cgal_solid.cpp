@@ -1058,18 +1058,23 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
     *out = nullptr;
     std::vector<Part> parts;
     std::vector<size_t> current;
-    return coons::guard(
+    coons_csg_report full;
+    coons_csg_report *rep = nullptr;
+    coons_status rc = coons::guard(
         __func__, err, unknown_text,
         [&]() -> coons_status {
             coons_status st = coons__csg_records_check(opts, report, err);
             if (st) return st;
+            rep = coons__csg_report_open(report, &full);
             coons_csg_options o;
             coons__csg_options_read(opts, &o);
-            return solidify(in, o, parts, current, out, report, err);
+            return solidify(in, o, parts, current, out, rep, err);
         },
         [&](coons_error *e, const std::exception &x) noexcept {
             return describe_failure(e, x, parts, current);
         });
+    coons__csg_report_close(report, rep);
+    return rc;
 }
 
 extern "C" coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs,

@@ -27,16 +27,41 @@ coons_status coons__csg_records_check(const coons_csg_options *opts, const coons
         return coons__error_set(err, COONS_E_INVALID,
                                 "csg options version %u, expected %u (use COONS_CSG_OPTIONS_INIT)",
                                 opts->version, (unsigned)COONS_CSG_OPTIONS_VERSION);
-    if (report && report->version != COONS_CSG_REPORT_VERSION)
+    if (report && report->version != COONS_CSG_REPORT_VERSION && report->version != 1)
         return coons__error_set(err, COONS_E_INVALID,
                                 "csg report version %u, expected %u (use COONS_CSG_REPORT_INIT)",
                                 report->version, (unsigned)COONS_CSG_REPORT_VERSION);
     return COONS_OK;
 }
 
+/* The bytes a version-1 report has: everything before the pinch fields. */
+#define REPORT_V1_SIZE offsetof(coons_csg_report, pinch_edges_split)
+
 void coons__csg_report_clear(coons_csg_report *report)
 {
-    if (report) coons_csg_report_init(report);
+    if (!report) return;
+    if (report->version == 1) {
+        coons_csg_report full;
+        coons_csg_report_init(&full);
+        full.version = 1;
+        memcpy(report, &full, REPORT_V1_SIZE);
+    } else {
+        coons_csg_report_init(report);
+    }
+}
+
+coons_csg_report *coons__csg_report_open(coons_csg_report *report, coons_csg_report *full)
+{
+    if (!report || report->version == COONS_CSG_REPORT_VERSION) return report;
+    coons_csg_report_init(full);
+    return full;
+}
+
+void coons__csg_report_close(coons_csg_report *report, const coons_csg_report *filled)
+{
+    if (!report || filled == report || !filled) return;
+    memcpy(report, filled, REPORT_V1_SIZE);
+    report->version = 1;
 }
 
 void coons__csg_options_read(const coons_csg_options *in, coons_csg_options *out)

@@ -17,8 +17,8 @@
  * fraction of the edges there: should that make two triangles cross (the
  * exact count of the result), the pinched result is returned instead,
  * never a crossing one. */
-static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int unite,
-                             coons_mesh **out, coons_csg_report *report, coons_error *err)
+static coons_status solidify_into(coons_mesh *m, const coons_csg_options *copts, int unite,
+                                  coons_mesh **out, coons_csg_report *report, coons_error *err)
 {
     coons_csg_options co;
     coons__csg_options_read(copts, &co);
@@ -50,6 +50,18 @@ static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int 
         coons_mesh_free(split); /* nothing to split, or the split would cross */
     }
     return COONS_OK;
+}
+
+/* The same into a report of any version this library knows (a version-1
+ * record has no pinch fields: a full one is filled and its part copied). */
+static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int unite,
+                             coons_mesh **out, coons_csg_report *report, coons_error *err)
+{
+    coons_csg_report full;
+    coons_csg_report *rep = coons__csg_report_open(report, &full);
+    coons_status st = solidify_into(m, copts, unite, out, rep, err);
+    coons__csg_report_close(report, rep);
+    return st;
 }
 
 /* The checks every entry makes first: the records' versions, then a
