@@ -1339,11 +1339,11 @@ coons_status coons__flat_faces(sampler *s)
         for (int f = 0; f < 6; f++) {
             face_tri[f] = k;
             if (flat[f]) {
-                memcpy(tri + 3 * k, ftri[f], 3 * fnt[f] * sizeof(uint32_t));
+                if (fnt[f]) memcpy(tri + 3 * k, ftri[f], 3 * fnt[f] * sizeof(uint32_t));
                 k += fnt[f];
             } else {
                 size_t c = s->face_tri[f + 1] - s->face_tri[f];
-                memcpy(tri + 3 * k, s->tri + 3 * s->face_tri[f], 3 * c * sizeof(uint32_t));
+                if (c) memcpy(tri + 3 * k, s->tri + 3 * s->face_tri[f], 3 * c * sizeof(uint32_t));
                 k += c;
             }
         }

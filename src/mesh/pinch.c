@@ -386,7 +386,8 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
         for (size_t i = 0; i < m->nparts; i++) {
             coons__mesh_part *p = &m->parts[i];
             size_t first = cursor;
-            memcpy(xyz + 3 * cursor, m->xyz + 3 * p->vert_first, 3 * p->vert_count * sizeof *xyz);
+            if (p->vert_count)
+                memcpy(xyz + 3 * cursor, m->xyz + 3 * p->vert_first, 3 * p->vert_count * sizeof *xyz);
             for (size_t k = 0; k < p->vert_count; k++)
                 orig[cursor + k] = (uint32_t)(p->vert_first + k);
             if (uvw)
@@ -529,9 +530,9 @@ coons_status coons__mesh_clone(const coons_mesh *m, coons_mesh **out, coons_erro
     c->cap_t = 3 * m->nt + 1;
     c->cap_p = m->nparts + 1;
     c->cap_uvw = c->uvw ? 3 * m->nv + 1 : 0;
-    memcpy(c->xyz, m->xyz, 3 * m->nv * sizeof *c->xyz);
-    memcpy(c->tri, m->tri, 3 * m->nt * sizeof *c->tri);
-    if (c->uvw) memcpy(c->uvw, m->uvw, 3 * m->nv * sizeof *c->uvw);
+    if (m->nv) memcpy(c->xyz, m->xyz, 3 * m->nv * sizeof *c->xyz);
+    if (m->nt) memcpy(c->tri, m->tri, 3 * m->nt * sizeof *c->tri);
+    if (c->uvw && m->nv) memcpy(c->uvw, m->uvw, 3 * m->nv * sizeof *c->uvw);
     c->nv = m->nv;
     c->nt = m->nt;
     for (size_t i = 0; i < m->nparts; i++) {
