@@ -273,7 +273,8 @@ coons_status coons_body_volume_bounded(const coons_body *b, double rel_tol, size
         /* An absolute floor for bodies of (near) zero volume, where a relative
          * test cannot be met: rounding of det J is about 1e-16 diag^3. */
         double diag = bbox_diag(b->lo, b->hi);
-        double floor_ = 1e-14 * diag * diag * diag, q0 = 0.0, e[3], prev[3] = {0, 0, 0};
+        double floor_ = 1e-14 * diag * diag * diag, q0 = 0.0, e[3] = {0, 0, 0},
+               prev[3] = {0, 0, 0};
         int settled[3] = {0, 0, 0};
         if (level_cost(X, c) <= budget) {
             rc = volume_level(b, X, c, &q0, err);
@@ -281,7 +282,7 @@ coons_status coons_body_volume_bounded(const coons_body *b, double rel_tol, size
             result = q0;
         }
         while (!rc && used > 0) {
-            double qd[3], sum = q0, e_sum = 0.0;
+            double qd[3] = {0, 0, 0}, sum = q0, e_sum = 0.0;
             int tested = 0, out_of_budget = 0;
             for (int d = 0; d < 3 && !rc; d++) {
                 if (settled[d]) continue;
@@ -293,6 +294,7 @@ coons_status coons_body_volume_bounded(const coons_body *b, double rel_tol, size
                     break;
                 }
                 rc = volume_level(b, X, c2, &qd[d], err);
+                if (rc) break; /* qd[d] was not set */
                 used += k;
                 /* at least half the previous difference along d: where the
                  * rule converges only linearly (det J jumps inside cells),
