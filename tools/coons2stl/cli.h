@@ -155,4 +155,7 @@ int cli_check_deform_options(options *o);
  * written to -o like any surface, or described by --info; the status. */
 int cli_deform(const coons_model *m, long body, const options *o);
 
+/* Prints s as a JSON string, quoted and escaped (info.c). */
+void cli_json_string(const char *s);
+
 #endif

@@ -61,21 +61,6 @@ int cli_check_deform_options(options *o)
     return -1;
 }
 
-static void json_string(const char *s)
-{
-    putchar('"');
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            printf("\\%c", c);
-        else if (c < 0x20)
-            printf("\\u%04x", c);
-        else
-            putchar(c);
-    }
-    putchar('"');
-}
-
 static void json_vec(const double v[3])
 {
     printf("[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
@@ -140,9 +125,9 @@ static int print_info(const options *o, const coons_model *m, size_t body, const
     }
     int closed_in = ri.closed && ri.manifold && ri.oriented;
     printf("{\n  \"deform\": {\n    \"input\": ");
-    json_string(o->deform);
+    cli_json_string(o->deform);
     printf(",\n    \"body\": ");
-    json_string(coons_model_body_name(m, body));
+    cli_json_string(coons_model_body_name(m, body));
     printf(",\n    \"body_index\": %zu,\n", body);
     printf("    \"frame\": {\"min\": ");
     json_vec(rep->lo);

@@ -14,7 +14,8 @@
 
 /* ---- JSON values ------------------------------------------------------ */
 
-static void json_string(const char *s)
+/* s as a JSON string (also for the other modes' reports, cli.h). */
+void cli_json_string(const char *s)
 {
     putchar('"');
     for (; *s; s++) {
@@ -231,7 +232,7 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
                     *vol < 0 ? "is left-handed or folds over itself" : "folds over itself there");
     const char *type = coons_body_type_name(coons_body_get_type(b));
     printf("%s\n    {\"index\": %zu, \"name\": ", first ? "" : ",", i);
-    json_string(name);
+    cli_json_string(name);
     printf(", \"type\": \"%s\",\n     \"bbox\": ", type ? type : "unknown");
     json_box(lo, hi);
     printf(",\n     \"control_bbox\": ");
@@ -363,7 +364,7 @@ static int info_solid(const coons_model *m, long only, const coons_sample_option
         cli_message(1, "no mesh can be made of %s: %s", only < 0 ? "this model" : "this body",
                     err.message);
         printf("{\"error\": ");
-        json_string(err.message);
+        cli_json_string(err.message);
         printf("}");
         return 0;
     }
@@ -393,9 +394,9 @@ static int print_interfaces(const coons_model *m, long only)
         const coons_interface *I = &list[k];
         if (only >= 0 && I->body[0] != (size_t)only && I->body[1] != (size_t)only) continue;
         printf("%s\n    {\"bodies\": [", first ? "" : ",");
-        json_string(coons_model_body_name(m, I->body[0]));
+        cli_json_string(coons_model_body_name(m, I->body[0]));
         printf(", ");
-        json_string(coons_model_body_name(m, I->body[1]));
+        cli_json_string(coons_model_body_name(m, I->body[1]));
         printf("], \"body_indices\": [%zu, %zu], \"faces\": [\"%s\", \"%s\"], "
                "\"orientation\": %d,\n     \"c1_defect\": ",
                I->body[0], I->body[1], coons_body_face_name(I->face[0]),
@@ -417,7 +418,7 @@ static void print_model(const coons_model *m, double tol, const double clo[3],
                         const double chi[3])
 {
     printf("{\n  \"units\": ");
-    json_string(coons_model_units(m));
+    cli_json_string(coons_model_units(m));
     printf(",\n  \"tolerance\": ");
     json_number(tol);
     printf(",\n  \"operation\": \"%s\",\n  \"control_bbox\": ",
