@@ -77,8 +77,10 @@ static inline int tb_curved_edges(coons_curve *e[12], coons_error *err)
 }
 
 /* NURBS solid cylinder of radius r and height h about the z axis:
- * u around (the quadratic 9-point circle), v from the axis out, w up. */
-static inline int tb_nurbs_cylinder_rc(double r, double h, coons_body **out, coons_error *err)
+ * u around (the quadratic 9-point circle), v from the axis out, w up;
+ * every weight multiplied by wscale (the same map whatever wscale). */
+static inline int tb_nurbs_cylinder_scaled_rc(double r, double h, double wscale,
+                                              coons_body **out, coons_error *err)
 {
     const double s = sqrt(0.5);
     const double c[9][3] = {{1, 0, 1}, {1, 1, s},  {0, 1, 1},  {-1, 1, s}, {-1, 0, 1},
@@ -91,13 +93,18 @@ static inline int tb_nurbs_cylinder_rc(double r, double h, coons_body **out, coo
                 P[3 * idx] = j * r * c[i][0];
                 P[3 * idx + 1] = j * r * c[i][1];
                 P[3 * idx + 2] = k * h;
-                W[idx] = c[i][2];
+                W[idx] = c[i][2] * wscale;
             }
     double ku[12] = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
     const double *kn[3] = {ku, NULL, NULL};
     int deg[3] = {2, 1, 1};
     size_t n[3] = {9, 2, 2};
     return coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], W, out, err);
+}
+
+static inline int tb_nurbs_cylinder_rc(double r, double h, coons_body **out, coons_error *err)
+{
+    return tb_nurbs_cylinder_scaled_rc(r, h, 1.0, out, err);
 }
 
 static inline void tb_nurbs_cylinder(double r, double h, coons_body **out)

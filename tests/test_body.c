@@ -505,6 +505,10 @@ static void test_bspline_volume(void **state)
     assert_int_equal(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], W, &b, &err), COONS_E_INVALID);
     assert_null(b);
     assert_non_null(strstr(err.message, "weight"));
+    W[7] = 1e300; /* the others are near 1 */
+    assert_int_equal(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], W, &b, &err), COONS_E_LIMIT);
+    assert_null(b);
+    assert_non_null(strstr(err.message, "ratio"));
     ku[4] = 0.1; /* decreasing */
     assert_int_equal(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], NULL, &b, &err), COONS_E_INVALID);
     int d0[3] = {0, 1, 1};
@@ -538,6 +542,34 @@ static void test_nurbs_cylinder(void **state)
     double exact = M_PI * r * r * h;
     assert_true(fabs(fabs(vol) - exact) <= 1e-6 * exact);
     coons_body_free(b);
+}
+
+/* Given the NURBS cylinder of radius 1.5e9 with every weight multiplied by
+ * 1e300 (w P alone would overflow) or 1e-300, then it is
+ * still the cylinder, and its Jacobian agrees with the unscaled one. */
+static void test_nurbs_weight_scale(void **state)
+{
+    (void)state;
+    const double r = 1.5e9, h = 2.5e9, scales[] = {1e300, 1e-300};
+    coons_body *ref;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(tb_nurbs_cylinder_scaled_rc(r, h, 1.0, &ref, &err), &err);
+    for (size_t k = 0; k < sizeof scales / sizeof scales[0]; k++) {
+        coons_body *b;
+        assert_coons_ok(tb_nurbs_cylinder_scaled_rc(r, h, scales[k], &b, &err), &err);
+        tb_rng rng = {5};
+        for (int t = 0; t < 50; t++) {
+            double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng), y[3], y0[3];
+            double J[3][3], J0[3][3];
+            double det = coons_body_eval_jacobian(b, u, v, w, y, J);
+            double det0 = coons_body_eval_jacobian(ref, u, v, w, y0, J0);
+            assert_near(hypot(y[0], y[1]) / r, v, 1e-14);
+            assert_near(y[2] / h, w, 1e-14);
+            assert_near(det / det0, 1.0, 1e-12);
+        }
+        coons_body_free(b);
+    }
+    coons_body_free(ref);
 }
 
 /* F = (X(u), Y(v), Z(w) + H(u,v)) has det J = X' Y' Z', so its volume is
@@ -765,6 +797,7 @@ int main(void)
         cmocka_unit_test(test_bezier_volume),
         cmocka_unit_test(test_bspline_volume),
         cmocka_unit_test(test_nurbs_cylinder),
+        cmocka_unit_test(test_nurbs_weight_scale),
         cmocka_unit_test(test_bspline_volume_exact),
         cmocka_unit_test(test_jacobian_fd),
         cmocka_unit_test(test_grid_matches_points),

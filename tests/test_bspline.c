@@ -539,6 +539,55 @@ static void test_weight_errors(void **state)
     }
 }
 
+/* A rational map is unchanged when every weight is multiplied by one
+ * factor: the quarter circle of radius 1e9 with weights 1e300 (w P alone
+ * would overflow) is the circle of radius 1e9; weights 3, 2, 3 times 2^-1070
+ * (subnormal: w N alone would underflow) give the very points of weights
+ * 3, 2, 3; and weights whose ratio passes COONS_SPLINE_MAX_WEIGHT_RATIO are
+ * refused with COONS_E_LIMIT. */
+static void test_weight_scale(void **state)
+{
+    (void)state;
+    const double s = sqrt(2.0) / 2.0, R = 1e9;
+    const double P[] = {R, 0, 0, R, R, 0, 0, R, 0};
+    {
+        const double w[] = {1e300, s * 1e300, 1e300};
+        coons_curve *c = NULL;
+        coons_error e = COONS_ERROR_INIT;
+        assert_coons_ok(coons_curve_new_bspline(2, P, 3, NULL, w, &c, &e), &e);
+        for (int i = 0; i <= 100; i++) {
+            double d[2][3];
+            coons_curve_eval_derivs(c, i / 100.0, 1, d);
+            assert_near(norm3(d[0]) / R, 1.0, 1e-14);
+            assert_near((d[0][0] * d[1][0] + d[0][1] * d[1][1]) / (R * norm3(d[1])), 0.0, 1e-12);
+        }
+        coons_curve_free(c);
+    }
+    {
+        const double P5[] = {0, 0, 0, 1, 2, 0, 3, 3, 1, 5, 1, 2, 6, -1, 0};
+        const double w[] = {3, 2, 3, 1, 5}, ws[] = {0x3p-1070, 0x2p-1070, 0x3p-1070, 0x1p-1070, 0x5p-1070};
+        coons_curve *a = NULL, *b = NULL;
+        assert_int_equal(coons_curve_new_bspline(3, P5, 5, NULL, w, &a, NULL), COONS_OK);
+        assert_int_equal(coons_curve_new_bspline(3, P5, 5, NULL, ws, &b, NULL), COONS_OK);
+        for (int i = 0; i <= 64; i++) {
+            double da[3][3], db[3][3];
+            coons_curve_eval_derivs(a, i / 64.0, 2, da);
+            coons_curve_eval_derivs(b, i / 64.0, 2, db);
+            assert_memory_equal(da, db, sizeof da);
+        }
+        coons_curve_free(a);
+        coons_curve_free(b);
+    }
+    const double w[] = {1.0, 1.0, 1.01 * COONS_SPLINE_MAX_WEIGHT_RATIO};
+    coons_curve *c = (coons_curve *)&c;
+    coons_error e = COONS_ERROR_INIT;
+    expect_error(coons_curve_new_bspline(2, P, 3, NULL, w, &c, &e), COONS_E_LIMIT, &e, "ratio",
+                 &c);
+    const double wok[] = {1.0, 1.0, COONS_SPLINE_MAX_WEIGHT_RATIO};
+    assert_int_equal(coons_curve_new_bspline(2, P, 3, NULL, wok, &c, NULL), COONS_OK);
+    coons_curve_free(c);
+}
+
 /* Degree outside 1..COONS_SPLINE_MAX_DEGREE, and too few points for the degree. */
 static void test_degree_errors(void **state)
 {
@@ -628,6 +677,7 @@ int main(void)
         cmocka_unit_test(test_nurbs_quarter_circle),
         cmocka_unit_test(test_nurbs_full_circle),
         cmocka_unit_test(test_equal_weights_polynomial),
+        cmocka_unit_test(test_weight_scale),
         cmocka_unit_test(test_knot_errors),
         cmocka_unit_test(test_weight_errors),
         cmocka_unit_test(test_degree_errors),

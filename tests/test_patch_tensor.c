@@ -109,6 +109,43 @@ static void test_nurbs_cylinder(void **state)
     coons_patch_free(p);
 }
 
+/* Given the cylinder of radius 2e9 with every weight multiplied by 1e300
+ * (w P alone would overflow) or by 1e-300, then it is still the cylinder; a weight ratio above the limit is COONS_E_LIMIT. */
+static void test_nurbs_weight_scale(void **state)
+{
+    (void)state;
+    const double scales[] = {1e300, 1e-300};
+    double P[2][9][3], W[2][9];
+    for (size_t k = 0; k <= sizeof scales / sizeof scales[0]; k++) {
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 9; j++) {
+                P[i][j][0] = 2e9 * circ_xy[j][0];
+                P[i][j][1] = 2e9 * circ_xy[j][1];
+                P[i][j][2] = 3e9 * i;
+                W[i][j] = k < 2 ? circ_w(j) * scales[k] : (i ? 2e100 : 1.0);
+            }
+        coons_error err = COONS_ERROR_INIT;
+        coons_patch *p = NULL;
+        coons_status rc = coons_patch_new_bspline(1, 2, &P[0][0][0], 2, 9, NULL, circ_knots,
+                                                  &W[0][0], &p, &err);
+        if (k == 2) {
+            assert_int_equal(rc, COONS_E_LIMIT);
+            assert_non_null(strstr(err.message, "ratio"));
+            assert_null(p);
+            break;
+        }
+        assert_coons_ok(rc, &err);
+        for (int i = 0; i <= 10; i++)
+            for (int j = 0; j <= 40; j++) {
+                double x[3], s = i / 10.0;
+                coons_patch_eval(p, s, j / 40.0, x);
+                assert_near(hypot(x[0], x[1]) / 2e9, 1.0, 1e-14);
+                assert_near(x[2] / 3e9, s, 1e-14);
+            }
+        coons_patch_free(p);
+    }
+}
+
 /* A 4 x 5 net with some shape. */
 static void net(double P[4][5][3])
 {
@@ -357,6 +394,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nurbs_sphere),
         cmocka_unit_test(test_nurbs_cylinder),
+        cmocka_unit_test(test_nurbs_weight_scale),
         cmocka_unit_test(test_bezier_surface),
         cmocka_unit_test(test_bspline_surface),
         cmocka_unit_test(test_bspline_bilinear),

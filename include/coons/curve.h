@@ -38,6 +38,12 @@ typedef enum coons_curve_type {
 #define COONS_CURVE_MAX_POINTS 1000000
 /** Largest B-spline or Bezier degree accepted. */
 #define COONS_SPLINE_MAX_DEGREE 64
+/**
+ * Largest ratio of the largest to the smallest weight of a rational curve,
+ * surface or volume: beyond it sum w N P overflows or loses every digit
+ * (weights 1e300 and 1, or all of them subnormal), so it is refused.
+ */
+#define COONS_SPLINE_MAX_WEIGHT_RATIO 1e100
 
 /**
  * Straight segment (1-t) P0 + t P1.

@@ -6,6 +6,7 @@
  * non-decreasing, multiplicity <= p+1, half-open spans, the right end in the
  * last non-empty span, domain [k_p, k_{n+1}] mapped linearly onto [0,1]).
  */
+#include <math.h>
 #include <string.h>
 
 #include "bspline.h"
@@ -208,4 +209,29 @@ size_t coons__bspline_basis01(const double *k, size_t ncp, int p, double t, int 
         f *= len;
     }
     return span - (size_t)p;
+}
+
+coons_status coons__weights_make(const double *w, size_t n, const char *what, double **out,
+                                 coons_error *err)
+{
+    *out = NULL;
+    size_t lo = 0, hi = 0;
+    for (size_t i = 1; i < n; i++) {
+        if (w[i] < w[lo]) lo = i;
+        if (w[i] > w[hi]) hi = i;
+    }
+    if (n && !(w[hi] <= COONS_SPLINE_MAX_WEIGHT_RATIO * w[lo]))
+        return coons__error_set(err, COONS_E_LIMIT,
+                                "%s: weight %zu is %.17g and weight %zu is %.17g, a ratio of "
+                                "%.3g: more than the limit of %g (the rational sums would "
+                                "overflow or lose every digit)",
+                                what, hi, w[hi], lo, w[lo], w[hi] / w[lo],
+                                COONS_SPLINE_MAX_WEIGHT_RATIO);
+    double *c = coons__malloc_array(n ? n : 1, sizeof(double));
+    if (!c) return coons__error_nomem(err);
+    int e = 0;
+    if (n) (void)frexp(w[hi], &e); /* w[hi] = f 2^e, 0.5 <= f < 1 */
+    for (size_t i = 0; i < n; i++) c[i] = ldexp(w[i], -e);
+    *out = c;
+    return COONS_OK;
 }

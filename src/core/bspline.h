@@ -16,6 +16,21 @@
 coons_status coons__knots_make(int p, size_t ncp, const double *given, const char *what,
                                double **out, coons_error *err);
 
+/*
+ * Rational weights (model format "Resolved details": the point is
+ * sum w N P / sum w N), each already checked finite and > 0 by the caller.
+ * Refuses (COONS_E_LIMIT) a largest weight more than
+ * COONS_SPLINE_MAX_WEIGHT_RATIO times the smallest, and returns in *out
+ * (coons__malloc) a copy scaled by one power of two so that the largest lies
+ * in [0.5, 1). The map is unchanged and so is every rounded evaluation that
+ * neither overflowed nor underflowed before (a power-of-two scale is exact);
+ * with the ratio bounded, w N P cannot overflow for finite control points
+ * that N P does not overflow, and the denominator sum w N stays at least
+ * 0.5 / COONS_SPLINE_MAX_WEIGHT_RATIO. `what` names the object in messages.
+ */
+coons_status coons__weights_make(const double *w, size_t n, const char *what, double **out,
+                                 coons_error *err);
+
 /* Index i of the span k[i] <= x < k[i+1] with p <= i <= ncp-1; x outside the
  * domain is clamped; the right end belongs to the last non-empty span. */
 size_t coons__bspline_span(const double *k, size_t ncp, int p, double x);

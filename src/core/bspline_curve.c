@@ -57,9 +57,12 @@ static coons_status make_bspline(const coons__curve_kind *kind, int p, const dou
         coons_curve_free(c);
         return rc;
     }
+    if (w && (rc = coons__weights_make(w, n, what, &c->w, err))) {
+        coons_curve_free(c);
+        return rc;
+    }
     c->pts = coons__memdup(pts, 3 * n, sizeof(double));
-    if (w) c->w = coons__memdup(w, n, sizeof(double));
-    if (!c->pts || (w && !c->w)) {
+    if (!c->pts) {
         coons_curve_free(c);
         return coons__error_nomem(err);
     }

@@ -281,19 +281,20 @@ coons_status coons_patch_new_bspline(int ps, int pt, const double *points, size_
         coons_patch_free(p);
         return rc;
     }
-    p->pts = coons__memdup(points, 3 * n, sizeof(double));
-    if (weights) {
-        p->w = coons__memdup(weights, n, sizeof(double));
-        p->pw = coons__malloc_array(4 * n, sizeof(double));
+    if (weights && (rc = coons__weights_make(weights, n, what, &p->w, err))) {
+        coons_patch_free(p);
+        return rc;
     }
-    if (!p->pts || (weights && (!p->w || !p->pw))) {
+    p->pts = coons__memdup(points, 3 * n, sizeof(double));
+    if (weights) p->pw = coons__malloc_array(4 * n, sizeof(double));
+    if (!p->pts || (weights && !p->pw)) {
         coons_patch_free(p);
         return coons__error_nomem(err);
     }
     if (weights)
         for (size_t i = 0; i < n; i++) {
-            for (int c = 0; c < 3; c++) p->pw[4 * i + (size_t)c] = weights[i] * points[3 * i + (size_t)c];
-            p->pw[4 * i + 3] = weights[i];
+            for (int c = 0; c < 3; c++) p->pw[4 * i + (size_t)c] = p->w[i] * points[3 * i + (size_t)c];
+            p->pw[4 * i + 3] = p->w[i];
         }
     *out = p;
     return COONS_OK;

@@ -61,9 +61,12 @@ static coons_status make_tensor(const coons__body_kind *kind, const int deg[3], 
             return rc;
         }
     }
+    if (weights && (rc = coons__weights_make(weights, np, what, &b->w, err))) {
+        coons_body_free(b);
+        return rc;
+    }
     b->pts = coons__memdup(points, 3 * np, sizeof(double));
-    if (weights) b->w = coons__memdup(weights, np, sizeof(double));
-    if (!b->pts || (weights && !b->w)) {
+    if (!b->pts) {
         coons_body_free(b);
         return coons__error_nomem(err);
     }
