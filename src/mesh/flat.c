@@ -1078,11 +1078,15 @@ static coons_status ruled_face(sampler *s, int f, int sdir, int flip, uint32_t *
     }
     /* The strips: segs_min segments at least, doubled while the
      * measurement fails (a twisted face: shorter segments deviate less). */
-    size_t *cs = coons__malloc_array(no + 1, sizeof(size_t));
+    /* cs[p (ns + 1) + k]: strip p's first triangle of segment k (k = m: the
+     * strip's end); kq[i]: the segment that holds sample sv[i]. */
+    size_t *cs = coons__malloc_array(no * (ns + 1) + 1, sizeof(size_t));
     size_t *ql = coons__malloc_array(ns + 1, sizeof(size_t));
-    if (!cs || !ql) {
+    size_t *kq = coons__malloc_array(nsv, sizeof(size_t));
+    if (!cs || !ql || !kq) {
         coons__free(cs);
         coons__free(ql);
+        coons__free(kq);
         st = coons__error_nomem(s->err);
         goto done;
     }
@@ -1097,9 +1101,9 @@ static coons_status ruled_face(sampler *s, int f, int sdir, int flip, uint32_t *
         if ((st = ruled_lines(&r, segs_min, ql, &m))) break;
         int fail = 0;
         for (size_t p = 0; p < no && !fail; p++) {
-            cs[p] = r.nt;
             for (size_t k = 0; k < m && !fail; k++) {
                 size_t j0 = ql[k], j1 = ql[k + 1];
+                cs[p * (ns + 1) + k] = r.nt;
                 if (p == 0) fail = ruled_fan(&r, 0, 1, j0, j1);
                 else if (p == no - 1) fail = ruled_fan(&r, no, no - 1, j0, j1);
                 else {
@@ -1113,11 +1117,16 @@ static coons_status ruled_face(sampler *s, int f, int sdir, int flip, uint32_t *
                     fail = ruled_add(&r, dg ? d1 : c1) || ruled_add(&r, dg ? d2 : c2);
                 }
             }
+            cs[p * (ns + 1) + m] = r.nt;
         }
-        cs[no] = r.nt;
+        for (size_t k = 0; k < m; k++)
+            for (size_t i = RULED_STEPS * ql[k]; i <= RULED_STEPS * ql[k + 1]; i++) kq[i] = k;
         if (fail) st = coons__error_nomem(s->err);
         if (st || r.bad || r.nt >= s->face_tri[f + 1] - s->face_tri[f]) break;
-        /* The measurement: every strip against the samples of its cells. */
+        /* The measurement: every sample of a strip's cells against the
+         * triangles of its segment and the two next to it (nearer ones do
+         * not exist on a face that does not fold back onto itself within a
+         * few cells, and farther ones would only lower the measure). */
         double worst = 0;
         for (size_t p = 0; p < no && !st && worst <= RULED_ACCEPT * s->tol; p++) {
             for (int j = 0; j <= RULED_STEPS; j++)
@@ -1126,8 +1135,10 @@ static coons_status ruled_face(sampler *s, int f, int sdir, int flip, uint32_t *
             st = sdir ? face_grid(s, f, ov, RULED_STEPS + 1, sv, nsv, pts)
                       : face_grid(s, f, sv, nsv, ov, RULED_STEPS + 1, pts);
             for (size_t i = 0; !st && i < (RULED_STEPS + 1) * nsv; i++) {
+                size_t k = kq[sdir ? i % nsv : i / (RULED_STEPS + 1)];
+                size_t k0 = k ? k - 1 : 0, k1 = k + 2 < m ? k + 2 : m;
                 double d = INFINITY;
-                for (size_t t = cs[p]; t < cs[p + 1]; t++)
+                for (size_t t = cs[p * (ns + 1) + k0]; t < cs[p * (ns + 1) + k1]; t++)
                     d = fmin(d, tri_dist(pts + 3 * i, s->pos + 3 * (size_t)r.tri[3 * t],
                                          s->pos + 3 * (size_t)r.tri[3 * t + 1],
                                          s->pos + 3 * (size_t)r.tri[3 * t + 2]));
@@ -1145,6 +1156,7 @@ static coons_status ruled_face(sampler *s, int f, int sdir, int flip, uint32_t *
     }
     coons__free(cs);
     coons__free(ql);
+    coons__free(kq);
 done:
     coons__free(r.tri);
     coons__free(ov);
