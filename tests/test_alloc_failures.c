@@ -2,17 +2,21 @@
 /*
  * Every allocation failure is handled, across the whole pipeline of the
  * C library on real models: for every example and every valid test model,
- * loading, sampling every body on a coarse lattice, meshing the model and
- * writing the mesh in every format are each repeated with the k-th
- * allocation failing, for every k up to the number that the operation
- * makes (every 7th k in the middle of long runs). Each must then return COONS_E_NOMEM with a message, produce no
- * object, and leave no block allocated (the test allocator counts them).
+ * loading, sampling each body on a coarse lattice (one body at a time),
+ * meshing the model and writing the mesh in every format are each repeated
+ * with the k-th allocation failing, for every k up to the number that the
+ * operation makes (the first and last 80, and about 150 evenly spaced
+ * between them in longer runs). Each must then return COONS_E_NOMEM with a
+ * message, produce no object, and leave no block allocated (the test
+ * allocator counts them). ALLOC_VERBOSE=1 prints each operation's count
+ * and time.
  */
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <coons/io.h>
 
@@ -69,6 +73,13 @@ static coons_status op_load(const char *text, size_t len, const coons_model *m, 
     return rc;
 }
 
+/* The body that op_sample samples: one body per run, so that a run costs
+ * one body's sampling, not the whole model's (a lattice has 64 bodies). */
+static size_t g_body;
+
+/* Failure points checked at each end of a run, and about how many between. */
+enum { EDGE = 80, MIDDLE = 150 };
+
 static coons_status op_sample(const char *text, size_t len, const coons_model *m,
                               coons_error *err)
 {
@@ -76,15 +87,13 @@ static coons_status op_sample(const char *text, size_t len, const coons_model *m
     (void)len;
     coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
     so.resolution = 3;
-    for (size_t i = 0; i < coons_model_body_count(m); i++) {
-        coons_mesh *mesh = (coons_mesh *)1;
-        coons_status rc = coons_body_sample(coons_model_body(m, i), &so, "b", &mesh, err);
-        if (rc != COONS_OK) {
-            if (mesh != NULL) fail_msg("sampling failed with %d but returned a mesh", rc);
-            return rc;
-        }
-        coons_mesh_free(mesh);
+    coons_mesh *mesh = (coons_mesh *)1;
+    coons_status rc = coons_body_sample(coons_model_body(m, g_body), &so, "b", &mesh, err);
+    if (rc != COONS_OK) {
+        if (mesh != NULL) fail_msg("sampling failed with %d but returned a mesh", rc);
+        return rc;
     }
+    coons_mesh_free(mesh);
     return COONS_OK;
 }
 
@@ -121,21 +130,23 @@ static void every_failure(const char *name, const char *what, op_fn op, const ch
                           size_t len, const coons_model *m)
 {
     coons_error err = COONS_ERROR_INIT;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    long points0 = g_points;
     coons_test_fail_after(1L << 40); /* count only */
     coons_status rc = op(text, len, m, &err);
     long total = coons_test_alloc_count();
     coons_test_fail_after(-1);
     if (rc != COONS_OK) fail_msg("%s: %s failed without a failing allocation: %s", name, what,
                                  err.message);
-    if (getenv("ALLOC_VERBOSE")) print_message("%s %s: %ld\n", name, what, total);
     for (long k = 0; k < total; k++) {
-        /* The first and last 150 failure points, and every step-th
-         * between (7, or more so that at most about 400 fall there): the
-         * middle of a long run repeats the same few sites (one per curve,
-         * patch or body), and each run costs in proportion to k, so that
-         * the whole test stays well inside the ASan stage's timeout. */
-        long step = total / 400 > 7 ? total / 400 : 7;
-        if (k >= 150 && k < total - 150 && k % step != 0) continue;
+        /* The first and last EDGE failure points, and every step-th
+         * between (7, or more so that at most about MIDDLE fall there):
+         * the middle of a long run repeats the same few sites (one per
+         * curve, patch or body), and each run costs in proportion to k, so
+         * that the whole test stays well inside the ASan stage's timeout. */
+        long step = total / MIDDLE > 7 ? total / MIDDLE : 7;
+        if (k >= EDGE && k < total - EDGE && k % step != 0) continue;
         g_points++;
         coons_error e = COONS_ERROR_INIT;
         coons_test_fail_after(k);
@@ -150,6 +161,11 @@ static void every_failure(const char *name, const char *what, op_fn op, const ch
             fail_msg("%s: %s with allocation %ld of %ld failing: %ld blocks leaked", name, what,
                      k, total, live);
     }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (getenv("ALLOC_VERBOSE")) /* to find what dominates the test's time */
+        print_message("%s %s: %ld allocations, %ld points, %.3f s\n", name, what, total,
+                      g_points - points0,
+                      (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
 }
 
 static void run_dir(const char *dir, size_t min_count)
@@ -166,7 +182,11 @@ static void run_dir(const char *dir, size_t min_count)
         coons_model *m = NULL;
         coons_error err = COONS_ERROR_INIT;
         assert_coons_ok(coons_model_load_memory(text, len, names[i], NULL, &m, &err), &err);
-        every_failure(names[i], "sampling every body", op_sample, text, len, m);
+        for (g_body = 0; g_body < coons_model_body_count(m); g_body++) {
+            char what[64];
+            snprintf(what, sizeof what, "sampling body %zu", g_body);
+            every_failure(names[i], what, op_sample, text, len, m);
+        }
         every_failure(names[i], "meshing and writing", op_mesh_write, text, len, m);
         coons_model_free(m);
         free(text);

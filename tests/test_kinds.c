@@ -5,7 +5,8 @@
  * library, whose internal symbols the shared one hides): every enum value
  * has a complete row of its own type and name, every constructor points
  * its record at the row of its type, each row's copy is deep, and the
- * breakpoints reach the volume code through the rows.
+ * breakpoints reach the volume code through the rows, and each row's grid
+ * det J and partials agree with its point evaluation.
  */
 #include <stddef.h>
 #include <stdlib.h>
@@ -356,6 +357,67 @@ static void test_breaks_come_from_the_rows(void **state)
     coons_curve_free(cc);
 }
 
+/* The grid paths of det J and of the partials (each row's det_grid, or
+ * point by point where a row has none) agree with
+ * coons_body_eval_jacobian() at every point of a grid: every sample body,
+ * its affine image, and morphs (seed 000 section 4) of a body and another's
+ * affine image on a smooth path, whose partials are the blend of the keys'
+ * grid partials. */
+static void expect_grid_jacobian(const coons_body *b, const char *what)
+{
+    static const double u[4] = {0.0, 0.3, 0.71, 1.0}, v[3] = {0.05, 0.5, 1.0}, w[2] = {0.0, 0.6};
+    enum { NP = 4 * 3 * 2 };
+    double det[NP], jac[9 * NP];
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons__body_det_grid(b, u, 4, v, 3, w, 2, det, &err), &err);
+    assert_coons_ok(coons__body_jac_grid(b, u, 4, v, 3, w, 2, jac, &err), &err);
+    for (int n = 0; n < NP; n++) {
+        double p[3], J[3][3];
+        double d = coons_body_eval_jacobian(b, u[n / 6], v[(n / 2) % 3], w[n % 2], p, J);
+        double scale = 0;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++) scale = fmax(scale, fabs(J[r][c]));
+        for (int c = 0; c < 3; c++)
+            for (int r = 0; r < 3; r++)
+                if (!(fabs(jac[9 * n + 3 * c + r] - J[r][c]) <= 1e-12 * (1 + scale)))
+                    fail_msg("%s: point %d: partial %d component %d: grid %.17g, point %.17g",
+                             what, n, c, r, jac[9 * n + 3 * c + r], J[r][c]);
+        if (!(fabs(det[n] - d) <= 1e-11 * (1 + scale * scale * scale)))
+            fail_msg("%s: point %d: det J grid %.17g, point %.17g", what, n, det[n], d);
+    }
+}
+
+static void test_grid_jacobians(void **state)
+{
+    (void)state;
+    coons_body *b[TB_MAX_BODIES], *x[TB_MAX_BODIES];
+    tb_all_bodies(b);
+    coons_error err = COONS_ERROR_INIT;
+    /* a rotation about z with a scale, a shear and a shift: det 1.5 */
+    const double A[12] = {0, -1.5, 0.2, 1, 1, 0, 0, -2, 0, 0, 1, 0.5};
+    for (int m = 0; m < TB_MAX_BODIES; m++) {
+        assert_coons_ok(coons_body_new_transformed(b[m], A, &x[m], &err), &err);
+        expect_grid_jacobian(b[m], tb_body_label(m));
+        expect_grid_jacobian(x[m], tb_body_label(m));
+    }
+    const double at[3] = {0.0, 0.4, 1.0};
+    for (int m = 0; m < TB_MAX_BODIES; m++) {
+        const coons_body *keys[3] = {b[m], x[(m + 3) % TB_MAX_BODIES], b[(m + 7) % TB_MAX_BODIES]};
+        coons_body *mo = NULL, *xm = NULL;
+        assert_coons_ok(coons_body_new_morph(keys, 3, at, COONS_MORPH_SMOOTH, 0.55, &mo, &err),
+                        &err);
+        assert_coons_ok(coons_body_new_transformed(mo, A, &xm, &err), &err);
+        expect_grid_jacobian(mo, "morph");
+        expect_grid_jacobian(xm, "transformed morph");
+        coons_body_free(xm);
+        coons_body_free(mo);
+    }
+    for (int m = 0; m < TB_MAX_BODIES; m++) {
+        coons_body_free(x[m]);
+        coons_body_free(b[m]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -365,6 +427,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_records_point_at_their_row, setup, teardown),
         cmocka_unit_test_setup_teardown(test_copies_are_deep, setup, teardown),
         cmocka_unit_test_setup_teardown(test_breaks_come_from_the_rows, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_grid_jacobians, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

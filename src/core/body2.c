@@ -492,8 +492,9 @@ static void jgrid_p(jgrid *J)
         }
 }
 
-/* det [F_u F_v F_w] at every point from the tabulated terms. */
-static void jgrid_det(const jgrid *J, double *det)
+/* det [F_u F_v F_w] (det not NULL) and the partials (jac not NULL) at
+ * every point from the tabulated terms. */
+static void jgrid_det(const jgrid *J, double *det, double *jac)
 {
     const size_t nu = J->np[0], nv = J->np[1], nw = J->np[2];
     double *const *A = J->A, *X = J->X, *G = J->G, *P = J->P;
@@ -517,9 +518,17 @@ static void jgrid_det(const jgrid *J, double *det)
                             bb[0] * g0[2 * sG + t] + bb[1] * g1[2 * sG + t] + c[2] * p0[t] +
                             c[3] * p1[t];
                 }
-                double cr[3];
-                v3_cross(cr, fv, fw);
-                det[(i * nv + j) * nw + k] = v3_dot(fu, cr);
+                size_t n = (i * nv + j) * nw + k;
+                if (jac) {
+                    v3_copy(jac + 9 * n, fu);
+                    v3_copy(jac + 9 * n + 3, fv);
+                    v3_copy(jac + 9 * n + 6, fw);
+                }
+                if (det) {
+                    double cr[3];
+                    v3_cross(cr, fv, fw);
+                    det[n] = v3_dot(fu, cr);
+                }
             }
         }
     }
@@ -529,7 +538,7 @@ static void jgrid_det(const jgrid *J, double *det)
 
 static coons_status det_grid(const coons_body *b, const double *u, size_t nu,
                              const double *v, size_t nv, const double *w, size_t nw,
-                             double *det, coons_error *err)
+                             double *det, double *jac, coons_error *err)
 {
     jgrid J = {.b = b, .par = {u, v, w}, .np = {nu, nv, nw}};
     double *s = NULL;
@@ -539,7 +548,7 @@ static coons_status det_grid(const coons_body *b, const double *u, size_t nu,
     jgrid_x(&J);
     jgrid_g(&J);
     jgrid_p(&J);
-    jgrid_det(&J, det);
+    jgrid_det(&J, det, jac);
     coons__free(s);
     return COONS_OK;
 }

@@ -111,4 +111,11 @@ coons_status coons__body_det_grid(const coons_body *b, const double *u, size_t n
                                   const double *v, size_t nv, const double *w, size_t nw,
                                   double *det, coons_error *err);
 
+/* The partials dF/du, dF/dv, dF/dw of b over the same grid into
+ * jac[9 ((i*nv + j)*nw + k) ..], by the same path: det J of a point is
+ * det of its partials, as coons_body_eval_jacobian() takes it. */
+coons_status coons__body_jac_grid(const coons_body *b, const double *u, size_t nu,
+                                  const double *v, size_t nv, const double *w, size_t nw,
+                                  double *jac, coons_error *err);
+
 #endif

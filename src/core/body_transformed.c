@@ -31,12 +31,20 @@ static coons_status grid(const coons_body *b, const double *u, size_t nu, const 
 }
 
 static coons_status det_grid(const coons_body *b, const double *u, size_t nu, const double *v,
-                             size_t nv, const double *w, size_t nw, double *det,
+                             size_t nv, const double *w, size_t nw, double *det, double *jac,
                              coons_error *err)
 {
-    coons_status rc = coons__body_det_grid(b->inner, u, nu, v, nv, w, nw, det, err);
-    if (rc) return rc;
-    for (size_t i = 0; i < nu * nv * nw; i++) det[i] *= b->xf_det;
+    size_t np = nu * nv * nw;
+    if (det) {
+        coons_status rc = coons__body_det_grid(b->inner, u, nu, v, nv, w, nw, det, err);
+        if (rc) return rc;
+        for (size_t i = 0; i < np; i++) det[i] *= b->xf_det;
+    }
+    if (jac) {
+        coons_status rc = coons__body_jac_grid(b->inner, u, nu, v, nv, w, nw, jac, err);
+        if (rc) return rc;
+        for (size_t i = 0; i < 3 * np; i++) coons__affine_vec(b->xf, jac + 3 * i, jac + 3 * i);
+    }
     return COONS_OK;
 }
 

@@ -61,7 +61,7 @@ static void cell_bounds(const coons_body *b, int d, coons__breaks *B)
  * w: a few hundred operations a point instead of the whole net's. */
 static coons_status tensor_det_grid(const coons_body *b, const double *u, size_t nu,
                                     const double *v, size_t nv, const double *w, size_t nw,
-                                    double *det, coons_error *err)
+                                    double *det, double *jac, coons_error *err)
 {
     int p = b->deg[0], q = b->deg[1], r = b->deg[2];
     size_t n1 = b->n[1], n2 = b->n[2], slab = 3 * n1 * n2, row = 3 * n2;
@@ -110,7 +110,7 @@ static coons_status tensor_det_grid(const coons_body *b, const double *u, size_t
                     B10[m] += M[c] * a1[m];
                 }
             }
-            double *o = det + (i * nv + j) * nw;
+            size_t o = (i * nv + j) * nw;
             for (size_t k = 0; k < nw; k++) {
                 const double *L = BW + 2 * k * (size_t)(r + 1), *dL = L + r + 1;
                 double du[3] = {0, 0, 0}, dv[3] = {0, 0, 0}, dw[3] = {0, 0, 0}, x[3];
@@ -120,8 +120,15 @@ static coons_status tensor_det_grid(const coons_body *b, const double *u, size_t
                     v3_axpy(dv, L[e], B01 + off);
                     v3_axpy(dw, dL[e], B00 + off);
                 }
-                v3_cross(x, dv, dw);
-                o[k] = v3_dot(du, x);
+                if (jac) {
+                    v3_copy(jac + 9 * (o + k), du);
+                    v3_copy(jac + 9 * (o + k) + 3, dv);
+                    v3_copy(jac + 9 * (o + k) + 6, dw);
+                }
+                if (det) {
+                    v3_cross(x, dv, dw);
+                    det[o + k] = v3_dot(du, x);
+                }
             }
         }
     }
@@ -135,14 +142,31 @@ coons_status coons__body_det_grid(const coons_body *b, const double *u, size_t n
                                   const double *v, size_t nv, const double *w, size_t nw,
                                   double *det, coons_error *err)
 {
-    if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, det, err);
+    if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, det, NULL, err);
     if ((b->kind == &coons__bezier_volume_kind || b->kind == &coons__bspline_volume_kind) && !b->w)
-        return tensor_det_grid(b, u, nu, v, nv, w, nw, det, err);
+        return tensor_det_grid(b, u, nu, v, nv, w, nw, det, NULL, err);
     for (size_t i = 0; i < nu; i++)
         for (size_t j = 0; j < nv; j++)
             for (size_t k = 0; k < nw; k++) {
                 double p[3], jac[3][3];
                 det[(i * nv + j) * nw + k] = coons_body_eval_jacobian(b, u[i], v[j], w[k], p, jac);
+            }
+    return COONS_OK;
+}
+
+coons_status coons__body_jac_grid(const coons_body *b, const double *u, size_t nu,
+                                  const double *v, size_t nv, const double *w, size_t nw,
+                                  double *jac, coons_error *err)
+{
+    if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, NULL, jac, err);
+    if ((b->kind == &coons__bezier_volume_kind || b->kind == &coons__bspline_volume_kind) && !b->w)
+        return tensor_det_grid(b, u, nu, v, nv, w, nw, NULL, jac, err);
+    for (size_t i = 0; i < nu; i++)
+        for (size_t j = 0; j < nv; j++)
+            for (size_t k = 0; k < nw; k++) {
+                double p[3], d[3][3];
+                b->kind->eval(b, clamp01(u[i]), clamp01(v[j]), clamp01(w[k]), p, d);
+                memcpy(jac + 9 * ((i * nv + j) * nw + k), d, sizeof d);
             }
     return COONS_OK;
 }

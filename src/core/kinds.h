@@ -70,10 +70,12 @@ typedef struct coons__body_kind {
     /* coons_body_eval_grid; nu*nv*nw*3 does not overflow. */
     coons_status (*grid)(const coons_body *b, const double *u, size_t nu, const double *v,
                          size_t nv, const double *w, size_t nw, double *out, coons_error *err);
-    /* det J on a grid into det[(i*nv + j)*nw + k]; NULL: point by point
-     * through eval (body_volume.c). */
+    /* On a grid, point n = (i*nv + j)*nw + k: det J into det[n] where det
+     * is not NULL, the partials dF/du, dF/dv, dF/dw into jac[9n ..] where
+     * jac is not NULL; NULL member: point by point through eval
+     * (body_volume.c). */
     coons_status (*det_grid)(const coons_body *b, const double *u, size_t nu, const double *v,
-                             size_t nv, const double *w, size_t nw, double *det,
+                             size_t nv, const double *w, size_t nw, double *det, double *jac,
                              coons_error *err);
     /* Breakpoints along direction d (0: u, 1: v, 2: w) into B; NULL: none. */
     void (*breaks)(const coons_body *b, int d, coons__breaks *B);

@@ -177,6 +177,41 @@ static coons_status grid(const coons_body *b, const double *u, size_t nu, const 
     return rc;
 }
 
+/* The partials (jac) as the same blend of the keys' partials on the grid,
+ * each key by its own grid path; det J (det) of the blended partials, as
+ * coons_body_eval_jacobian() takes it from eval(). */
+static coons_status det_grid(const coons_body *b, const double *u, size_t nu, const double *v,
+                             size_t nv, const double *w, size_t nw, double *det, double *jac,
+                             coons_error *err)
+{
+    size_t np = nu * nv * nw;
+    double W[4], dW[4];
+    size_t first = 0, cnt = local_weights(b->nkeys, b->at, b->path, b->t, &first, W, dW);
+    double *g = coons__malloc_array(np, 9 * sizeof *g);
+    double *d = jac ? jac : coons__malloc_array(np, 9 * sizeof *d);
+    if (!g || !d) {
+        coons__free(g);
+        if (d != jac) coons__free(d);
+        return coons__error_nomem(err);
+    }
+    memset(d, 0, np * 9 * sizeof *d);
+    coons_status rc = COONS_OK;
+    for (size_t j = 0; j < cnt && !rc; j++) {
+        const coons_body *K = b->keys[first + j];
+        rc = coons__body_jac_grid(K, u, nu, v, nv, w, nw, g, err);
+        for (size_t i = 0; !rc && i < 9 * np; i++) d[i] += W[j] * g[i];
+    }
+    if (!rc && det)
+        for (size_t i = 0; i < np; i++) {
+            double x[3];
+            v3_cross(x, d + 9 * i + 3, d + 9 * i + 6);
+            det[i] = v3_dot(d + 9 * i, x);
+        }
+    coons__free(g);
+    if (d != jac) coons__free(d);
+    return rc;
+}
+
 /* The union of the keys' breakpoints: the blend may lose smoothness
  * wherever one of its keys does. */
 static void breaks(const coons_body *b, int d, coons__breaks *B)
@@ -214,7 +249,7 @@ static void release(coons_body *b)
 }
 
 const coons__body_kind coons__morph_kind = {
-    COONS_BODY_MORPH, eval, grid, NULL, breaks, copy, release,
+    COONS_BODY_MORPH, eval, grid, det_grid, breaks, copy, release,
 };
 
 coons_status coons_body_new_morph(const coons_body *const *keys, size_t nkeys, const double *at,
