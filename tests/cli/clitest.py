@@ -23,6 +23,9 @@ class Runner:
         self.bin, self.src, self.build = a.bin, a.src, a.build
         self.data = os.path.join(self.src, "tests", "data")
         self.passed = self.failed = 0
+        # A hung run fails instead of stalling CI; valgrind (tools/memcheck.sh)
+        # slows coons2stl 50-fold.
+        self.timeout = 900 if os.environ.get("COONS_TEST_UNDER_VALGRIND") else 120
 
     def check(self, name, ok, detail=""):
         if ok:
@@ -37,7 +40,7 @@ class Runner:
         """Runs coons2stl; returns (status, stdout, stderr)."""
         p = subprocess.run([self.bin] + list(args), input=stdin, cwd=cwd,
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                           text=not binary, timeout=120)
+                           text=not binary, timeout=self.timeout)
         return p.returncode, p.stdout, p.stderr
 
     def finish(self):
