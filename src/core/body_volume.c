@@ -137,38 +137,43 @@ static coons_status tensor_det_grid(const coons_body *b, const double *u, size_t
     return COONS_OK;
 }
 
-/* det J over a tensor grid, into det[(i*nv + j)*nw + k] (body_impl.h). */
+/* det J (det not NULL) and the partials (jac not NULL) over a tensor grid
+ * (body_impl.h): the type's grid path, else point by point through eval
+ * with det J as coons_body_eval_jacobian() takes it. */
+static coons_status jacobian_grid(const coons_body *b, const double *u, size_t nu,
+                                  const double *v, size_t nv, const double *w, size_t nw,
+                                  double *det, double *jac, coons_error *err)
+{
+    if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, det, jac, err);
+    if ((b->kind == &coons__bezier_volume_kind || b->kind == &coons__bspline_volume_kind) && !b->w)
+        return tensor_det_grid(b, u, nu, v, nv, w, nw, det, jac, err);
+    for (size_t i = 0; i < nu; i++)
+        for (size_t j = 0; j < nv; j++)
+            for (size_t k = 0; k < nw; k++) {
+                size_t n = (i * nv + j) * nw + k;
+                double p[3], d[3][3], x[3];
+                b->kind->eval(b, clamp01(u[i]), clamp01(v[j]), clamp01(w[k]), p, d);
+                if (jac) memcpy(jac + 9 * n, d, sizeof d);
+                if (det) {
+                    v3_cross(x, d[1], d[2]);
+                    det[n] = v3_dot(d[0], x);
+                }
+            }
+    return COONS_OK;
+}
+
 coons_status coons__body_det_grid(const coons_body *b, const double *u, size_t nu,
                                   const double *v, size_t nv, const double *w, size_t nw,
                                   double *det, coons_error *err)
 {
-    if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, det, NULL, err);
-    if ((b->kind == &coons__bezier_volume_kind || b->kind == &coons__bspline_volume_kind) && !b->w)
-        return tensor_det_grid(b, u, nu, v, nv, w, nw, det, NULL, err);
-    for (size_t i = 0; i < nu; i++)
-        for (size_t j = 0; j < nv; j++)
-            for (size_t k = 0; k < nw; k++) {
-                double p[3], jac[3][3];
-                det[(i * nv + j) * nw + k] = coons_body_eval_jacobian(b, u[i], v[j], w[k], p, jac);
-            }
-    return COONS_OK;
+    return jacobian_grid(b, u, nu, v, nv, w, nw, det, NULL, err);
 }
 
 coons_status coons__body_jac_grid(const coons_body *b, const double *u, size_t nu,
                                   const double *v, size_t nv, const double *w, size_t nw,
                                   double *jac, coons_error *err)
 {
-    if (b->kind->det_grid) return b->kind->det_grid(b, u, nu, v, nv, w, nw, NULL, jac, err);
-    if ((b->kind == &coons__bezier_volume_kind || b->kind == &coons__bspline_volume_kind) && !b->w)
-        return tensor_det_grid(b, u, nu, v, nv, w, nw, NULL, jac, err);
-    for (size_t i = 0; i < nu; i++)
-        for (size_t j = 0; j < nv; j++)
-            for (size_t k = 0; k < nw; k++) {
-                double p[3], d[3][3];
-                b->kind->eval(b, clamp01(u[i]), clamp01(v[j]), clamp01(w[k]), p, d);
-                memcpy(jac + 9 * ((i * nv + j) * nw + k), d, sizeof d);
-            }
-    return COONS_OK;
+    return jacobian_grid(b, u, nu, v, nv, w, nw, NULL, jac, err);
 }
 
 /* Grids are processed in slabs of u of at most this many points. */
