@@ -174,6 +174,11 @@ static coons_status start_counts(sampler *s)
             if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
         }
     }
+    /* A body whose boundary runs far outside its control box (a huge
+     * tangent) can have lengths that overflow: taken as the largest double,
+     * so the counts stay defined and the budget check refuses it later. */
+    for (int d = 0; d < 3; d++)
+        if (!(len[d] <= DBL_MAX)) len[d] = DBL_MAX;
     double lmax = fmax(len[0], fmax(len[1], len[2]));
     for (int d = 0; d < 3; d++) {
         double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
