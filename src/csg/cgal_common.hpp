@@ -135,7 +135,11 @@ bool parts_interact(const double *xyz, const uint32_t *tri, const Part &a, const
 // order depends on where its allocations land (handles compared by
 // address), so results are made independent of the heap, and of threads.
 void canonical_order(Soup &s);
-void merge_close(Soup &s, coons_csg_report &rep);
+void merge_close(Soup &s, coons_csg_report &rep, const std::vector<char> *fresh = nullptr);
+// Per vertex of s (in canonical_order()): 1 unless it is bitwise a vertex of
+// one of the parts `ids` (coordinates xyz), which corefinement keeps.
+std::vector<char> fresh_vertices(const Soup &s, const double *xyz, const std::vector<Part> &parts,
+                                 const std::vector<size_t> &ids);
 void fix_slivers(Soup &s, coons_csg_report &rep);
 
 // The verified fast path (cgal_fast.cpp); true with s filled, or false.

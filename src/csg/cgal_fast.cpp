@@ -117,7 +117,11 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
 // doubles can hold, which rounding turns into overlaps. Vertices closer
 // than 1e-11 of the part's size (far below any tolerance) are merged, and
 // the triangles that this collapses or doubles (two opposite copies) go.
-void merge_close(Soup &s, coons_csg_report &rep)
+// With `fresh` (a flag per vertex), only the flagged vertices (those that
+// corefinement made) move, each onto the first earlier vertex that stays
+// within that distance; the others (input vertices, distinct and checked
+// with their shells) are looked at only where a flagged one is near.
+void merge_close(Soup &s, coons_csg_report &rep, const std::vector<char> *fresh)
 {
     size_t nv = s.xyz.size() / 3;
     if (!nv) return;
@@ -135,7 +139,25 @@ void merge_close(Soup &s, coons_csg_report &rep)
     };
     std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, H> grid;
     std::vector<uint32_t> rep_of(nv);
+    for (size_t v = 0; v < nv; v++) rep_of[v] = (uint32_t)v;
+    if (fresh) {
+        // the cells next to a fresh vertex, then the fixed vertices in them
+        std::unordered_map<std::array<int64_t, 3>, char, H> hot;
+        for (size_t v = 0; v < nv; v++)
+            if ((*fresh)[v])
+                for (int dx = -1; dx <= 1; dx++)
+                    for (int dy = -1; dy <= 1; dy++)
+                        for (int dz = -1; dz <= 1; dz++)
+                            hot[{cell(v, 0) + dx, cell(v, 1) + dy, cell(v, 2) + dz}] = 1;
+        if (hot.empty()) return;
+        for (size_t v = 0; v < nv; v++) {
+            if ((*fresh)[v]) continue;
+            std::array<int64_t, 3> k{cell(v, 0), cell(v, 1), cell(v, 2)};
+            if (hot.count(k)) grid[k].push_back((uint32_t)v);
+        }
+    }
     for (size_t v = 0; v < nv; v++) {
+        if (fresh && !(*fresh)[v]) continue;
         std::array<int64_t, 3> k{cell(v, 0), cell(v, 1), cell(v, 2)};
         uint32_t found = UINT32_MAX;
         for (int dx = -1; dx <= 1 && found == UINT32_MAX; dx++)
@@ -156,7 +178,6 @@ void merge_close(Soup &s, coons_csg_report &rep)
             rep_of[v] = found;
             rep.close_merged++;
         } else {
-            rep_of[v] = (uint32_t)v;
             grid[k].push_back((uint32_t)v);
         }
     }
@@ -250,19 +271,28 @@ void fix_slivers(Soup &s, coons_csg_report &rep)
 }
 
 
+namespace {
+
+// The order of canonical_order(): by coordinates, ties (-0 and 0) by bytes.
+inline bool point_less(const double *p, const double *q)
+{
+    for (int c = 0; c < 3; c++) {
+        if (p[c] < q[c]) return true;
+        if (q[c] < p[c]) return false;
+    }
+    return std::memcmp(p, q, 3 * sizeof(double)) < 0;
+}
+
+} // namespace
+
 void canonical_order(Soup &s)
 {
     size_t nv = s.xyz.size() / 3, nt = s.tri.size() / 3;
     std::vector<uint32_t> order(nv), rank(nv);
     for (size_t v = 0; v < nv; v++) order[v] = (uint32_t)v;
     const double *x = s.xyz.data();
-    std::stable_sort(order.begin(), order.end(), [x](uint32_t a, uint32_t b) {
-        for (int c = 0; c < 3; c++) {
-            if (x[3 * a + c] < x[3 * b + c]) return true;
-            if (x[3 * b + c] < x[3 * a + c]) return false;
-        }
-        return std::memcmp(x + 3 * a, x + 3 * b, 3 * sizeof(double)) < 0;
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [x](uint32_t a, uint32_t b) { return point_less(x + 3 * a, x + 3 * b); });
     std::vector<double> xyz(3 * nv);
     for (size_t k = 0; k < nv; k++) {
         rank[order[k]] = (uint32_t)k;
@@ -282,6 +312,24 @@ void canonical_order(Soup &s)
     s.xyz.swap(xyz);
     for (size_t i = 0; i < nt; i++)
         for (int k = 0; k < 3; k++) s.tri[3 * i + k] = t[i][k];
+}
+
+std::vector<char> fresh_vertices(const Soup &s, const double *xyz, const std::vector<Part> &parts,
+                                 const std::vector<size_t> &ids)
+{
+    std::vector<const double *> in;
+    for (size_t id : ids)
+        for (size_t v = 0; v < parts[id].vert_count; v++)
+            in.push_back(xyz + 3 * (parts[id].vert_first + v));
+    std::sort(in.begin(), in.end(), point_less);
+    size_t nv = s.xyz.size() / 3, j = 0;
+    std::vector<char> fresh(nv, 1);
+    for (size_t v = 0; v < nv; v++) {
+        const double *p = &s.xyz[3 * v];
+        while (j < in.size() && point_less(in[j], p)) j++;
+        if (j < in.size() && !point_less(p, in[j])) fresh[v] = 0;
+    }
+    return fresh;
 }
 
 TriKey tri_key(const double *a, const double *b, const double *c)
@@ -499,7 +547,8 @@ bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part>
         prog("verify", p0 + (p1 - p0) * 0.95);
         canonical_order(r);
         coons_csg_report scratch = rep;
-        merge_close(r, scratch);
+        std::vector<char> fresh = fresh_vertices(r, sxyz, parts, ids);
+        merge_close(r, scratch, &fresh);
         fix_slivers(r, scratch);
         // The local final check: only pairs with a triangle that is not
         // an input triangle unchanged (new vertices, or moved by merging and

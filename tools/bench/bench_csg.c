@@ -130,6 +130,9 @@ int main(int argc, char **argv)
         coons_mesh *all = NULL, *u = NULL;
         coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
         so.resolution = res;
+        /* as coons2stl --resolution N -o FILE samples (its deviation is
+         * measured only for --info) */
+        so.flags |= COONS_SAMPLE_UNMEASURED;
         coons_csg_options co = COONS_CSG_OPTIONS_INIT;
         co.threads = threads;
         co.repair = repair;
