@@ -841,6 +841,8 @@ static coons_status steiner_params(sampler *s, int f, const double o[3], const d
 /* Sub-steps per lattice interval of the measurement (MEASURE_STEPS of
  * sample.c: 7 x 7 samples per cell). */
 #define RULED_STEPS 6
+/* Points per evaluation of the ruled-face measurement. */
+#define RULED_BLOCK_POINTS ((size_t)1 << 15)
 
 typedef struct ruled {
     sampler *s;
@@ -1056,10 +1058,16 @@ static coons_status ruled_face(sampler *s, int f, int sdir, int flip, uint32_t *
     const double *to = s->t[dir_o], *ts = s->t[dir_s];
     /* Straight rulings. */
     size_t nov = 3 * no + 1, nsv = RULED_STEPS * ns + 1;
-    double *ov = coons__malloc_array(nov > RULED_STEPS + 1 ? nov : RULED_STEPS + 1,
-                                     sizeof(double));
+    /* the measurement evaluates `block` strips at a time (7 rows each),
+     * about RULED_BLOCK_POINTS points: the basis along the rulings is then
+     * computed once per block, not once per strip */
+    size_t block = RULED_BLOCK_POINTS / ((RULED_STEPS + 1) * nsv);
+    if (block < 1) block = 1;
+    if (block > no) block = no;
+    size_t nrows = block * (RULED_STEPS + 1);
+    double *ov = coons__malloc_array(nov > nrows ? nov : nrows, sizeof(double));
     double *sv = coons__malloc_array(nsv > 5 ? nsv : 5, sizeof(double));
-    double *pts = coons__malloc_array((RULED_STEPS + 1) * (nsv > 5 ? nsv : 5), 3 * sizeof(double));
+    double *pts = coons__malloc_array(nrows * (nsv > 5 ? nsv : 5), 3 * sizeof(double));
     coons_status st = COONS_OK;
     if (!ov || !sv || !pts) {
         st = coons__error_nomem(s->err);
@@ -1127,22 +1135,39 @@ static coons_status ruled_face(sampler *s, int f, int sdir, int flip, uint32_t *
          * triangles of its segment and the two next to it (nearer ones do
          * not exist on a face that does not fold back onto itself within a
          * few cells, and farther ones would only lower the measure). */
+        /* A sample's distance to its own segment's triangles first: when
+         * that is not above the worst so far, the nearer neighbours cannot
+         * raise it (the same result, with a third of the distances). */
         double worst = 0;
-        for (size_t p = 0; p < no && !st && worst <= RULED_ACCEPT * s->tol; p++) {
-            for (int j = 0; j <= RULED_STEPS; j++)
-                ov[j] = to[p] + (to[p + 1] - to[p]) * j / RULED_STEPS;
-            ov[RULED_STEPS] = to[p + 1];
-            st = sdir ? face_grid(s, f, ov, RULED_STEPS + 1, sv, nsv, pts)
-                      : face_grid(s, f, sv, nsv, ov, RULED_STEPS + 1, pts);
-            for (size_t i = 0; !st && i < (RULED_STEPS + 1) * nsv; i++) {
-                size_t k = kq[sdir ? i % nsv : i / (RULED_STEPS + 1)];
-                size_t k0 = k ? k - 1 : 0, k1 = k + 2 < m ? k + 2 : m;
+        for (size_t p0 = 0; p0 < no && !st && worst <= RULED_ACCEPT * s->tol; p0 += block) {
+            size_t nb = no - p0 < block ? no - p0 : block, rows = nb * (RULED_STEPS + 1);
+            for (size_t p = p0; p < p0 + nb; p++) {
+                double *o = ov + (p - p0) * (RULED_STEPS + 1);
+                for (int j = 0; j <= RULED_STEPS; j++)
+                    o[j] = to[p] + (to[p + 1] - to[p]) * j / RULED_STEPS;
+                o[RULED_STEPS] = to[p + 1];
+            }
+            st = sdir ? face_grid(s, f, ov, rows, sv, nsv, pts)
+                      : face_grid(s, f, sv, nsv, ov, rows, pts);
+            for (size_t i = 0; !st && i < rows * nsv; i++) {
+                size_t row = sdir ? i / nsv : i % rows, q = sdir ? i % nsv : i / rows;
+                size_t p = p0 + row / (RULED_STEPS + 1), k = kq[q];
+                const size_t *c = cs + p * (ns + 1);
+                const double *x = pts + 3 * i;
                 double d = INFINITY;
-                for (size_t t = cs[p * (ns + 1) + k0]; t < cs[p * (ns + 1) + k1]; t++)
-                    d = fmin(d, tri_dist(pts + 3 * i, s->pos + 3 * (size_t)r.tri[3 * t],
+                for (size_t t = c[k]; t < c[k + 1]; t++)
+                    d = fmin(d, tri_dist(x, s->pos + 3 * (size_t)r.tri[3 * t],
                                          s->pos + 3 * (size_t)r.tri[3 * t + 1],
                                          s->pos + 3 * (size_t)r.tri[3 * t + 2]));
-                if (d < INFINITY) worst = fmax(worst, d);
+                if (!(d <= worst)) {
+                    size_t k0 = k ? k - 1 : 0, k1 = k + 2 < m ? k + 2 : m;
+                    for (size_t t = c[k0]; t < c[k1]; t++)
+                        if (t < c[k] || t >= c[k + 1])
+                            d = fmin(d, tri_dist(x, s->pos + 3 * (size_t)r.tri[3 * t],
+                                                 s->pos + 3 * (size_t)r.tri[3 * t + 1],
+                                                 s->pos + 3 * (size_t)r.tri[3 * t + 2]));
+                    if (d < INFINITY) worst = fmax(worst, d);
+                }
             }
         }
         if (!st && worst <= RULED_ACCEPT * s->tol) {
