@@ -28,6 +28,17 @@ int coons__cxx_injected(const char *entry);
 void coons__csg_inject_failure(int on);
 int coons__csg_failure_injected(void);
 
+/* The count of coons_mesh_count_self_intersections() on `m` as it is (no
+ * scaling), on `threads` threads; with `old_tri` (one flag per triangle, or
+ * NULL) the local count of the union's final check, where pairs of two
+ * flagged triangles are not tested; `reference` nonzero: by the earlier
+ * method (CGAL's box_intersection_d and the 3-D tests alone), to compare.
+ * Zero-area triangles are counted in *degenerate (may be NULL).
+ * ::COONS_E_UNSUPPORTED without CGAL. */
+coons_status coons__csg_count_pairs(const coons_mesh *m, const unsigned char *old_tri,
+                                    int reference, unsigned threads, size_t *pairs,
+                                    size_t *degenerate, coons_error *err);
+
 /* Reads an STL, OFF, OBJ, PLY or OM file with OpenMesh's readers (chosen by
  * extension) into a new mesh of one part named after the file: for tests
  * that read back what the writers wrote. ::COONS_E_IO when the file cannot

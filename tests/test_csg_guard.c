@@ -78,6 +78,14 @@ static coons_status call_self_float(fixture *f, int *empty, coons_error *err)
     return st;
 }
 
+static coons_status call_pairs(fixture *f, int *empty, coons_error *err)
+{
+    size_t pairs = 99, degenerate = 99;
+    coons_status st = coons__csg_count_pairs(f->mesh, NULL, 0, 1, &pairs, &degenerate, err);
+    *empty = pairs == 0 && degenerate == 0;
+    return st;
+}
+
 typedef struct entry {
     const char *name;
     const char *file; /* the C++ source that defines it */
@@ -90,6 +98,7 @@ static const entry ENTRIES[] = {
     {"coons_mesh_solidify", "src/csg/cgal_solid.cpp", call_solidify},
     {"coons_mesh_count_self_intersections", "src/csg/cgal_solid.cpp", call_self},
     {"coons_mesh_count_self_intersections_float", "src/csg/cgal_solid.cpp", call_self_float},
+    {"coons__csg_count_pairs", "src/csg/cgal_solid.cpp", call_pairs},
 };
 #define N_ENTRIES (sizeof ENTRIES / sizeof ENTRIES[0])
 

@@ -121,10 +121,11 @@ template <class F> void parallel_for(unsigned threads, size_t n, F f)
 // zero-area triangles are counted in *degenerate (may be NULL), not tested.
 // With `old` (may be NULL), the local check: pairs of two triangles found
 // in `old` are not tested, nor old triangles for degeneracy. The count does
-// not depend on `threads` (slabs along x, each pair counted in one).
+// not depend on `threads`. `reference`: the candidate pairs by CGAL's
+// box_intersection_d instead of the grids (the same pairs; for the tests).
 size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tri, size_t nt,
                                 size_t *degenerate, unsigned threads,
-                                const InputTriangles *old = nullptr);
+                                const InputTriangles *old = nullptr, bool reference = false);
 
 // Do parts a and b need Boolean work together: do boxes of their triangles
 // meet, or does one lie inside the other (winding number of a vertex)?

@@ -50,9 +50,71 @@ bool in_wedge(const IK::Point_3 &v, const IK::Point_3 &c, const IK::Point_3 &d,
     return true;
 }
 
+// p without its coordinate c (exact).
+inline IK::Point_2 drop(const IK::Point_3 &p, int c)
+{
+    return c == 0 ? IK::Point_2(p.y(), p.z()) : c == 1 ? IK::Point_2(p.z(), p.x()) : IK::Point_2(p.x(), p.y());
+}
+
+// The axis along which the normal of abc is largest (rounded: any axis
+// would be right, this one makes the projection least degenerate).
+inline int main_axis(const IK::Point_3 &a, const IK::Point_3 &b, const IK::Point_3 &c)
+{
+    double u[3] = {b.x() - a.x(), b.y() - a.y(), b.z() - a.z()};
+    double v[3] = {c.x() - a.x(), c.y() - a.y(), c.z() - a.z()};
+    double n[3] = {std::fabs(u[1] * v[2] - u[2] * v[1]), std::fabs(u[2] * v[0] - u[0] * v[2]),
+                   std::fabs(u[0] * v[1] - u[1] * v[0])};
+    return n[0] >= n[1] && n[0] >= n[2] ? 0 : n[1] >= n[2] ? 1 : 2;
+}
+
+// Exact sufficient tests in one axis projection (the points' coordinates
+// dropped one at a time, so the 2-D predicates are exact): when the
+// projections meet only where the shared indices allow, so do the
+// triangles, since a triangle whose projection has area maps one to one
+// onto it. These settle, with filtered 2-D orientations, the nearly
+// coplanar pairs (neighbours on a flat or nearly flat stretch, facing walls
+// of a thin part) whose 3-D orientations are nearly zero and would be
+// evaluated exactly.
+//  - no shared vertex: a side of one has the other strictly beyond it;
+//  - a shared edge pq: the other vertices strictly on either side of pq;
+//  - a shared vertex v: a side through v of one has the other's two other
+//    vertices strictly beyond it (two angles at v meet only at v).
+bool apart_in_projection(const IK::Point_3 *a, int shared, const int *si, const int *ti)
+{
+    int c = main_axis(a[0], a[1], a[2]);
+    IK::Point_2 q[6];
+    for (int i = 0; i < 6; i++) q[i] = drop(a[i], c);
+    auto beyond = [&](int p0, int p1, int inside, int x, int y, int z) {
+        CGAL::Orientation o = CGAL::orientation(q[p0], q[p1], q[inside]);
+        if (o == CGAL::COLLINEAR) return false;
+        CGAL::Orientation w = -o;
+        return CGAL::orientation(q[p0], q[p1], q[x]) == w && CGAL::orientation(q[p0], q[p1], q[y]) == w &&
+               (z < 0 || CGAL::orientation(q[p0], q[p1], q[z]) == w);
+    };
+    if (shared == 0) {
+        for (int k = 0; k < 3; k++)
+            if (beyond(k, (k + 1) % 3, (k + 2) % 3, 3, 4, 5) ||
+                beyond(3 + k, 3 + (k + 1) % 3, 3 + (k + 2) % 3, 0, 1, 2))
+                return true;
+        return false;
+    }
+    if (shared == 2) {
+        int p0 = si[0], p1 = si[1], x = 3 - si[0] - si[1], y = 3 + 3 - ti[0] - ti[1];
+        CGAL::Orientation ox = CGAL::orientation(q[p0], q[p1], q[x]);
+        CGAL::Orientation oy = CGAL::orientation(q[p0], q[p1], q[y]);
+        return ox != CGAL::COLLINEAR && oy != CGAL::COLLINEAR && ox != oy;
+    }
+    // one shared vertex: s's is si[0], t's is ti[0]; q[3 + ti[0]] == q[si[0]]
+    int v = si[0], s1 = (v + 1) % 3, s2 = (v + 2) % 3;
+    int t1 = 3 + (ti[0] + 1) % 3, t2 = 3 + (ti[0] + 2) % 3;
+    return beyond(v, s1, s2, t1, t2, -1) || beyond(v, s2, s1, t1, t2, -1) ||
+           beyond(v, t1, t2, s1, s2, -1) || beyond(v, t2, t1, s1, s2, -1);
+}
+
 // Two triangles of a soup given by vertex indices intersect other than in
 // what their shared indices allow (a shared edge, a shared vertex)?
-bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const uint32_t *t)
+bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const uint32_t *t,
+                     bool project = true)
 {
     int shared = 0, si[3] = {-1, -1, -1}, ti[3] = {-1, -1, -1};
     for (int i = 0; i < 3; i++)
@@ -64,8 +126,12 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
             }
     const IK::Point_3 &a = P[s[0]], &b = P[s[1]], &c = P[s[2]];
     const IK::Point_3 &d = P[t[0]], &e = P[t[1]], &f = P[t[2]];
-    if (shared == 0) return CGAL::do_intersect(IK::Triangle_3(a, b, c), IK::Triangle_3(d, e, f));
     if (shared >= 3) return true;
+    if (project) {
+        const IK::Point_3 six[6] = {a, b, c, d, e, f};
+        if (apart_in_projection(six, shared, si, ti)) return false;
+    }
+    if (shared == 0) return CGAL::do_intersect(IK::Triangle_3(a, b, c), IK::Triangle_3(d, e, f));
     if (shared == 2) {
         int so = 3 - si[0] - si[1], to = 3 - ti[0] - ti[1];
         const IK::Point_3 &p = P[s[si[0]]], &q = P[s[si[1]]], &x = P[s[so]], &y = P[t[to]];
@@ -371,7 +437,7 @@ size_t count_in_slab(const std::vector<IK::Point_3> &P, const uint32_t *tri,
     auto test = [&](const Box &x, const Box &y) {
         double m = std::max(x.min_coord(0), y.min_coord(0));
         if (m < x0 || m >= x1) return;
-        if (pair_intersects(P, tri + 3 * x.info(), tri + 3 * y.info())) count++;
+        if (pair_intersects(P, tri + 3 * x.info(), tri + 3 * y.info(), false)) count++;
     };
     CGAL::box_self_intersection_d<CGAL::Sequential_tag>(fresh.begin(), fresh.end(), test);
     if (!old.empty() && !fresh.empty())
@@ -382,27 +448,188 @@ size_t count_in_slab(const std::vector<IK::Point_3> &P, const uint32_t *tri,
 
 } // namespace
 
-size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tri, size_t nt,
-                                size_t *degenerate, unsigned threads, const InputTriangles *old)
-{
-    std::vector<IK::Point_3> P;
-    P.reserve(nv);
-    for (size_t i = 0; i < nv; i++) P.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    std::vector<Box> fresh, kept;
-    fresh.reserve(old ? nt / 4 : nt);
-    for (size_t t = 0; t < nt; t++) {
-        const uint32_t *q = tri + 3 * t;
-        bool is_old = old && old->count(tri_key(xyz + 3 * q[0], xyz + 3 * q[1], xyz + 3 * q[2]));
-        if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
-        if (!is_old && CGAL::collinear(P[q[0]], P[q[1]], P[q[2]])) {
-            // A zero-area triangle bounds nothing; it is counted, not tested.
-            if (degenerate) (*degenerate)++;
-            continue;
+namespace {
+
+// The pairs of boxes that meet (closed boxes, as box_intersection_d), among
+// `fresh` and between `fresh` and `kept`, each tested once with
+// pair_intersects: hierarchical uniform grids. Level L has cells of side
+// h 4^L, h half the smallest box; a box lives at the first level where it
+// is at most two cells long, in the cells it overlaps (at most 3 per axis),
+// so that a cell holds boxes of about its own size however the sizes vary
+// (a shell's fine lattice at a pole next to a flat face's large triangles). Two
+// boxes of one level meet in the cells they share and are tested in one of
+// them, the home cell: the one holding the low corner of their common box.
+// A box looks for the boxes of the coarser levels in the cells of those
+// levels that it overlaps, again in the home cell only. Shells sampled on
+// lattices have few boxes per cell: on the union benchmark's shells this
+// takes 0.15 s where box_intersection_d's segment tree took 0.33 s (with
+// the projection tests of pair_intersects), with the same pairs.
+class BoxGrid {
+  public:
+    BoxGrid(const std::vector<IK::Point_3> &P, const uint32_t *tri, const std::vector<Box> &fresh,
+            const std::vector<Box> &kept)
+        : P_(P), tri_(tri), fresh_(fresh), kept_(kept), nf_(fresh.size()), n_(fresh.size() + kept.size())
+    {
+        double emin = HUGE_VAL, span = 0;
+        for (int c = 0; c < 3; c++) org_[c] = HUGE_VAL;
+        std::vector<double> top(3, -HUGE_VAL);
+        for (size_t i = 0; i < n_; i++) {
+            const Box &b = box(i);
+            for (int c = 0; c < 3; c++) {
+                org_[c] = std::min(org_[c], b.min_coord(c));
+                top[c] = std::max(top[c], b.max_coord(c));
+            }
+            double e = extent(b);
+            if (e > 0) emin = std::min(emin, e);
         }
-        CGAL::Bbox_3 bb = P[q[0]].bbox() + P[q[1]].bbox() + P[q[2]].bbox();
-        (is_old ? kept : fresh).emplace_back(bb, t);
+        for (int c = 0; c < 3; c++) span = std::max(span, top[c] - org_[c]);
+        // the finest level fits the smallest box, with at most 2^20 cells
+        // along an axis (keys pack 21 bits per axis)
+        double h = std::max(0.5 * emin, span / 1048576.0);
+        if (!(h > 0) || !std::isfinite(h)) h = 1.0;
+        level_.resize(n_);
+        int nlev = 1;
+        for (size_t i = 0; i < n_; i++) {
+            double e = extent(box(i)), hl = h;
+            int L = 0;
+            while (e > 2 * hl && L < 15) {
+                hl *= 4;
+                L++;
+            }
+            level_[i] = (unsigned char)L;
+            nlev = std::max(nlev, L + 1);
+        }
+        h_.assign(nlev, h);
+        for (int L = 1; L < nlev; L++) h_[L] = 4 * h_[L - 1];
+        cells_.resize(nlev);
+        for (size_t i = 0; i < n_; i++) {
+            int L = level_[i];
+            uint64_t lo[3], hi[3];
+            range(box(i), L, lo, hi);
+            for (uint64_t z = lo[2]; z <= hi[2]; z++)
+                for (uint64_t y = lo[1]; y <= hi[1]; y++)
+                    for (uint64_t x = lo[0]; x <= hi[0]; x++)
+                        cells_[L].push_back({x | y << 21 | z << 42, (uint32_t)i});
+        }
+        for (auto &E : cells_) {
+            std::sort(E.begin(), E.end(), [](const Entry &a, const Entry &b) {
+                return a.key < b.key || (a.key == b.key && a.box < b.box);
+            });
+            std::vector<size_t> g;
+            for (size_t k = 0; k < E.size(); k++)
+                if (k == 0 || E[k].key != E[k - 1].key) g.push_back(k);
+            g.push_back(E.size());
+            groups_.push_back(std::move(g));
+        }
+        for (int L = 0; L < nlev; L++)
+            if (!cells_[L].empty()) used_.push_back(L);
     }
-    if (fresh.empty()) return 0;
+
+    // Tasks for parallel_for: chunks of cells of each level, then chunks of
+    // boxes (their look at the coarser levels).
+    size_t tasks() const { return cell_chunks() + box_chunks(); }
+
+    size_t run(size_t task) const
+    {
+        size_t count = 0, cc = cell_chunks();
+        if (task < cc) {
+            size_t L = 0, t = task;
+            while (t >= chunks(groups_[L].size() - 1)) t -= chunks(groups_[L++].size() - 1);
+            const std::vector<Entry> &E = cells_[L];
+            const std::vector<size_t> &g = groups_[L];
+            size_t g1 = std::min(g.size() - 1, (t + 1) * kChunk);
+            for (size_t gi = t * kChunk; gi < g1; gi++)
+                for (size_t a = g[gi]; a < g[gi + 1]; a++)
+                    for (size_t b = a + 1; b < g[gi + 1]; b++)
+                        count += test(E[a].box, E[b].box, (int)L, E[a].key);
+            return count;
+        }
+        size_t i1 = std::min(n_, (task - cc + 1) * kChunk);
+        for (size_t i = (task - cc) * kChunk; i < i1; i++)
+            for (int L : used_) {
+                if (L <= level_[i]) continue;
+                const std::vector<Entry> &E = cells_[L];
+                uint64_t lo[3], hi[3];
+                range(box(i), L, lo, hi);
+                for (uint64_t z = lo[2]; z <= hi[2]; z++)
+                    for (uint64_t y = lo[1]; y <= hi[1]; y++)
+                        for (uint64_t x = lo[0]; x <= hi[0]; x++) {
+                            uint64_t k = x | y << 21 | z << 42;
+                            auto it = std::lower_bound(E.begin(), E.end(), k,
+                                                       [](const Entry &e, uint64_t v) { return e.key < v; });
+                            for (; it != E.end() && it->key == k; ++it) count += test(i, it->box, L, k);
+                        }
+            }
+        return count;
+    }
+
+  private:
+    struct Entry {
+        uint64_t key;
+        uint32_t box;
+    };
+    static constexpr size_t kChunk = 4096;
+    const std::vector<IK::Point_3> &P_;
+    const uint32_t *tri_;
+    const std::vector<Box> &fresh_, &kept_;
+    size_t nf_, n_;
+    double org_[3];
+    std::vector<double> h_;
+    std::vector<unsigned char> level_;
+    std::vector<std::vector<Entry>> cells_;
+    std::vector<std::vector<size_t>> groups_; // per level: first entry of each cell, then the end
+    std::vector<int> used_;                   // the levels that hold boxes
+
+    const Box &box(size_t i) const { return i < nf_ ? fresh_[i] : kept_[i - nf_]; }
+    static double extent(const Box &b)
+    {
+        double e = 0;
+        for (int c = 0; c < 3; c++) e = std::max(e, b.max_coord(c) - b.min_coord(c));
+        return e;
+    }
+    static size_t chunks(size_t n) { return (n + kChunk - 1) / kChunk; }
+    size_t cell_chunks() const
+    {
+        size_t k = 0;
+        for (const auto &g : groups_) k += chunks(g.size() - 1);
+        return k;
+    }
+    size_t box_chunks() const { return used_.size() > 1 ? chunks(n_) : 0; }
+    // The cell index along c of x at level L (monotone in x).
+    uint64_t index(double x, int c, int L) const
+    {
+        double q = std::floor((x - org_[c]) / h_[L]);
+        return q > 0 ? (uint64_t)q : 0;
+    }
+    void range(const Box &b, int L, uint64_t lo[3], uint64_t hi[3]) const
+    {
+        for (int c = 0; c < 3; c++) {
+            lo[c] = index(b.min_coord(c), c, L);
+            hi[c] = index(b.max_coord(c), c, L);
+        }
+    }
+    // Boxes i and j meet, in cell `key` of level L as their home, and their
+    // triangles intersect: 1.
+    size_t test(size_t i, size_t j, int L, uint64_t key) const
+    {
+        if (i >= nf_ && j >= nf_) return 0; // two kept triangles
+        const Box &a = box(i), &b = box(j);
+        uint64_t home = 0;
+        for (int c = 0; c < 3; c++) {
+            if (a.max_coord(c) < b.min_coord(c) || b.max_coord(c) < a.min_coord(c)) return 0;
+            home |= index(std::max(a.min_coord(c), b.min_coord(c)), c, L) << (21 * c);
+        }
+        if (home != key) return 0;
+        return pair_intersects(P_, tri_ + 3 * a.info(), tri_ + 3 * b.info()) ? 1 : 0;
+    }
+};
+
+// The reference for the tests (coons__csg_count_pairs): the candidate
+// pairs by CGAL's box_intersection_d, by slabs along x, and the 3-D tests
+// alone (no projection), as the check was before the grids.
+size_t count_boxes_cgal(const std::vector<IK::Point_3> &P, const uint32_t *tri,
+                        std::vector<Box> &fresh, std::vector<Box> &kept, unsigned threads)
+{
     // Slabs along x with about as many box starts each; a pair is counted
     // in the slab that holds the low x end of the pair's common box.
     size_t total = fresh.size() + kept.size();
@@ -431,6 +658,81 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
             if (b.min_coord(0) < cut[j + 1] && b.max_coord(0) >= cut[j]) o.push_back(b);
         counts[j] = count_in_slab(P, tri, f, o, cut[j], cut[j + 1]);
     });
+    size_t count = 0;
+    for (size_t c : counts) count += c;
+    return count;
+}
+
+} // namespace
+
+size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tri, size_t nt,
+                                size_t *degenerate, unsigned threads, const InputTriangles *old,
+                                bool reference)
+{
+    std::vector<IK::Point_3> P;
+    P.reserve(nv);
+    for (size_t i = 0; i < nv; i++) P.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    std::vector<Box> fresh, kept;
+    fresh.reserve(old ? nt / 4 : nt);
+    for (size_t t = 0; t < nt; t++) {
+        const uint32_t *q = tri + 3 * t;
+        bool is_old = old && old->count(tri_key(xyz + 3 * q[0], xyz + 3 * q[1], xyz + 3 * q[2]));
+        if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
+        if (!is_old && CGAL::collinear(P[q[0]], P[q[1]], P[q[2]])) {
+            // A zero-area triangle bounds nothing; it is counted, not tested.
+            if (degenerate) (*degenerate)++;
+            continue;
+        }
+        CGAL::Bbox_3 bb = P[q[0]].bbox() + P[q[1]].bbox() + P[q[2]].bbox();
+        (is_old ? kept : fresh).emplace_back(bb, t);
+    }
+    if (fresh.empty()) return 0;
+    if (reference) return count_boxes_cgal(P, tri, fresh, kept, threads);
+    if (!kept.empty()) {
+        // Only kept boxes near a fresh one can take part: a 64^3 bitmap of
+        // the cells the fresh boxes touch drops the others.
+        enum { G = 64 };
+        double lo[3], hi[3];
+        for (int c = 0; c < 3; c++) lo[c] = HUGE_VAL, hi[c] = -HUGE_VAL;
+        for (const Box &b : fresh)
+            for (int c = 0; c < 3; c++) {
+                lo[c] = std::min(lo[c], b.min_coord(c));
+                hi[c] = std::max(hi[c], b.max_coord(c));
+            }
+        double w[3];
+        for (int c = 0; c < 3; c++) w[c] = hi[c] > lo[c] ? (hi[c] - lo[c]) / G : 1.0;
+        auto cell = [&](double x, int c) {
+            double q = std::floor((x - lo[c]) / w[c]);
+            return q < 0 ? 0 : q > G - 1 ? G - 1 : (int)q;
+        };
+        std::vector<char> hot(G * G * G, 0);
+        auto cover = [&](const Box &b, bool mark) {
+            int a[3], z[3];
+            for (int c = 0; c < 3; c++) {
+                if (b.max_coord(c) < lo[c] || b.min_coord(c) > hi[c]) return false;
+                a[c] = cell(b.min_coord(c), c);
+                z[c] = cell(b.max_coord(c), c);
+            }
+            for (int i = a[0]; i <= z[0]; i++)
+                for (int j = a[1]; j <= z[1]; j++)
+                    for (int k = a[2]; k <= z[2]; k++) {
+                        char &h = hot[((size_t)i * G + (size_t)j) * G + (size_t)k];
+                        if (mark) h = 1;
+                        else if (h) return true;
+                    }
+            return false;
+        };
+        for (const Box &b : fresh) cover(b, true);
+        std::vector<Box> near;
+        for (const Box &b : kept)
+            if (cover(b, false)) near.push_back(b);
+        kept.swap(near);
+    }
+    BoxGrid grid(P, tri, fresh, kept);
+    size_t nt_ = grid.tasks();
+    std::vector<size_t> counts(nt_, 0);
+    parallel_for(fresh.size() + kept.size() > 4096 ? threads : 1, nt_,
+                 [&](size_t k) { counts[k] = grid.run(k); });
     size_t count = 0;
     for (size_t c : counts) count += c;
     return count;

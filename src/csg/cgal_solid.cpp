@@ -1089,4 +1089,27 @@ extern "C" coons_status coons_mesh_count_self_intersections_float(const coons_me
     return self_int(__func__, m, pairs, true, err);
 }
 
+// Test hook (coons_test_hooks.h): the self-intersection count as the union
+// runs it (local when old_tri flags input triangles), or by the reference.
+extern "C" coons_status coons__csg_count_pairs(const coons_mesh *m, const unsigned char *old_tri,
+                                               int reference, unsigned threads, size_t *pairs,
+                                               size_t *degenerate, coons_error *err)
+{
+    *pairs = 0;
+    if (degenerate) *degenerate = 0;
+    return coons::guard(__func__, err, unknown_text, [&]() -> coons_status {
+        const double *xyz = coons_mesh_vertices(m);
+        const uint32_t *tri = coons_mesh_triangles(m);
+        size_t nt = coons_mesh_triangle_count(m);
+        InputTriangles old;
+        for (size_t t = 0; old_tri && t < nt; t++)
+            if (old_tri[t])
+                old.insert(coons_csg::tri_key(xyz + 3 * tri[3 * t], xyz + 3 * tri[3 * t + 1],
+                                              xyz + 3 * tri[3 * t + 2]));
+        *pairs = count_self_intersections(xyz, coons_mesh_vertex_count(m), tri, nt, degenerate,
+                                          threads, old_tri ? &old : nullptr, reference != 0);
+        return COONS_OK;
+    }, [](coons_error *e, const std::exception &x) noexcept { return describe_self_int(e, x); });
+}
+
 extern "C" int coons_csg_is_available(void) { return 1; }

@@ -2,6 +2,7 @@
 /* Built when libcoons is configured without CGAL: repair and union are not
  * available, and say so. */
 #include "coons_internal.h"
+#include "coons_test_hooks.h"
 #include "csg/csg_records.h"
 
 static coons_status unavailable(coons_error *err)
@@ -33,6 +34,16 @@ coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size
 {
     (void)m;
     *pairs = 0;
+    return unavailable(err);
+}
+
+coons_status coons__csg_count_pairs(const coons_mesh *m, const unsigned char *old_tri,
+                                    int reference, unsigned threads, size_t *pairs,
+                                    size_t *degenerate, coons_error *err)
+{
+    (void)m, (void)old_tri, (void)reference, (void)threads;
+    *pairs = 0;
+    if (degenerate) *degenerate = 0;
     return unavailable(err);
 }
 
