@@ -468,18 +468,25 @@ class BoxGrid {
   public:
     BoxGrid(const std::vector<IK::Point_3> &P, const uint32_t *tri, const std::vector<Box> &fresh,
             const std::vector<Box> &kept)
-        : P_(P), tri_(tri), fresh_(fresh), kept_(kept), nf_(fresh.size()), n_(fresh.size() + kept.size())
+        : P_(P), tri_(tri), nf_(fresh.size()), n_(fresh.size() + kept.size())
     {
-        double emin = HUGE_VAL, span = 0;
-        for (int c = 0; c < 3; c++) org_[c] = HUGE_VAL;
-        std::vector<double> top(3, -HUGE_VAL);
+        bx_.reserve(n_);
         for (size_t i = 0; i < n_; i++) {
-            const Box &b = box(i);
+            const Box &b = i < nf_ ? fresh[i] : kept[i - nf_];
+            BB q;
+            for (int c = 0; c < 3; c++) q.lo[c] = b.min_coord(c), q.hi[c] = b.max_coord(c);
+            q.t = (uint32_t)b.info();
+            q.old = i >= nf_;
+            bx_.push_back(q);
+        }
+        double emin = HUGE_VAL, span = 0, top[3];
+        for (int c = 0; c < 3; c++) org_[c] = HUGE_VAL, top[c] = -HUGE_VAL;
+        for (const BB &q : bx_) {
             for (int c = 0; c < 3; c++) {
-                org_[c] = std::min(org_[c], b.min_coord(c));
-                top[c] = std::max(top[c], b.max_coord(c));
+                org_[c] = std::min(org_[c], q.lo[c]);
+                top[c] = std::max(top[c], q.hi[c]);
             }
-            double e = extent(b);
+            double e = extent(q);
             if (e > 0) emin = std::min(emin, e);
         }
         for (int c = 0; c < 3; c++) span = std::max(span, top[c] - org_[c]);
@@ -487,34 +494,38 @@ class BoxGrid {
         // along an axis (keys pack 21 bits per axis)
         double h = std::max(0.5 * emin, span / 1048576.0);
         if (!(h > 0) || !std::isfinite(h)) h = 1.0;
-        level_.resize(n_);
         int nlev = 1;
-        for (size_t i = 0; i < n_; i++) {
-            double e = extent(box(i)), hl = h;
+        for (BB &q : bx_) {
+            double e = extent(q), hl = h;
             int L = 0;
             while (e > 2 * hl && L < 15) {
                 hl *= 4;
                 L++;
             }
-            level_[i] = (unsigned char)L;
+            q.level = (unsigned char)L;
             nlev = std::max(nlev, L + 1);
         }
-        h_.assign(nlev, h);
-        for (int L = 1; L < nlev; L++) h_[L] = 4 * h_[L - 1];
+        inv_.assign(nlev, 1.0 / h);
+        for (int L = 1; L < nlev; L++) inv_[L] = 0.25 * inv_[L - 1];
         cells_.resize(nlev);
+        std::vector<size_t> per(nlev, 0);
+        for (BB &q : bx_) {
+            uint32_t hi[3];
+            range(q, q.level, q.cell, hi);
+            per[q.level] += (size_t)(hi[0] - q.cell[0] + 1) * (hi[1] - q.cell[1] + 1) * (hi[2] - q.cell[2] + 1);
+        }
+        for (int L = 0; L < nlev; L++) cells_[L].reserve(per[L]);
         for (size_t i = 0; i < n_; i++) {
-            int L = level_[i];
-            uint64_t lo[3], hi[3];
-            range(box(i), L, lo, hi);
-            for (uint64_t z = lo[2]; z <= hi[2]; z++)
-                for (uint64_t y = lo[1]; y <= hi[1]; y++)
-                    for (uint64_t x = lo[0]; x <= hi[0]; x++)
-                        cells_[L].push_back({x | y << 21 | z << 42, (uint32_t)i});
+            const BB &q = bx_[i];
+            uint32_t hi[3];
+            range(q, q.level, nullptr, hi);
+            for (uint64_t z = q.cell[2]; z <= hi[2]; z++)
+                for (uint64_t y = q.cell[1]; y <= hi[1]; y++)
+                    for (uint64_t x = q.cell[0]; x <= hi[0]; x++)
+                        cells_[q.level].push_back({x | y << 21 | z << 42, (uint32_t)i});
         }
         for (auto &E : cells_) {
-            std::sort(E.begin(), E.end(), [](const Entry &a, const Entry &b) {
-                return a.key < b.key || (a.key == b.key && a.box < b.box);
-            });
+            radix_sort(E);
             std::vector<size_t> g;
             for (size_t k = 0; k < E.size(); k++)
                 if (k == 0 || E[k].key != E[k - 1].key) g.push_back(k);
@@ -539,31 +550,45 @@ class BoxGrid {
             const std::vector<size_t> &g = groups_[L];
             size_t g1 = std::min(g.size() - 1, (t + 1) * kChunk);
             for (size_t gi = t * kChunk; gi < g1; gi++)
-                for (size_t a = g[gi]; a < g[gi + 1]; a++)
+                for (size_t a = g[gi]; a < g[gi + 1]; a++) {
+                    const BB &A = bx_[E[a].box];
                     for (size_t b = a + 1; b < g[gi + 1]; b++)
-                        count += test(E[a].box, E[b].box, (int)L, E[a].key);
+                        count += test(A, bx_[E[b].box], A.cell, E[a].key);
+                }
             return count;
         }
         size_t i1 = std::min(n_, (task - cc + 1) * kChunk);
-        for (size_t i = (task - cc) * kChunk; i < i1; i++)
+        for (size_t i = (task - cc) * kChunk; i < i1; i++) {
+            const BB &A = bx_[i];
             for (int L : used_) {
-                if (L <= level_[i]) continue;
+                if (L <= A.level) continue;
                 const std::vector<Entry> &E = cells_[L];
-                uint64_t lo[3], hi[3];
-                range(box(i), L, lo, hi);
+                uint32_t lo[3], hi[3];
+                range(A, L, lo, hi);
                 for (uint64_t z = lo[2]; z <= hi[2]; z++)
                     for (uint64_t y = lo[1]; y <= hi[1]; y++)
                         for (uint64_t x = lo[0]; x <= hi[0]; x++) {
                             uint64_t k = x | y << 21 | z << 42;
                             auto it = std::lower_bound(E.begin(), E.end(), k,
                                                        [](const Entry &e, uint64_t v) { return e.key < v; });
-                            for (; it != E.end() && it->key == k; ++it) count += test(i, it->box, L, k);
+                            for (; it != E.end() && it->key == k; ++it)
+                                count += test(A, bx_[it->box], lo, k);
                         }
             }
+        }
         return count;
     }
 
   private:
+    // A box: its corners, the cell of its low corner at its own level, the
+    // triangle, and whether it is a kept (old) one.
+    struct BB {
+        double lo[3], hi[3];
+        uint32_t cell[3];
+        uint32_t t;
+        unsigned char level;
+        bool old;
+    };
     struct Entry {
         uint64_t key;
         uint32_t box;
@@ -571,21 +596,17 @@ class BoxGrid {
     static constexpr size_t kChunk = 4096;
     const std::vector<IK::Point_3> &P_;
     const uint32_t *tri_;
-    const std::vector<Box> &fresh_, &kept_;
     size_t nf_, n_;
     double org_[3];
-    std::vector<double> h_;
-    std::vector<unsigned char> level_;
+    std::vector<BB> bx_;
+    std::vector<double> inv_; // per level: 1 / cell side
     std::vector<std::vector<Entry>> cells_;
     std::vector<std::vector<size_t>> groups_; // per level: first entry of each cell, then the end
     std::vector<int> used_;                   // the levels that hold boxes
 
-    const Box &box(size_t i) const { return i < nf_ ? fresh_[i] : kept_[i - nf_]; }
-    static double extent(const Box &b)
+    static double extent(const BB &q)
     {
-        double e = 0;
-        for (int c = 0; c < 3; c++) e = std::max(e, b.max_coord(c) - b.min_coord(c));
-        return e;
+        return std::max(q.hi[0] - q.lo[0], std::max(q.hi[1] - q.lo[1], q.hi[2] - q.lo[2]));
     }
     static size_t chunks(size_t n) { return (n + kChunk - 1) / kChunk; }
     size_t cell_chunks() const
@@ -595,32 +616,58 @@ class BoxGrid {
         return k;
     }
     size_t box_chunks() const { return used_.size() > 1 ? chunks(n_) : 0; }
-    // The cell index along c of x at level L (monotone in x).
-    uint64_t index(double x, int c, int L) const
+    // The cell index along c of x at level L (monotone in x, so the cell of
+    // the larger of two coordinates is the larger of their cells).
+    uint32_t index(double x, int c, int L) const
     {
-        double q = std::floor((x - org_[c]) / h_[L]);
-        return q > 0 ? (uint64_t)q : 0;
+        double q = std::floor((x - org_[c]) * inv_[L]);
+        return q > 0 ? (uint32_t)std::min(q, 2097151.0) : 0;
     }
-    void range(const Box &b, int L, uint64_t lo[3], uint64_t hi[3]) const
+    void range(const BB &q, int L, uint32_t *lo, uint32_t hi[3]) const
     {
         for (int c = 0; c < 3; c++) {
-            lo[c] = index(b.min_coord(c), c, L);
-            hi[c] = index(b.max_coord(c), c, L);
+            if (lo) lo[c] = index(q.lo[c], c, L);
+            hi[c] = index(q.hi[c], c, L);
         }
     }
-    // Boxes i and j meet, in cell `key` of level L as their home, and their
-    // triangles intersect: 1.
-    size_t test(size_t i, size_t j, int L, uint64_t key) const
+    // Keys sorted (the order inside a cell does not matter: every pair in
+    // it is looked at): least significant 16 bits first, skipping the
+    // digits all keys share; small sets by std::sort.
+    static void radix_sort(std::vector<Entry> &E)
     {
-        if (i >= nf_ && j >= nf_) return 0; // two kept triangles
-        const Box &a = box(i), &b = box(j);
+        auto by_key = [](const Entry &a, const Entry &b) { return a.key < b.key; };
+        if (E.size() < 4096) {
+            std::sort(E.begin(), E.end(), by_key);
+            return;
+        }
+        std::vector<Entry> tmp(E.size());
+        std::vector<size_t> cnt(1u << 16);
+        for (int shift = 0; shift < 64; shift += 16) {
+            std::fill(cnt.begin(), cnt.end(), 0);
+            for (const Entry &e : E) cnt[(e.key >> shift) & 0xFFFF]++;
+            if (cnt[(E[0].key >> shift) & 0xFFFF] == E.size()) continue;
+            size_t sum = 0;
+            for (size_t &c : cnt) {
+                size_t k = c;
+                c = sum;
+                sum += k;
+            }
+            for (const Entry &e : E) tmp[cnt[(e.key >> shift) & 0xFFFF]++] = e;
+            E.swap(tmp);
+        }
+    }
+    // Boxes a and b meet, in cell `key` as their home (`acell`: a's low
+    // corner's cell at this level), and their triangles intersect: 1.
+    size_t test(const BB &a, const BB &b, const uint32_t *acell, uint64_t key) const
+    {
+        if (a.old && b.old) return 0; // two kept triangles
         uint64_t home = 0;
         for (int c = 0; c < 3; c++) {
-            if (a.max_coord(c) < b.min_coord(c) || b.max_coord(c) < a.min_coord(c)) return 0;
-            home |= index(std::max(a.min_coord(c), b.min_coord(c)), c, L) << (21 * c);
+            if (a.hi[c] < b.lo[c] || b.hi[c] < a.lo[c]) return 0;
+            home |= (uint64_t)std::max(acell[c], b.cell[c]) << (21 * c);
         }
         if (home != key) return 0;
-        return pair_intersects(P_, tri_ + 3 * a.info(), tri_ + 3 * b.info()) ? 1 : 0;
+        return pair_intersects(P_, tri_ + 3 * (size_t)a.t, tri_ + 3 * (size_t)b.t) ? 1 : 0;
     }
 };
 
