@@ -95,11 +95,7 @@ static void check_model(const coons_model *m, unsigned res, coons_csg_report *re
 static void test_three_examples(void **state)
 {
     (void)state;
-    char path[1024];
-    snprintf(path, sizeof path, "%s/tests/data/ok/three-examples-union.json", COONS_SOURCE_DIR);
-    coons_model *m = NULL;
-    coons_error err;
-    assert_coons_ok(coons_model_load_file(path, NULL, &m, &err), &err);
+    coons_model *m = test_source_model("tests/data/ok/three-examples-union.json");
     coons_csg_report rep;
     check_model(m, 12, &rep);
     assert_int_equal(rep.groups, 1);

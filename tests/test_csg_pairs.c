@@ -125,11 +125,8 @@ static void test_lattice_soups(void **state)
 static void test_sampled_shells(void **state)
 {
     (void)state;
-    char path[1024];
-    snprintf(path, sizeof path, "%s/tests/data/ok/three-examples-union.json", COONS_SOURCE_DIR);
-    coons_model *m = NULL;
+    coons_model *m = test_source_model("tests/data/ok/three-examples-union.json");
     coons_error err;
-    assert_coons_ok(coons_model_load_file(path, NULL, &m, &err), &err);
     coons_mesh *all = NULL;
     assert_coons_ok(coons_mesh_new(&all, &err), &err);
     for (size_t b = 0; b < coons_model_body_count(m); b++) {

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "test_util.h"
@@ -65,3 +66,13 @@ void coons_test_fail_after(long n)
 
 long coons_test_alloc_count(void) { return g_count; }
 long coons_test_live_allocs(void) { return g_live; }
+
+coons_model *test_source_model(const char *rel)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", COONS_SOURCE_DIR, rel);
+    coons_model *m = NULL;
+    coons_error err;
+    assert_coons_ok(coons_model_load_file(path, NULL, &m, &err), &err);
+    return m;
+}

@@ -28,6 +28,10 @@ void assert_vec3_near_impl(const double *a, const double *b, double eps, const c
         if (rc_ != COONS_OK) fail_msg("%s -> %d: %s", #call, rc_, (errp)->message); \
     } while (0)
 
+/* Loads the model at `rel` (a path inside the source tree), asserting it
+ * loads. */
+coons_model *test_source_model(const char *rel);
+
 /* Failing allocator: after coons_test_fail_after(n) the (n+1)-th allocation
  * through the library's hooks fails; n < 0 disables. Installs itself. */
 void coons_test_fail_after(long n);
