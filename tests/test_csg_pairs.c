@@ -201,6 +201,17 @@ static void test_known_counts(void **state)
     m = soup(fold, 5, opposite, 2);
     assert_int_equal(agree(m, NULL), 0);
     coons_mesh_free(m);
+    /* extents beyond doubles (1e308 - -1e308): counted, at once (the grids
+     * would need cells of infinite size; the reference counts these) */
+    const double huge[] = {-1e308, 0, 0, 1e308, 0, 0, 0, 1e308, 0, 0, 0, 1e308,
+                           -1e308, 1, 1, 1, -1e308, 1};
+    const uint32_t ht[] = {0, 1, 2, 0, 1, 3, 3, 4, 5, 0, 2, 3};
+    m = soup(huge, 6, ht, 4);
+    size_t pairs = 0;
+    coons_error err;
+    assert_coons_ok(coons_mesh_count_self_intersections(m, &pairs, &err), &err);
+    assert_int_equal(pairs, agree(m, NULL));
+    coons_mesh_free(m);
 }
 
 int main(void)

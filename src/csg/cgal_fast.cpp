@@ -490,6 +490,8 @@ class BoxGrid {
             if (e > 0) emin = std::min(emin, e);
         }
         for (int c = 0; c < 3; c++) span = std::max(span, top[c] - org_[c]);
+        ok_ = std::isfinite(span);
+        if (!ok_) return; // extents beyond doubles: the caller uses the reference
         // the finest level fits the smallest box, with at most 2^20 cells
         // along an axis (keys pack 21 bits per axis)
         double h = std::max(0.5 * emin, span / 1048576.0);
@@ -535,6 +537,8 @@ class BoxGrid {
         for (int L = 0; L < nlev; L++)
             if (!cells_[L].empty()) used_.push_back(L);
     }
+
+    bool ok() const { return ok_; }
 
     // Tasks for parallel_for: chunks of cells of each level, then chunks of
     // boxes (their look at the coarser levels).
@@ -597,6 +601,7 @@ class BoxGrid {
     const std::vector<IK::Point_3> &P_;
     const uint32_t *tri_;
     size_t nf_, n_;
+    bool ok_ = true;
     double org_[3];
     std::vector<BB> bx_;
     std::vector<double> inv_; // per level: 1 / cell side
@@ -776,6 +781,7 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
         kept.swap(near);
     }
     BoxGrid grid(P, tri, fresh, kept);
+    if (!grid.ok()) return count_boxes_cgal(P, tri, fresh, kept, threads);
     size_t nt_ = grid.tasks();
     std::vector<size_t> counts(nt_, 0);
     parallel_for(fresh.size() + kept.size() > 4096 ? threads : 1, nt_,
