@@ -66,7 +66,7 @@ static coons_mesh *soup(const double *xyz, size_t nv, const uint32_t *tri, size_
 static void test_lattice_soups(void **state)
 {
     (void)state;
-    enum { K = 5, NV = 2 * K * K * K, NT = 1500 };
+    enum { K = 5, NV = 2 * K * K * K, NT = 800 };
     double xyz[3 * NV];
     for (int i = 0; i < K; i++)
         for (int j = 0; j < K; j++)
@@ -77,7 +77,7 @@ static void test_lattice_soups(void **state)
                 q[2] = k + 1e-13 * (double)next(3);
             }
     size_t total = 0;
-    for (int round = 0; round < 8; round++) {
+    for (int round = 0; round < 6; round++) {
         uint32_t tri[3 * NT];
         unsigned char old[NT];
         size_t nt = 0;
