@@ -28,6 +28,12 @@ int coons__cxx_injected(const char *entry);
 void coons__csg_inject_failure(int on);
 int coons__csg_failure_injected(void);
 
+/* Nonzero: the fast union corefines whole shells with CGAL's Boolean, as
+ * before the near chain (only the triangles near the other shell
+ * corefined, patches classified by the library), to compare the two. */
+void coons__csg_whole_corefinement(int on);
+int coons__csg_whole_corefinement_set(void);
+
 /* The count of coons_mesh_count_self_intersections() on `m` as it is (no
  * scaling), on `threads` threads; with `old_tri` (one flag per triangle, or
  * NULL) the local count of the union's final check, where pairs of two

@@ -24,10 +24,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <new>
 #include <unordered_map>
 
 #include "csg/cgal_common.hpp"
+extern "C" {
+#include "coons_test_hooks.h"
+}
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 
@@ -857,32 +861,627 @@ bool parts_interact(const double *xyz, const uint32_t *tri, const Part &a, const
     return false;
 }
 
-// The fast path for bodies that do not cross themselves: chained
-// corefinement on the inexact-constructions kernel (exact predicates,
-// intersection points rounded as they are made). Such chains can leave
-// crossings (BUILD-NOTES), so the result is accepted only when the exact
-// check of the finished double mesh finds none; otherwise the exact path
-// runs. Returns true with `s` filled, or false.
+namespace {
+
+// ---- Corefinement of the near triangles only (the near chain) ----
+//
+// Two closed shells a and b are united without handing their whole
+// surfaces to CGAL: only the triangles whose boxes meet a box of the other
+// shell (and the triangles around their vertices) are corefined, as two
+// open meshes (PMP::corefine needs no closed input); the others cannot meet
+// the other shell, so no edge between a near and a far triangle is split.
+// The refined shells are cut into patches along the intersection edges;
+// each patch is classified once: from a far triangle (off the other shell,
+// since its box meets none of the other's) by the parity of an axis ray
+// with exact predicates, or, for a patch of near triangles, first by
+// whether it lies on a coplanar triangle of the other (a shared flat
+// face). The union keeps the patches of each outside the other, and of
+// coplanar patches facing the same way one copy. The result is accepted
+// only when it is a closed, oriented 2-manifold whose volume lies between
+// the larger input's and their sum; the caller checks it exactly as any
+// fast union.
+
+inline uint64_t edge_key(uint32_t a, uint32_t b)
+{
+    return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+inline CGAL::Bbox_3 tri_bbox(const Soup &s, size_t t)
+{
+    CGAL::Bbox_3 x;
+    for (int k = 0; k < 3; k++) {
+        const double *v = &s.xyz[3 * s.tri[3 * t + k]];
+        x += CGAL::Bbox_3(v[0], v[1], v[2], v[0], v[1], v[2]);
+    }
+    return x;
+}
+
+inline IK::Point_3 point(const Soup &s, uint32_t v)
+{
+    return IK::Point_3(s.xyz[3 * v], s.xyz[3 * v + 1], s.xyz[3 * v + 2]);
+}
+
+// Marks (1) the triangles of a and of b whose closed boxes meet a box of
+// the other's, then the triangles around their vertices.
+void mark_near(const Soup &a, const Soup &b, std::vector<char> &na, std::vector<char> &nb)
+{
+    size_t ta = a.tri.size() / 3, tb = b.tri.size() / 3;
+    na.assign(ta, 0);
+    nb.assign(tb, 0);
+    CGAL::Bbox_3 A, B;
+    for (size_t t = 0; t < ta; t++) A += tri_bbox(a, t);
+    for (size_t t = 0; t < tb; t++) B += tri_bbox(b, t);
+    std::vector<Box> ba, bb;
+    for (size_t t = 0; t < ta; t++) {
+        CGAL::Bbox_3 x = tri_bbox(a, t);
+        if (CGAL::do_overlap(x, B)) ba.emplace_back(x, t);
+    }
+    for (size_t t = 0; t < tb; t++) {
+        CGAL::Bbox_3 x = tri_bbox(b, t);
+        if (CGAL::do_overlap(x, A)) bb.emplace_back(x, t);
+    }
+    if (ba.empty() || bb.empty()) return;
+    CGAL::box_intersection_d<CGAL::Sequential_tag>(ba.begin(), ba.end(), bb.begin(), bb.end(),
+                                                   [&](const Box &x, const Box &y) {
+                                                       na[x.info()] = 1;
+                                                       nb[y.info()] = 1;
+                                                   });
+    auto widen = [](const Soup &s, std::vector<char> &near) {
+        std::vector<char> vm(s.xyz.size() / 3, 0);
+        size_t nt = s.tri.size() / 3;
+        for (size_t t = 0; t < nt; t++)
+            if (near[t])
+                for (int k = 0; k < 3; k++) vm[s.tri[3 * t + k]] = 1;
+        for (size_t t = 0; t < nt; t++)
+            if (vm[s.tri[3 * t]] || vm[s.tri[3 * t + 1]] || vm[s.tri[3 * t + 2]]) near[t] = 1;
+    };
+    widen(a, na);
+    widen(b, nb);
+}
+
+typedef IMesh::Property_map<IMesh::Vertex_index, uint32_t> VertexIds;
+typedef IMesh::Property_map<IMesh::Edge_index, bool> EdgeFlags;
+
+// The near triangles of s as an open mesh; each vertex keeps its index in s.
+bool near_mesh(const Soup &s, const std::vector<char> &near, IMesh &m, VertexIds &gid)
+{
+    gid = m.add_property_map<IMesh::Vertex_index, uint32_t>("v:gid", UINT32_MAX).first;
+    std::vector<IMesh::Vertex_index> local(s.xyz.size() / 3, IMesh::null_vertex());
+    for (size_t t = 0; t < near.size(); t++) {
+        if (!near[t]) continue;
+        IMesh::Vertex_index v[3];
+        for (int k = 0; k < 3; k++) {
+            uint32_t g = s.tri[3 * t + k];
+            if (local[g] == IMesh::null_vertex()) {
+                local[g] = m.add_vertex(point(s, g));
+                gid[local[g]] = g;
+            }
+            v[k] = local[g];
+        }
+        if (CGAL::collinear(m.point(v[0]), m.point(v[1]), m.point(v[2])) ||
+            m.add_face(v[0], v[1], v[2]) == IMesh::null_face())
+            return false;
+    }
+    return true;
+}
+
+// A shell after corefinement: s's far triangles and m's (refined) ones,
+// the new vertices appended to s's; `cut` the intersection edges.
+struct Refined {
+    Soup s;
+    std::vector<char> near; // per triangle: from the corefined part
+    std::unordered_set<uint64_t> cut;
+};
+
+void refined(const Soup &s, const std::vector<char> &near, const IMesh &m, VertexIds gid,
+             EdgeFlags ecm, Refined &r)
+{
+    r.s.xyz = s.xyz;
+    for (auto v : m.vertices())
+        if (gid[v] == UINT32_MAX) {
+            gid[v] = (uint32_t)(r.s.xyz.size() / 3);
+            const IK::Point_3 &p = m.point(v);
+            r.s.xyz.insert(r.s.xyz.end(), {p.x(), p.y(), p.z()});
+        }
+    size_t nt = near.size();
+    r.s.tri.reserve(3 * (nt + m.num_faces()));
+    for (size_t t = 0; t < nt; t++)
+        if (!near[t]) r.s.tri.insert(r.s.tri.end(), &s.tri[3 * t], &s.tri[3 * t] + 3);
+    r.near.assign(r.s.tri.size() / 3, 0);
+    for (auto f : m.faces())
+        for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) r.s.tri.push_back(gid[v]);
+    r.near.resize(r.s.tri.size() / 3, 1);
+    for (auto e : m.edges())
+        if (ecm[e])
+            r.cut.insert(edge_key(gid[m.source(m.halfedge(e))], gid[m.target(m.halfedge(e))]));
+}
+
+// The triangles around each vertex (compressed rows).
+struct VertexFaces {
+    std::vector<uint32_t> first, faces;
+    explicit VertexFaces(const Soup &s) : first(s.xyz.size() / 3 + 1, 0), faces(s.tri.size())
+    {
+        for (uint32_t v : s.tri) first[v + 1]++;
+        for (size_t v = 1; v < first.size(); v++) first[v] += first[v - 1];
+        std::vector<uint32_t> at(first.begin(), first.end() - 1);
+        for (size_t i = 0; i < s.tri.size(); i++) faces[at[s.tri[i]]++] = (uint32_t)(i / 3);
+    }
+};
+
+// The triangle across edge (a, b) of triangle t: the only other one with
+// the edge, which runs (b, a) there; UINT32_MAX when there is none, more
+// than one, or one running (a, b) (not a closed oriented 2-manifold).
+uint32_t across(const Soup &s, const VertexFaces &vf, uint32_t t, uint32_t a, uint32_t b)
+{
+    uint32_t found = UINT32_MAX;
+    for (uint32_t i = vf.first[a]; i < vf.first[a + 1]; i++) {
+        uint32_t u = vf.faces[i];
+        if (u == t) continue;
+        const uint32_t *q = &s.tri[3 * (size_t)u];
+        for (int k = 0; k < 3; k++) {
+            if (q[k] != a) continue;
+            if (q[(k + 1) % 3] == b) return UINT32_MAX;
+            if (q[(k + 2) % 3] == b) {
+                if (found != UINT32_MAX) return UINT32_MAX;
+                found = u;
+            }
+        }
+    }
+    return found;
+}
+
+// Patch of each triangle (triangles joined across edges not in r.cut);
+// false unless r.s is a closed oriented 2-manifold.
+bool make_patches(const Refined &r, std::vector<uint32_t> &patch, uint32_t &np)
+{
+    const Soup &s = r.s;
+    VertexFaces vf(s);
+    size_t nt = s.tri.size() / 3;
+    patch.assign(nt, UINT32_MAX);
+    np = 0;
+    std::vector<uint32_t> stack;
+    for (size_t t0 = 0; t0 < nt; t0++) {
+        if (patch[t0] != UINT32_MAX) continue;
+        patch[t0] = np;
+        stack.push_back((uint32_t)t0);
+        while (!stack.empty()) {
+            uint32_t t = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; k++) {
+                uint32_t a = s.tri[3 * (size_t)t + k], b = s.tri[3 * (size_t)t + (k + 1) % 3];
+                uint32_t u = across(s, vf, t, a, b);
+                if (u == UINT32_MAX) return false;
+                if (r.near[t] && r.cut.count(edge_key(a, b))) continue;
+                if (patch[u] == UINT32_MAX) {
+                    patch[u] = np;
+                    stack.push_back(u);
+                }
+            }
+        }
+        np++;
+    }
+    return true;
+}
+
+// Triangles of a shell in the cells of a uniform grid over their
+// projection along axis d (dropping coordinate d): the candidates whose
+// projected closed box holds a point are those of its cell (a box that
+// holds the point overlaps its cell, cells being found by the same
+// monotone function of the coordinates) and the few large ones, kept
+// apart.
+class ProjGrid {
+  public:
+    ProjGrid(const Soup &s, const std::vector<uint32_t> &tris, int d)
+        : d1_((d + 1) % 3), d2_((d + 2) % 3)
+    {
+        lo_[0] = lo_[1] = HUGE_VAL;
+        double *hi = hi_;
+        hi[0] = hi[1] = -HUGE_VAL;
+        for (uint32_t t : tris)
+            for (int k = 0; k < 3; k++) {
+                const double *v = &s.xyz[3 * s.tri[3 * (size_t)t + k]];
+                lo_[0] = std::min(lo_[0], v[d1_]), hi[0] = std::max(hi[0], v[d1_]);
+                lo_[1] = std::min(lo_[1], v[d2_]), hi[1] = std::max(hi[1], v[d2_]);
+            }
+        double ex[2] = {hi[0] - lo_[0], hi[1] - lo_[1]};
+        double side = std::sqrt(std::max(ex[0], 1e-300) * std::max(ex[1], 1e-300) /
+                                std::max<size_t>(tris.size(), 1));
+        for (int c = 0; c < 2; c++) {
+            double n = ex[c] > 0 && side > 0 ? std::ceil(ex[c] / side) : 1;
+            n_[c] = n < 1 || !(n < 4096) ? (n < 1 ? 1 : 4096) : (int)n;
+            w_[c] = ex[c] > 0 ? ex[c] / n_[c] : 1.0;
+        }
+        std::vector<std::array<int, 4>> span(tris.size());
+        std::vector<uint32_t> count((size_t)n_[0] * n_[1] + 1, 0);
+        for (size_t i = 0; i < tris.size(); i++) {
+            const uint32_t *q = &s.tri[3 * (size_t)tris[i]];
+            double a[2] = {HUGE_VAL, HUGE_VAL}, b[2] = {-HUGE_VAL, -HUGE_VAL};
+            for (int k = 0; k < 3; k++) {
+                const double *v = &s.xyz[3 * q[k]];
+                a[0] = std::min(a[0], v[d1_]), b[0] = std::max(b[0], v[d1_]);
+                a[1] = std::min(a[1], v[d2_]), b[1] = std::max(b[1], v[d2_]);
+            }
+            std::array<int, 4> &sp = span[i];
+            sp = {cell(a[0], 0), cell(b[0], 0), cell(a[1], 1), cell(b[1], 1)};
+            if ((size_t)(sp[1] - sp[0] + 1) * (size_t)(sp[3] - sp[2] + 1) > 64) {
+                big_.push_back(tris[i]);
+                sp[0] = -1;
+                continue;
+            }
+            for (int x = sp[0]; x <= sp[1]; x++)
+                for (int y = sp[2]; y <= sp[3]; y++) count[(size_t)x * n_[1] + y + 1]++;
+        }
+        for (size_t c = 1; c < count.size(); c++) count[c] += count[c - 1];
+        first_ = count;
+        items_.resize(count.back());
+        for (size_t i = 0; i < tris.size(); i++) {
+            const std::array<int, 4> &sp = span[i];
+            if (sp[0] < 0) continue;
+            for (int x = sp[0]; x <= sp[1]; x++)
+                for (int y = sp[2]; y <= sp[3]; y++) items_[count[(size_t)x * n_[1] + y]++] = tris[i];
+        }
+    }
+
+    // Calls f(t) for every candidate triangle t at point q (3-D, q[d]
+    // ignored); stops early when f returns false.
+    template <class F> bool each(const double *q, F f) const
+    {
+        for (uint32_t t : big_)
+            if (!f(t)) return false;
+        if (!(q[d1_] >= lo_[0] && q[d1_] <= hi_[0] && q[d2_] >= lo_[1] && q[d2_] <= hi_[1]))
+            return true;
+        size_t c = (size_t)cell(q[d1_], 0) * n_[1] + cell(q[d2_], 1);
+        for (uint32_t i = first_[c]; i < first_[c + 1]; i++)
+            if (!f(items_[i])) return false;
+        return true;
+    }
+
+  private:
+    int cell(double x, int c) const
+    {
+        double q = std::floor((x - lo_[c]) / w_[c]);
+        return q < 0 ? 0 : q > n_[c] - 1 ? n_[c] - 1 : (int)q;
+    }
+    int d1_, d2_, n_[2];
+    double lo_[2], hi_[2], w_[2];
+    std::vector<uint32_t> first_, items_, big_;
+};
+
+// Parity of the crossings of s by the ray from q along +axis d (exact
+// predicates on the doubles): 1 inside, 0 outside, -1 when the ray is not
+// generic (it meets an edge or a vertex of s, or q lies on s).
+int ray_parity(const Soup &s, const ProjGrid *grid, const double *q, int d)
+{
+    const int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+    const IK::Point_2 q2(q[d1], q[d2]);
+    const IK::Point_3 Q(q[0], q[1], q[2]);
+    int parity = 0;
+    auto test = [&](uint32_t t) {
+        const double *A = &s.xyz[3 * s.tri[3 * (size_t)t]], *B = &s.xyz[3 * s.tri[3 * (size_t)t + 1]],
+                     *C = &s.xyz[3 * s.tri[3 * (size_t)t + 2]];
+        if (A[d] < q[d] && B[d] < q[d] && C[d] < q[d]) return true;
+        if ((A[d1] < q[d1] && B[d1] < q[d1] && C[d1] < q[d1]) ||
+            (A[d1] > q[d1] && B[d1] > q[d1] && C[d1] > q[d1]) ||
+            (A[d2] < q[d2] && B[d2] < q[d2] && C[d2] < q[d2]) ||
+            (A[d2] > q[d2] && B[d2] > q[d2] && C[d2] > q[d2]))
+            return true;
+        const IK::Point_2 a(A[d1], A[d2]), b(B[d1], B[d2]), c(C[d1], C[d2]);
+        CGAL::Orientation o1 = CGAL::orientation(a, b, q2), o2 = CGAL::orientation(b, c, q2),
+                          o3 = CGAL::orientation(c, a, q2);
+        bool pos = o1 == CGAL::POSITIVE || o2 == CGAL::POSITIVE || o3 == CGAL::POSITIVE;
+        bool neg = o1 == CGAL::NEGATIVE || o2 == CGAL::NEGATIVE || o3 == CGAL::NEGATIVE;
+        if (pos && neg) return true;
+        if (o1 == CGAL::COLLINEAR || o2 == CGAL::COLLINEAR || o3 == CGAL::COLLINEAR) return false;
+        // q strictly inside the projection, whose orientation o1 is the
+        // sign of the normal's d component: the plane is met ahead exactly
+        // when q lies on its negative side times that sign.
+        CGAL::Orientation side = CGAL::orientation(IK::Point_3(A[0], A[1], A[2]),
+                                                   IK::Point_3(B[0], B[1], B[2]),
+                                                   IK::Point_3(C[0], C[1], C[2]), Q);
+        if (side == CGAL::COPLANAR) return false;
+        if (side != o1) parity ^= 1;
+        return true;
+    };
+    bool generic = true;
+    if (grid)
+        generic = grid->each(q, test);
+    else
+        for (size_t t = 0; t < s.tri.size() / 3 && generic; t++) generic = test((uint32_t)t);
+    return generic ? parity : -1;
+}
+
+// Does triangle f of s lie on a coplanar triangle of o (among `cand`)?
+// 1: yes, facing the same way; 2: yes, facing the other way; 0: no; -1: f
+// is too thin to tell (its rounded centroid is not strictly inside it).
+template <class G> int coplanar_cover(const Soup &s, uint32_t f, const Soup &o, G near_grid)
+{
+    const uint32_t *v = &s.tri[3 * (size_t)f];
+    IK::Point_3 a = point(s, v[0]), b = point(s, v[1]), c = point(s, v[2]);
+    int d = main_axis(a, b, c);
+    IK::Point_2 a2 = drop(a, d), b2 = drop(b, d), c2 = drop(c, d);
+    double q[3];
+    for (int k = 0; k < 3; k++) q[k] = (a[k] + b[k] + c[k]) / 3;
+    IK::Point_2 q2 = drop(IK::Point_3(q[0], q[1], q[2]), d);
+    CGAL::Orientation of = CGAL::orientation(a2, b2, c2);
+    if (of == CGAL::COLLINEAR || CGAL::orientation(a2, b2, q2) != of ||
+        CGAL::orientation(b2, c2, q2) != of || CGAL::orientation(c2, a2, q2) != of)
+        return -1;
+    CGAL::Bbox_3 fb = a.bbox() + b.bbox() + c.bbox();
+    int cover = 0;
+    near_grid(d).each(q, [&](uint32_t g) {
+        if (!CGAL::do_overlap(fb, tri_bbox(o, g))) return true;
+        const uint32_t *w = &o.tri[3 * (size_t)g];
+        IK::Point_3 x = point(o, w[0]), y = point(o, w[1]), z = point(o, w[2]);
+        if (CGAL::orientation(a, b, c, x) != CGAL::COPLANAR ||
+            CGAL::orientation(a, b, c, y) != CGAL::COPLANAR ||
+            CGAL::orientation(a, b, c, z) != CGAL::COPLANAR)
+            return true;
+        IK::Point_2 x2 = drop(x, d), y2 = drop(y, d), z2 = drop(z, d);
+        CGAL::Orientation og = CGAL::orientation(x2, y2, z2);
+        if (og == CGAL::COLLINEAR) return true;
+        CGAL::Orientation o1 = CGAL::orientation(x2, y2, q2), o2 = CGAL::orientation(y2, z2, q2),
+                          o3 = CGAL::orientation(z2, x2, q2);
+        CGAL::Orientation out = og == CGAL::POSITIVE ? CGAL::NEGATIVE : CGAL::POSITIVE;
+        if (o1 == out || o2 == out || o3 == out) return true;
+        cover = og == of ? 1 : 2;
+        return false;
+    });
+    return cover;
+}
+
+enum Verdict { V_UNKNOWN = -1, V_OUT = 0, V_IN = 1, V_SAME = 2, V_OPPOSITE = 3 };
+
+// The verdict of each patch of r against the closed shell o.
+bool classify(const Refined &r, const std::vector<uint32_t> &patch, uint32_t np,
+              const Refined &o, std::vector<int> &verdict)
+{
+    enum { TRIES = 8 };
+    std::vector<std::vector<uint32_t>> cand(np);
+    size_t nt = patch.size();
+    for (int pass = 0; pass < 2; pass++)
+        for (size_t t = 0; t < nt; t++) {
+            std::vector<uint32_t> &c = cand[patch[t]];
+            if ((pass == 0) == !r.near[t] && c.size() < TRIES) c.push_back((uint32_t)t);
+        }
+    // Grids of o's triangles along each axis (for the rays) and of its
+    // near ones (for the coplanar test), made when first needed.
+    std::vector<uint32_t> all, onear;
+    for (size_t g = 0; g < o.near.size(); g++) {
+        all.push_back((uint32_t)g);
+        if (o.near[g]) onear.push_back((uint32_t)g);
+    }
+    std::unique_ptr<ProjGrid> rays[3], flats[3];
+    auto flat = [&](int d) -> const ProjGrid & {
+        if (!flats[d]) flats[d].reset(new ProjGrid(o.s, onear, d));
+        return *flats[d];
+    };
+    size_t cast = 0;
+    verdict.assign(np, V_UNKNOWN);
+    for (uint32_t p = 0; p < np; p++) {
+        for (uint32_t t : cand[p]) {
+            if (r.near[t]) {
+                int cov = coplanar_cover(r.s, t, o.s, flat);
+                if (cov < 0) continue;
+                if (cov > 0) {
+                    verdict[p] = cov == 1 ? V_SAME : V_OPPOSITE;
+                    break;
+                }
+            }
+            const uint32_t *v = &r.s.tri[3 * (size_t)t];
+            double q[3];
+            for (int k = 0; k < 3; k++)
+                q[k] = (r.s.xyz[3 * v[0] + k] + r.s.xyz[3 * v[1] + k] + r.s.xyz[3 * v[2] + k]) / 3;
+            int in = -1;
+            // The first rays scan all of o; a grid pays when there are many.
+            for (int d = 0; d < 3 && in < 0; d++) {
+                if (!rays[d] && ++cast > 64) rays[d].reset(new ProjGrid(o.s, all, d));
+                in = ray_parity(o.s, rays[d].get(), q, d);
+            }
+            if (in >= 0) {
+                verdict[p] = in ? V_IN : V_OUT;
+                break;
+            }
+        }
+        if (verdict[p] == V_UNKNOWN) return false;
+    }
+    return true;
+}
+
+double signed_volume(const Soup &s)
+{
+    double v = 0;
+    for (size_t t = 0; t < s.tri.size() / 3; t++) {
+        const double *a = &s.xyz[3 * s.tri[3 * t]], *b = &s.xyz[3 * s.tri[3 * t + 1]],
+                     *c = &s.xyz[3 * s.tri[3 * t + 2]];
+        v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    return v / 6;
+}
+
+// Is s a closed oriented 2-manifold (each edge in exactly two triangles,
+// once each way)?
+bool closed_oriented(const Soup &s)
+{
+    VertexFaces vf(s);
+    for (size_t t = 0; t < s.tri.size() / 3; t++)
+        for (int k = 0; k < 3; k++)
+            if (across(s, vf, (uint32_t)t, s.tri[3 * t + k], s.tri[3 * t + (k + 1) % 3]) ==
+                UINT32_MAX)
+                return false;
+    return true;
+}
+
+} // namespace
+
+// a ∪ b of two closed shells by corefinement of their near triangles;
+// false when that cannot be done or its result fails the checks above.
+bool near_union(const Soup &a, const Soup &b, Soup &out, coons_csg_report &rep)
+{
+    std::vector<char> na, nb;
+    mark_near(a, b, na, nb);
+    IMesh ma, mb;
+    VertexIds ga, gb;
+    if (!near_mesh(a, na, ma, ga) || !near_mesh(b, nb, mb, gb)) return false;
+    EdgeFlags ea = ma.add_property_map<IMesh::Edge_index, bool>("e:cut", false).first;
+    EdgeFlags eb = mb.add_property_map<IMesh::Edge_index, bool>("e:cut", false).first;
+    if (ma.num_faces() && mb.num_faces())
+        PMP::corefine(ma, mb, CGAL::parameters::edge_is_constrained_map(ea),
+                      CGAL::parameters::edge_is_constrained_map(eb));
+    Refined ra, rb;
+    refined(a, na, ma, ga, ea, ra);
+    refined(b, nb, mb, gb, eb, rb);
+    std::vector<uint32_t> pa, pb;
+    uint32_t npa, npb;
+    if (!make_patches(ra, pa, npa) || !make_patches(rb, pb, npb)) return false;
+    std::vector<int> va, vb;
+    if (!classify(ra, pa, npa, rb, va) || !classify(rb, pb, npb, ra, vb)) return false;
+    // The kept triangles; the vertices of the corefined parts that coincide
+    // (intersection points, made once and put into both) become one.
+    Soup u;
+    size_t nva = ra.s.xyz.size() / 3;
+    u.xyz = ra.s.xyz;
+    u.xyz.insert(u.xyz.end(), rb.s.xyz.begin(), rb.s.xyz.end());
+    std::vector<uint32_t> id(u.xyz.size() / 3);
+    for (size_t v = 0; v < id.size(); v++) id[v] = (uint32_t)v;
+    {
+        std::vector<uint32_t> cand;
+        std::vector<char> seen(id.size(), 0);
+        auto add = [&](const Refined &r, size_t off) {
+            for (size_t t = 0; t < r.near.size(); t++)
+                if (r.near[t])
+                    for (int k = 0; k < 3; k++) {
+                        uint32_t v = (uint32_t)(r.s.tri[3 * t + k] + off);
+                        if (!seen[v]) {
+                            seen[v] = 1;
+                            cand.push_back(v);
+                        }
+                    }
+        };
+        add(ra, 0);
+        add(rb, nva);
+        const double *x = u.xyz.data();
+        // By value: -0 and 0 are one point (an input vertex at x = 0 and
+        // the intersection point made at it may differ in sign).
+        auto same = [x](uint32_t p, uint32_t q) {
+            return x[3 * p] == x[3 * q] && x[3 * p + 1] == x[3 * q + 1] && x[3 * p + 2] == x[3 * q + 2];
+        };
+        std::sort(cand.begin(), cand.end(), [x](uint32_t p, uint32_t q) {
+            for (int c = 0; c < 3; c++)
+                if (x[3 * p + c] != x[3 * q + c]) return x[3 * p + c] < x[3 * q + c];
+            return p < q;
+        });
+        for (size_t i = 1; i < cand.size(); i++)
+            if (same(cand[i], cand[i - 1])) id[cand[i]] = id[cand[i - 1]];
+    }
+    size_t kept = 0;
+    auto keep = [&](const Refined &r, const std::vector<uint32_t> &patch,
+                    const std::vector<int> &verdict, size_t off, bool first) {
+        for (size_t t = 0; t < patch.size(); t++) {
+            int v = verdict[patch[t]];
+            if (v == V_OUT || (first && v == V_SAME))
+                for (int k = 0; k < 3; k++) u.tri.push_back(id[r.s.tri[3 * t + k] + off]);
+        }
+        for (int v : verdict)
+            if (v == V_OUT || (first && v == V_SAME)) kept++;
+    };
+    keep(ra, pa, va, 0, true);
+    keep(rb, pb, vb, nva, false);
+    // Drop the vertices no kept triangle uses, in order.
+    std::vector<uint32_t> renum(u.xyz.size() / 3, UINT32_MAX);
+    for (uint32_t &v : u.tri) {
+        if (renum[v] == UINT32_MAX) renum[v] = 0;
+    }
+    Soup w;
+    for (size_t v = 0; v < renum.size(); v++)
+        if (renum[v] != UINT32_MAX) {
+            renum[v] = (uint32_t)(w.xyz.size() / 3);
+            w.xyz.insert(w.xyz.end(), &u.xyz[3 * v], &u.xyz[3 * v] + 3);
+        }
+    w.tri.reserve(u.tri.size());
+    for (uint32_t v : u.tri) w.tri.push_back(renum[v]);
+    if (w.tri.empty() || !closed_oriented(w)) return false;
+    double vA = signed_volume(a), vB = signed_volume(b), vU = signed_volume(w);
+    double tol = 1e-9 * (std::fabs(vA) + std::fabs(vB));
+    if (!(vA > 0 && vB > 0 && vU >= std::max(vA, vB) - tol && vU <= vA + vB + tol)) return false;
+    rep.patches += npa + npb;
+    rep.patches_kept += kept;
+    out = std::move(w);
+    return true;
+}
+
+// The fast path for bodies that do not cross themselves: chained unions
+// on the inexact-constructions kernel (exact predicates, intersection
+// points rounded as they are made), first by corefinement of the near
+// triangles only (near_union), else of the whole shells by CGAL's Boolean.
+// Such chains can leave crossings (BUILD-NOTES), so a result is accepted
+// only when the exact check of the finished double mesh finds none;
+// otherwise the exact path runs. Returns true with `s` filled, or false.
 bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part> &parts,
                 const std::vector<size_t> &ids, coons_csg_report &rep, Progress prog, double p0,
                 double p1, unsigned threads, Soup &s)
 {
     try {
-        std::vector<IMesh> ms(ids.size());
+        std::vector<Soup> shells(ids.size());
         for (size_t k = 0; k < ids.size(); k++) {
             const Part &p = parts[ids[k]];
-            std::vector<IMesh::Vertex_index> vs;
-            for (size_t v = 0; v < p.vert_count; v++) {
-                const double *q = sxyz + 3 * (p.vert_first + v);
-                vs.push_back(ms[k].add_vertex(IK::Point_3(q[0], q[1], q[2])));
-            }
-            for (size_t t = 0; t < p.tri_count; t++) {
-                const uint32_t *q = tri + 3 * (p.tri_first + t);
-                auto a = vs[q[0] - p.vert_first], b = vs[q[1] - p.vert_first], c = vs[q[2] - p.vert_first];
-                if (CGAL::collinear(ms[k].point(a), ms[k].point(b), ms[k].point(c)) ||
-                    ms[k].add_face(a, b, c) == IMesh::null_face())
+            Soup &sh = shells[k];
+            sh.xyz.assign(sxyz + 3 * p.vert_first, sxyz + 3 * (p.vert_first + p.vert_count));
+            sh.tri.reserve(3 * p.tri_count);
+            for (size_t i = 0; i < 3 * p.tri_count; i++)
+                sh.tri.push_back(tri[3 * p.tri_first + i] - (uint32_t)p.vert_first);
+            for (size_t t = 0; t < p.tri_count; t++)
+                if (CGAL::collinear(point(sh, sh.tri[3 * t]), point(sh, sh.tri[3 * t + 1]),
+                                    point(sh, sh.tri[3 * t + 2])))
                     return false;
+        }
+        // The result, welded and checked; false when the check finds a
+        // crossing or a zero-area triangle.
+        auto finish = [&](Soup &r, coons_csg_report &scratch) {
+            prog("verify", p0 + (p1 - p0) * 0.95);
+            canonical_order(r);
+            std::vector<char> fresh = fresh_vertices(r, sxyz, parts, ids);
+            merge_close(r, scratch, &fresh);
+            fix_slivers(r, scratch);
+            // The local final check: only pairs with a triangle that is
+            // not an input triangle unchanged (new vertices, or moved by
+            // merging and sliver fixing) are tested; the input shells were
+            // checked clean, and corefinement split every input pair that
+            // crosses.
+            InputTriangles old;
+            input_triangles(sxyz, tri, parts, ids, old);
+            size_t degenerate = 0;
+            return !count_self_intersections(r.xyz.data(), r.xyz.size() / 3, r.tri.data(),
+                                             r.tri.size() / 3, &degenerate, threads, &old) &&
+                   !degenerate;
+        };
+        if (!coons__csg_whole_corefinement_set()) {
+            coons_csg_report scratch = rep;
+            Soup acc = shells[0];
+            bool ok = true;
+            for (size_t k = 1; k < ids.size() && ok; k++) {
+                prog("union", p0 + (p1 - p0) * k / ids.size());
+                Soup next;
+                ok = near_union(acc, shells[k], next, scratch);
+                acc = std::move(next);
             }
+            if (ok && finish(acc, scratch)) {
+                rep = scratch;
+                rep.fast_unions++;
+                s = std::move(acc);
+                return true;
+            }
+        }
+        std::vector<IMesh> ms(ids.size());
+        for (size_t k = 0; k < ids.size(); k++) {
+            const Soup &sh = shells[k];
+            std::vector<IMesh::Vertex_index> vs;
+            for (size_t v = 0; v < sh.xyz.size() / 3; v++)
+                vs.push_back(ms[k].add_vertex(point(sh, (uint32_t)v)));
+            for (size_t t = 0; t < sh.tri.size() / 3; t++)
+                if (ms[k].add_face(vs[sh.tri[3 * t]], vs[sh.tri[3 * t + 1]],
+                                   vs[sh.tri[3 * t + 2]]) == IMesh::null_face())
+                    return false;
             if (!CGAL::is_closed(ms[k])) return false;
         }
         IMesh acc = std::move(ms[0]);
@@ -899,23 +1498,8 @@ bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part>
         }
         for (auto f : acc.faces())
             for (auto v : CGAL::vertices_around_face(acc.halfedge(f), acc)) r.tri.push_back(id[v]);
-        prog("verify", p0 + (p1 - p0) * 0.95);
-        canonical_order(r);
         coons_csg_report scratch = rep;
-        std::vector<char> fresh = fresh_vertices(r, sxyz, parts, ids);
-        merge_close(r, scratch, &fresh);
-        fix_slivers(r, scratch);
-        // The local final check: only pairs with a triangle that is not
-        // an input triangle unchanged (new vertices, or moved by merging and
-        // sliver fixing) are tested; the input shells were checked clean, and
-        // corefinement split every input pair that crosses.
-        InputTriangles old;
-        input_triangles(sxyz, tri, parts, ids, old);
-        size_t degenerate = 0;
-        if (count_self_intersections(r.xyz.data(), r.xyz.size() / 3, r.tri.data(),
-                                     r.tri.size() / 3, &degenerate, threads, &old) ||
-            degenerate)
-            return false;
+        if (!finish(r, scratch)) return false;
         rep = scratch;
         rep.fast_unions++;
         s = std::move(r);
@@ -926,6 +1510,5 @@ bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part>
         return false;
     }
 }
-
 
 } // namespace coons_csg

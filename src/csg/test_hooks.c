@@ -9,6 +9,7 @@
 static const char *bad_alloc_entry;
 static unsigned long bad_alloc_count;
 static int csg_failure;
+static int csg_whole;
 
 void coons__cxx_inject_bad_alloc(const char *entry) { bad_alloc_entry = entry; }
 
@@ -24,3 +25,7 @@ int coons__cxx_injected(const char *entry)
 void coons__csg_inject_failure(int on) { csg_failure = on != 0; }
 
 int coons__csg_failure_injected(void) { return csg_failure; }
+
+void coons__csg_whole_corefinement(int on) { csg_whole = on != 0; }
+
+int coons__csg_whole_corefinement_set(void) { return csg_whole; }
