@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // The fast path of the CGAL layer (see cgal_solid.cpp's file comment),
-// compiled WITHOUT CGAL's assertions: chained corefinement of bodies that do
-// not cross themselves on the inexact-constructions kernel, the exact
+// compiled WITHOUT CGAL's assertions: chained unions of bodies that do not
+// cross themselves on the inexact-constructions kernel (corefinement of the
+// triangles near the other shell only, patches classified here; the whole
+// shells by CGAL's Boolean when that fails its checks), the exact
 // self-intersection test (input checks and the final check of every result),
 // the triangle-level test of which parts meet, and the welding of results.
 // Every result made here is checked exactly before it is used (the final

@@ -22,7 +22,8 @@
 //     input's size, so that sampling noise cannot create features narrower
 //     than doubles;
 //  1. parts that do not cross themselves are united by chained
-//     corefinement on the inexact-constructions kernel (fast_union); the
+//     corefinement on the inexact-constructions kernel (fast_union: of the
+//     triangles near the other shell, else of the whole shells); the
 //     result is kept only if the exact check of it finds nothing (a local
 //     check: only pairs with a triangle that is not an input triangle
 //     unchanged are tested; the inputs were checked, and corefinement
