@@ -164,6 +164,12 @@ static int new_tri(dt *d, uint32_t *id)
     return 0;
 }
 
+static int cmp_u32(const void *x, const void *y)
+{
+    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+    return a < b ? -1 : a > b;
+}
+
 /* Bowyer-Watson insertion of p, starting the walk at `start`. Rejected
  * (nothing changed) when p is within mindist of a cavity vertex (its
  * nearest point is one), encroaches on a polygon edge (constrained phase),
@@ -205,12 +211,18 @@ static int insert(dt *d, double px, double py, uint32_t start, double mindist)
     /* The cavity in index order: the new triangles' slots and order then
      * depend on the cavity alone, not on the triangle the walk ended in
      * (of two, when p lies on their common edge). */
-    for (size_t i = 1; i < d->ncav; i++)
-        for (size_t j = i; j > 0 && d->cav[j - 1] > d->cav[j]; j--) {
-            uint32_t x = d->cav[j];
-            d->cav[j] = d->cav[j - 1];
-            d->cav[j - 1] = x;
-        }
+    if (d->ncav > 24) {
+        /* (cavities along a straight run of boundary points reach hundreds
+         * of triangles: an insertion sort was most of the triangulation) */
+        qsort(d->cav, d->ncav, sizeof *d->cav, cmp_u32);
+    } else {
+        for (size_t i = 1; i < d->ncav; i++)
+            for (size_t j = i; j > 0 && d->cav[j - 1] > d->cav[j]; j--) {
+                uint32_t x = d->cav[j];
+                d->cav[j] = d->cav[j - 1];
+                d->cav[j - 1] = x;
+            }
+    }
     /* Cavity boundary: (a, b, outside neighbour, cavity triangle). */
     d->nbe = 0;
     for (size_t i = 0; i < d->ncav; i++) {
