@@ -168,22 +168,61 @@ static void join_all(const uint32_t *tri, const slot *g, size_t n, uint32_t *uf)
     }
 }
 
-/* The slots of the part's non-degenerate triangles, sorted; their count. */
-static size_t part_slots(const uint32_t *tri, size_t tc, slot *sl)
+/* Scratch of the slot sort: a second slot array and a count per vertex. */
+typedef struct slot_sort {
+    slot *tmp;
+    uint32_t *cnt;
+    size_t cap_v; /* entries of cnt */
+} slot_sort;
+
+/* The slots of the part's non-degenerate triangles (vertices vfirst ..
+ * vfirst + vc - 1), sorted by (lo, hi, c); their count. A counting sort by
+ * lo (stable: c ascending), then each run of one lo by hi (insertion sort,
+ * stable; qsort for long runs): the order of qsort by cmp_slot, in linear
+ * time (a qsort of every edge was most of the split's time). */
+static size_t part_slots(const uint32_t *tri, size_t tc, size_t vfirst, size_t vc, slot *sl,
+                         const slot_sort *ss)
 {
     size_t ns = 0;
+    int fits = vc + 1 <= ss->cap_v, ranged = fits;
+    slot *out = fits ? ss->tmp : sl;
     for (size_t t = 0; t < tc; t++) {
         const uint32_t *v = tri + 3 * t;
         if (degenerate(v)) continue;
         for (uint32_t k = 0; k < 3; k++) {
             uint32_t x = v[k], y = v[(k + 1) % 3];
-            sl[ns].lo = x < y ? x : y;
-            sl[ns].hi = x < y ? y : x;
-            sl[ns].c = 3 * (uint32_t)t + k;
-            ns++;
+            slot *q = out + ns++;
+            q->lo = x < y ? x : y;
+            q->hi = x < y ? y : x;
+            q->c = 3 * (uint32_t)t + k;
+            if (q->lo < vfirst || q->hi >= vfirst + vc) ranged = 0;
         }
     }
-    qsort(sl, ns, sizeof *sl, cmp_slot);
+    if (!ranged) {
+        if (fits && ns) memcpy(sl, ss->tmp, ns * sizeof *sl);
+        qsort(sl, ns, sizeof *sl, cmp_slot);
+        return ns;
+    }
+    uint32_t *cnt = ss->cnt;
+    memset(cnt, 0, (vc + 1) * sizeof *cnt);
+    for (size_t i = 0; i < ns; i++) cnt[ss->tmp[i].lo - vfirst + 1]++;
+    for (size_t v = 0; v < vc; v++) cnt[v + 1] += cnt[v];
+    for (size_t i = 0; i < ns; i++) sl[cnt[ss->tmp[i].lo - vfirst]++] = ss->tmp[i];
+    for (size_t i = 0; i < ns;) {
+        size_t j = i;
+        while (j < ns && sl[j].lo == sl[i].lo) j++;
+        if (j - i > 32) {
+            qsort(sl + i, j - i, sizeof *sl, cmp_slot);
+        } else {
+            for (size_t a = i + 1; a < j; a++)
+                for (size_t b = a; b > i && sl[b - 1].hi > sl[b].hi; b--) {
+                    slot x = sl[b];
+                    sl[b] = sl[b - 1];
+                    sl[b - 1] = x;
+                }
+        }
+        i = j;
+    }
     return ns;
 }
 
@@ -226,14 +265,14 @@ static int push_src(plan *pl, uint32_t v)
 /* Plans part pi into pl (scratch: sl, uf, root of 3 * tc; buf of 3 * tc;
  * seen of vc). 0 on allocation failure. */
 static int plan_part(const coons_mesh *m, size_t pi, plan *pl, slot *sl, uint32_t *uf,
-                     uint32_t *root, around *buf, unsigned char *seen)
+                     uint32_t *root, around *buf, unsigned char *seen, const slot_sort *ss)
 {
     const coons__mesh_part *p = &m->parts[pi];
     const uint32_t *tri = m->tri + 3 * p->tri_first;
     size_t tc = p->tri_count, vc = p->vert_count;
     for (size_t c = 0; c < 3 * tc; c++) uf[c] = (uint32_t)c, root[c] = UINT32_MAX;
     memset(seen, 0, vc);
-    size_t ns = part_slots(tri, tc, sl);
+    size_t ns = part_slots(tri, tc, p->vert_first, vc, sl, ss);
     int inward = -1;
     for (size_t i = 0; i < ns;) {
         size_t j = i;
@@ -356,6 +395,8 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
     uint32_t *uf = coons__malloc_array(3 * maxt + 1, sizeof *uf);
     uint32_t *root = coons__malloc_array(3 * maxt + 1, sizeof *root);
     around *buf = coons__malloc_array(3 * maxt + 1, sizeof *buf);
+    slot_sort ss = {coons__malloc_array(3 * maxt + 1, sizeof(slot)),
+                    coons__malloc_array(maxv + 2, sizeof(uint32_t)), maxv + 2};
     unsigned char *seen = coons__malloc(maxv + 1);
     pl.newtri = coons__malloc_array(3 * m->nt + 1, sizeof *pl.newtri);
     pl.extra = coons__calloc(m->nparts + 1, sizeof *pl.extra);
@@ -363,9 +404,11 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
     double *xyz = NULL, *uvw = NULL, *acc = NULL;
     uint32_t *orig = NULL;
     coons_status st = COONS_OK;
-    if (!sl || !uf || !root || !buf || !seen || !pl.newtri || !pl.extra || !pl.split) goto nomem;
+    if (!sl || !uf || !root || !buf || !seen || !pl.newtri || !pl.extra || !pl.split || !ss.tmp ||
+        !ss.cnt)
+        goto nomem;
     for (size_t i = 0; i < m->nparts; i++)
-        if (!plan_part(m, i, &pl, sl, uf, root, buf, seen)) goto nomem;
+        if (!plan_part(m, i, &pl, sl, uf, root, buf, seen, &ss)) goto nomem;
     size_t left = 0;
     if (pl.nsrc) {
         if (pl.nsrc > (size_t)UINT32_MAX - m->nv) {
@@ -418,7 +461,9 @@ coons_status coons__mesh_split_pinches(coons_mesh *m, size_t *edges_split, size_
         separate(m, pl.split, orig, acc);
         for (size_t i = 0; i < m->nparts; i++) {
             const coons__mesh_part *p = &m->parts[i];
-            left += count_nonmanifold(sl, part_slots(m->tri + 3 * p->tri_first, p->tri_count, sl));
+            left += count_nonmanifold(
+                sl, part_slots(m->tri + 3 * p->tri_first, p->tri_count, p->vert_first,
+                               p->vert_count, sl, &ss));
         }
     } else {
         left = pl.before; /* nothing changed */
@@ -434,6 +479,8 @@ done:
     coons__free(uf);
     coons__free(root);
     coons__free(buf);
+    coons__free(ss.tmp);
+    coons__free(ss.cnt);
     coons__free(seen);
     coons__free(pl.newtri);
     coons__free(pl.src);
