@@ -202,12 +202,86 @@ static void test_three_examples(void **state)
     coons_model_free(m);
 }
 
+/* Parallelepipeds in general position (sheared, turned, corners from a
+ * fixed pseudo-random sequence), two and three at a time: the near chain
+ * makes every union (no fallback to whole shells), with the volume and
+ * area of CGAL's Boolean of the whole shells. */
+static double rnd(unsigned *seed)
+{
+    *seed = *seed * 1103515245u + 12345u;
+    return ((*seed >> 8) & 0xffff) / 65535.0;
+}
+
+static void test_general_position(void **state)
+{
+    (void)state;
+    unsigned seed = 2026;
+    for (int trial = 0; trial < 12; trial++) {
+        size_t n = 2 + (size_t)(trial % 2);
+        char json[8192];
+        int len = snprintf(json, sizeof json, "{\"coons\": 1, \"operation\": \"union\", \"bodies\": [");
+        for (size_t i = 0; i < n; i++) {
+            double o[3], e[3][3];
+            for (int c = 0; c < 3; c++) o[c] = 0.6 * rnd(&seed);
+            for (int k = 0; k < 3; k++)
+                for (int c = 0; c < 3; c++) e[k][c] = (k == c ? 0.8 : 0.0) + 0.5 * (rnd(&seed) - 0.5);
+            len += snprintf(json + len, sizeof json - (size_t)len,
+                            "%s{\"type\": \"body0\", \"name\": \"p%zu\", \"corners\": [", i ? ", " : "", i);
+            for (int c = 0; c < 8; c++) {
+                double p[3];
+                for (int d = 0; d < 3; d++)
+                    p[d] = o[d] + (c >> 2 & 1) * e[0][d] + (c >> 1 & 1) * e[1][d] + (c & 1) * e[2][d];
+                len += snprintf(json + len, sizeof json - (size_t)len, "%s[%.17g, %.17g, %.17g]",
+                                c ? ", " : "", p[0], p[1], p[2]);
+            }
+            len += snprintf(json + len, sizeof json - (size_t)len, "]}");
+        }
+        len += snprintf(json + len, sizeof json - (size_t)len, "]}");
+        coons_model *m = NULL;
+        coons_error err;
+        assert_coons_ok(coons_model_load_memory(json, (size_t)len, "random", NULL, &m, &err), &err);
+        coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+        so.resolution = 3 + (unsigned)(trial % 4);
+        coons_csg_options co = COONS_CSG_OPTIONS_INIT;
+        coons_csg_report rn, rw;
+        coons_mesh *near = NULL, *whole = NULL;
+        coons_csg_report_init(&rn);
+        coons_csg_report_init(&rw);
+        assert_coons_ok(coons_model_solidify(m, &so, &co, &near, &rn, &err), &err);
+        coons__csg_whole_corefinement(1);
+        coons_status rc = coons_model_solidify(m, &so, &co, &whole, &rw, &err);
+        coons__csg_whole_corefinement(0);
+        assert_coons_ok(rc, &err);
+        size_t pairs = 99;
+        assert_coons_ok(coons_mesh_count_self_intersections(near, &pairs, &err), &err);
+        assert_int_equal(pairs, 0);
+        coons_mesh_report a = COONS_MESH_REPORT_INIT, b = COONS_MESH_REPORT_INIT;
+        assert_coons_ok(coons_mesh_check(near, &a, &err), &err);
+        assert_coons_ok(coons_mesh_check(whole, &b, &err), &err);
+        printf("  trial %d: %zu bodies, %zu groups, volume %.15g (whole %.15g), patches %zu, "
+               "fast %zu / %zu\n",
+               trial, n, rn.groups, a.volume, b.volume, rn.patches, rn.fast_unions,
+               rw.fast_unions);
+        assert_true(a.closed && a.manifold && a.oriented);
+        assert_near(a.volume, b.volume, 1e-9 * b.volume);
+        assert_near(a.area, b.area, 1e-9 * b.area);
+        if (rn.groups < n) { /* some bodies met: a union was made */
+            assert_true(rn.patches > 0);
+            assert_int_equal(rn.fallbacks, 0);
+        }
+        coons_mesh_free(near);
+        coons_mesh_free(whole);
+        coons_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crossing),          cmocka_unit_test(test_coplanar_same),
         cmocka_unit_test(test_coplanar_opposite), cmocka_unit_test(test_pierced_and_flush),
         cmocka_unit_test(test_chains),            cmocka_unit_test(test_three_examples),
+        cmocka_unit_test(test_general_position),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
