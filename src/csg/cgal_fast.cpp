@@ -1032,35 +1032,68 @@ uint32_t across(const Soup &s, const VertexFaces &vf, uint32_t t, uint32_t a, ui
     return found;
 }
 
-// Patch of each triangle (triangles joined across edges not in r.cut);
-// false unless r.s is a closed oriented 2-manifold.
+// Patch of each triangle: triangles joined across edges not in r.cut.
+// A far triangle misses the other shell, so no intersection edge ends at
+// its vertices, and all triangles around such a vertex lie in one patch:
+// far triangles are joined through their vertices (union-find over
+// vertices, no adjacency needed); near triangles across their uncut edges
+// (adjacency among the near ones), and to the vertices they share with far
+// ones. False when the near triangles are not an oriented 2-manifold
+// (r.s's far part comes unchanged from a checked closed shell).
 bool make_patches(const Refined &r, std::vector<uint32_t> &patch, uint32_t &np)
 {
     const Soup &s = r.s;
-    VertexFaces vf(s);
-    size_t nt = s.tri.size() / 3;
-    patch.assign(nt, UINT32_MAX);
-    np = 0;
-    std::vector<uint32_t> stack;
-    for (size_t t0 = 0; t0 < nt; t0++) {
-        if (patch[t0] != UINT32_MAX) continue;
-        patch[t0] = np;
-        stack.push_back((uint32_t)t0);
-        while (!stack.empty()) {
-            uint32_t t = stack.back();
-            stack.pop_back();
-            for (int k = 0; k < 3; k++) {
-                uint32_t a = s.tri[3 * (size_t)t + k], b = s.tri[3 * (size_t)t + (k + 1) % 3];
-                uint32_t u = across(s, vf, t, a, b);
-                if (u == UINT32_MAX) return false;
-                if (r.near[t] && r.cut.count(edge_key(a, b))) continue;
-                if (patch[u] == UINT32_MAX) {
-                    patch[u] = np;
-                    stack.push_back(u);
-                }
-            }
+    size_t nt = s.tri.size() / 3, nv = s.xyz.size() / 3;
+    Soup nearsoup; // the near triangles, with their indices in s
+    std::vector<uint32_t> nid;
+    std::vector<char> farv(nv, 0);
+    for (size_t t = 0; t < nt; t++) {
+        if (r.near[t]) {
+            nid.push_back((uint32_t)t);
+            nearsoup.tri.insert(nearsoup.tri.end(), &s.tri[3 * t], &s.tri[3 * t] + 3);
+        } else {
+            for (int k = 0; k < 3; k++) farv[s.tri[3 * t + k]] = 1;
         }
-        np++;
+    }
+    nearsoup.xyz.resize(3 * nv); // only its size is used
+    VertexFaces vf(nearsoup);
+    size_t nn = nid.size();
+    std::vector<uint32_t> up(nv + nn);
+    for (size_t x = 0; x < up.size(); x++) up[x] = (uint32_t)x;
+    auto find = [&](uint32_t x) {
+        while (up[x] != x) x = up[x] = up[up[x]];
+        return x;
+    };
+    auto join = [&](uint32_t x, uint32_t y) {
+        x = find(x), y = find(y);
+        if (x != y) up[std::max(x, y)] = std::min(x, y);
+    };
+    for (size_t t = 0; t < nt; t++)
+        if (!r.near[t]) {
+            join(s.tri[3 * t], s.tri[3 * t + 1]);
+            join(s.tri[3 * t], s.tri[3 * t + 2]);
+        }
+    for (size_t i = 0; i < nn; i++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = nearsoup.tri[3 * i + k], b = nearsoup.tri[3 * i + (k + 1) % 3];
+            if (farv[a]) join((uint32_t)(nv + i), a);
+            uint32_t u = across(nearsoup, vf, (uint32_t)i, a, b);
+            if (u == UINT32_MAX) {
+                // a border edge of the near part: its far neighbour's
+                // vertices are far ones, joined above
+                if (farv[a] && farv[b]) continue;
+                return false;
+            }
+            if (!r.cut.count(edge_key(a, b))) join((uint32_t)(nv + i), (uint32_t)(nv + u));
+        }
+    patch.assign(nt, UINT32_MAX);
+    std::vector<uint32_t> label(nv + nn, UINT32_MAX);
+    np = 0;
+    size_t ni = 0;
+    for (size_t t = 0; t < nt; t++) {
+        uint32_t root = find(r.near[t] ? (uint32_t)(nv + ni++) : s.tri[3 * t]);
+        if (label[root] == UINT32_MAX) label[root] = np++;
+        patch[t] = label[root];
     }
     return true;
 }
@@ -1302,12 +1335,12 @@ double signed_volume(const Soup &s)
 }
 
 // Is s a closed oriented 2-manifold (each edge in exactly two triangles,
-// once each way)?
-bool closed_oriented(const Soup &s)
+// once each way)? With `only`, the edges of the flagged triangles.
+bool closed_oriented(const Soup &s, const std::vector<char> *only = nullptr)
 {
     VertexFaces vf(s);
     for (size_t t = 0; t < s.tri.size() / 3; t++)
-        for (int k = 0; k < 3; k++)
+        for (int k = 0; k < 3 && (!only || (*only)[t]); k++)
             if (across(s, vf, (uint32_t)t, s.tri[3 * t + k], s.tri[3 * t + (k + 1) % 3]) ==
                 UINT32_MAX)
                 return false;
@@ -1377,12 +1410,15 @@ bool near_union(const Soup &a, const Soup &b, Soup &out, coons_csg_report &rep)
             if (same(cand[i], cand[i - 1])) id[cand[i]] = id[cand[i - 1]];
     }
     size_t kept = 0;
+    std::vector<char> from_near; // per kept triangle
     auto keep = [&](const Refined &r, const std::vector<uint32_t> &patch,
                     const std::vector<int> &verdict, size_t off, bool first) {
         for (size_t t = 0; t < patch.size(); t++) {
             int v = verdict[patch[t]];
-            if (v == V_OUT || (first && v == V_SAME))
+            if (v == V_OUT || (first && v == V_SAME)) {
                 for (int k = 0; k < 3; k++) u.tri.push_back(id[r.s.tri[3 * t + k] + off]);
+                from_near.push_back(r.near[t]);
+            }
         }
         for (int v : verdict)
             if (v == V_OUT || (first && v == V_SAME)) kept++;
@@ -1402,7 +1438,9 @@ bool near_union(const Soup &a, const Soup &b, Soup &out, coons_csg_report &rep)
         }
     w.tri.reserve(u.tri.size());
     for (uint32_t v : u.tri) w.tri.push_back(renum[v]);
-    if (w.tri.empty() || !closed_oriented(w)) return false;
+    // Closed and oriented: the far triangles kept are whole patches of a
+    // checked shell, joined to the rest only along edges of near ones.
+    if (w.tri.empty() || !closed_oriented(w, &from_near)) return false;
     double vA = signed_volume(a), vB = signed_volume(b), vU = signed_volume(w);
     double tol = 1e-9 * (std::fabs(vA) + std::fabs(vB));
     if (!(vA > 0 && vB > 0 && vU >= std::max(vA, vB) - tol && vU <= vA + vB + tol)) return false;
@@ -1436,6 +1474,7 @@ bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part>
                 if (CGAL::collinear(point(sh, sh.tri[3 * t]), point(sh, sh.tri[3 * t + 1]),
                                     point(sh, sh.tri[3 * t + 2])))
                     return false;
+            if (!closed_oriented(sh)) return false;
         }
         // The result, welded and checked; false when the check finds a
         // crossing or a zero-area triangle.
