@@ -434,6 +434,50 @@ namespace {
 
 typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, size_t> Box;
 
+// Drops the boxes of `boxes` that meet no box of `marks`, by a 64^3
+// bitmap of the cells the marks touch over their common box (two boxes
+// that meet share a point, hence the cell holding it): a box kept may still
+// meet none, one dropped meets none.
+void keep_touching(const std::vector<Box> &marks, std::vector<Box> &boxes)
+{
+    enum { G = 64 };
+    double lo[3], hi[3];
+    for (int c = 0; c < 3; c++) lo[c] = HUGE_VAL, hi[c] = -HUGE_VAL;
+    for (const Box &b : marks)
+        for (int c = 0; c < 3; c++) {
+            lo[c] = std::min(lo[c], b.min_coord(c));
+            hi[c] = std::max(hi[c], b.max_coord(c));
+        }
+    double w[3];
+    for (int c = 0; c < 3; c++) w[c] = hi[c] > lo[c] ? (hi[c] - lo[c]) / G : 1.0;
+    auto cell = [&](double x, int c) {
+        double q = std::floor((x - lo[c]) / w[c]);
+        return q < 0 ? 0 : q > G - 1 ? G - 1 : (int)q;
+    };
+    std::vector<char> hot(G * G * G, 0);
+    auto cover = [&](const Box &b, bool mark) {
+        int a[3], z[3];
+        for (int c = 0; c < 3; c++) {
+            if (b.max_coord(c) < lo[c] || b.min_coord(c) > hi[c]) return false;
+            a[c] = cell(b.min_coord(c), c);
+            z[c] = cell(b.max_coord(c), c);
+        }
+        for (int i = a[0]; i <= z[0]; i++)
+            for (int j = a[1]; j <= z[1]; j++)
+                for (int k = a[2]; k <= z[2]; k++) {
+                    char &h = hot[((size_t)i * G + (size_t)j) * G + (size_t)k];
+                    if (mark) h = 1;
+                    else if (h) return true;
+                }
+        return false;
+    };
+    for (const Box &b : marks) cover(b, true);
+    std::vector<Box> near;
+    for (const Box &b : boxes)
+        if (cover(b, false)) near.push_back(b);
+    boxes.swap(near);
+}
+
 // Pairs among `fresh` and between `fresh` and `old` boxes that intersect,
 // counted only when the low x end of their common box lies in [x0, x1).
 size_t count_in_slab(const std::vector<IK::Point_3> &P, const uint32_t *tri,
@@ -747,44 +791,8 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
     if (fresh.empty()) return 0;
     if (reference) return count_boxes_cgal(P, tri, fresh, kept, threads);
     if (!kept.empty()) {
-        // Only kept boxes near a fresh one can take part: a 64^3 bitmap of
-        // the cells the fresh boxes touch drops the others.
-        enum { G = 64 };
-        double lo[3], hi[3];
-        for (int c = 0; c < 3; c++) lo[c] = HUGE_VAL, hi[c] = -HUGE_VAL;
-        for (const Box &b : fresh)
-            for (int c = 0; c < 3; c++) {
-                lo[c] = std::min(lo[c], b.min_coord(c));
-                hi[c] = std::max(hi[c], b.max_coord(c));
-            }
-        double w[3];
-        for (int c = 0; c < 3; c++) w[c] = hi[c] > lo[c] ? (hi[c] - lo[c]) / G : 1.0;
-        auto cell = [&](double x, int c) {
-            double q = std::floor((x - lo[c]) / w[c]);
-            return q < 0 ? 0 : q > G - 1 ? G - 1 : (int)q;
-        };
-        std::vector<char> hot(G * G * G, 0);
-        auto cover = [&](const Box &b, bool mark) {
-            int a[3], z[3];
-            for (int c = 0; c < 3; c++) {
-                if (b.max_coord(c) < lo[c] || b.min_coord(c) > hi[c]) return false;
-                a[c] = cell(b.min_coord(c), c);
-                z[c] = cell(b.max_coord(c), c);
-            }
-            for (int i = a[0]; i <= z[0]; i++)
-                for (int j = a[1]; j <= z[1]; j++)
-                    for (int k = a[2]; k <= z[2]; k++) {
-                        char &h = hot[((size_t)i * G + (size_t)j) * G + (size_t)k];
-                        if (mark) h = 1;
-                        else if (h) return true;
-                    }
-            return false;
-        };
-        for (const Box &b : fresh) cover(b, true);
-        std::vector<Box> near;
-        for (const Box &b : kept)
-            if (cover(b, false)) near.push_back(b);
-        kept.swap(near);
+        // Only kept boxes near a fresh one can take part.
+        keep_touching(fresh, kept);
     }
     BoxGrid grid(P, tri, fresh, kept);
     if (!grid.ok()) return count_boxes_cgal(P, tri, fresh, kept, threads);
@@ -922,6 +930,10 @@ void mark_near(const Soup &a, const Soup &b, std::vector<char> &na, std::vector<
         CGAL::Bbox_3 x = tri_bbox(b, t);
         if (CGAL::do_overlap(x, A)) bb.emplace_back(x, t);
     }
+    if (ba.empty() || bb.empty()) return;
+    // Most boxes lie far from the other shell's: bitmaps drop them first.
+    keep_touching(bb, ba);
+    keep_touching(ba, bb);
     if (ba.empty() || bb.empty()) return;
     CGAL::box_intersection_d<CGAL::Sequential_tag>(ba.begin(), ba.end(), bb.begin(), bb.end(),
                                                    [&](const Box &x, const Box &y) {
