@@ -552,7 +552,11 @@ void soup_of(const EMesh &m, ExactSoup &e)
 
 // The one rounding of an exact result to doubles; vertices that round to
 // the same point become one, triangles that collapse are dropped.
-void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep)
+// `sxyz`, `parts`, `ids`: the group's input shells; only the rounded
+// vertices that are not bitwise one of their vertices (those the exact
+// Booleans made) move when close vertices are welded.
+void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep, const double *sxyz,
+                const std::vector<Part> &parts, const std::vector<size_t> &ids)
 {
     std::unordered_map<Key3, uint32_t, Key3Hash> index;
     std::vector<uint32_t> id(e.pts.size());
@@ -578,7 +582,8 @@ void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep)
         out.tri.insert(out.tri.end(), {a, b, c});
     }
     coons_csg::canonical_order(out);
-    merge_close(out, rep);
+    std::vector<char> fresh = coons_csg::fresh_vertices(out, sxyz, parts, ids);
+    merge_close(out, rep, &fresh);
     fix_slivers(out, rep);
 }
 
@@ -627,7 +632,7 @@ class GroupSolidifier {
         } else {
             unite(result);
         }
-        round_soup(result, s, rep_);
+        round_soup(result, s, rep_, sxyz_, parts_, ids_);
         return false;
     }
 
