@@ -45,7 +45,9 @@ static double union_volume(const double (*lo)[3], const double (*hi)[3], size_t 
     return v;
 }
 
-static coons_model *boxes(const double (*lo)[3], const double (*hi)[3], size_t n)
+/* A union model of n body0 bodies, body i with the corners corners[i]
+ * (in body0's order: corner c at (c >> 2, (c >> 1) & 1, c & 1)). */
+static coons_model *body0_union(double (*corners)[8][3], size_t n)
 {
     char json[8192];
     int len = snprintf(json, sizeof json, "{\"coons\": 1, \"operation\": \"union\", \"bodies\": [");
@@ -53,19 +55,30 @@ static coons_model *boxes(const double (*lo)[3], const double (*hi)[3], size_t n
         len += snprintf(json + len, sizeof json - (size_t)len,
                         "%s{\"type\": \"body0\", \"name\": \"b%zu\", \"corners\": [", i ? ", " : "",
                         i);
-        for (int c = 0; c < 8; c++) {
-            int x = c >> 2, y = (c >> 1) & 1, z = c & 1;
+        for (int c = 0; c < 8; c++)
             len += snprintf(json + len, sizeof json - (size_t)len, "%s[%.17g, %.17g, %.17g]",
-                            c ? ", " : "", (x ? hi : lo)[i][0], (y ? hi : lo)[i][1],
-                            (z ? hi : lo)[i][2]);
-        }
+                            c ? ", " : "", corners[i][c][0], corners[i][c][1], corners[i][c][2]);
         len += snprintf(json + len, sizeof json - (size_t)len, "]}");
     }
     len += snprintf(json + len, sizeof json - (size_t)len, "]}");
     coons_model *m = NULL;
     coons_error err;
-    assert_coons_ok(coons_model_load_memory(json, (size_t)len, "boxes", NULL, &m, &err), &err);
+    assert_coons_ok(coons_model_load_memory(json, (size_t)len, "bodies", NULL, &m, &err), &err);
     return m;
+}
+
+/* Axis-aligned boxes [lo[i], hi[i]]. */
+static coons_model *boxes(const double (*lo)[3], const double (*hi)[3], size_t n)
+{
+    double corners[3][8][3];
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 8; c++) {
+            int x = c >> 2, y = (c >> 1) & 1, z = c & 1;
+            corners[i][c][0] = (x ? hi : lo)[i][0];
+            corners[i][c][1] = (y ? hi : lo)[i][1];
+            corners[i][c][2] = (z ? hi : lo)[i][2];
+        }
+    return body0_union(corners, n);
 }
 
 /* The union of m at resolution res by the near chain (whole = 0) or by
@@ -218,28 +231,19 @@ static void test_general_position(void **state)
     unsigned seed = 2026;
     for (int trial = 0; trial < 12; trial++) {
         size_t n = 2 + (size_t)(trial % 2);
-        char json[8192];
-        int len = snprintf(json, sizeof json, "{\"coons\": 1, \"operation\": \"union\", \"bodies\": [");
+        double corners[3][8][3];
         for (size_t i = 0; i < n; i++) {
             double o[3], e[3][3];
             for (int c = 0; c < 3; c++) o[c] = 0.6 * rnd(&seed);
             for (int k = 0; k < 3; k++)
                 for (int c = 0; c < 3; c++) e[k][c] = (k == c ? 0.8 : 0.0) + 0.5 * (rnd(&seed) - 0.5);
-            len += snprintf(json + len, sizeof json - (size_t)len,
-                            "%s{\"type\": \"body0\", \"name\": \"p%zu\", \"corners\": [", i ? ", " : "", i);
-            for (int c = 0; c < 8; c++) {
-                double p[3];
+            for (int c = 0; c < 8; c++)
                 for (int d = 0; d < 3; d++)
-                    p[d] = o[d] + (c >> 2 & 1) * e[0][d] + (c >> 1 & 1) * e[1][d] + (c & 1) * e[2][d];
-                len += snprintf(json + len, sizeof json - (size_t)len, "%s[%.17g, %.17g, %.17g]",
-                                c ? ", " : "", p[0], p[1], p[2]);
-            }
-            len += snprintf(json + len, sizeof json - (size_t)len, "]}");
+                    corners[i][c][d] =
+                        o[d] + (c >> 2 & 1) * e[0][d] + (c >> 1 & 1) * e[1][d] + (c & 1) * e[2][d];
         }
-        len += snprintf(json + len, sizeof json - (size_t)len, "]}");
-        coons_model *m = NULL;
+        coons_model *m = body0_union(corners, n);
         coons_error err;
-        assert_coons_ok(coons_model_load_memory(json, (size_t)len, "random", NULL, &m, &err), &err);
         coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
         so.resolution = 3 + (unsigned)(trial % 4);
         coons_csg_options co = COONS_CSG_OPTIONS_INIT;

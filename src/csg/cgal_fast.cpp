@@ -33,6 +33,7 @@
 #include "csg/cgal_common.hpp"
 extern "C" {
 #include "coons_test_hooks.h"
+#include "union_find.h"
 }
 
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -918,18 +919,16 @@ void mark_near(const Soup &a, const Soup &b, std::vector<char> &na, std::vector<
     size_t ta = a.tri.size() / 3, tb = b.tri.size() / 3;
     na.assign(ta, 0);
     nb.assign(tb, 0);
+    // Each shell's boxes within the other's box.
+    std::vector<CGAL::Bbox_3> xa(ta), xb(tb);
     CGAL::Bbox_3 A, B;
-    for (size_t t = 0; t < ta; t++) A += tri_bbox(a, t);
-    for (size_t t = 0; t < tb; t++) B += tri_bbox(b, t);
+    for (size_t t = 0; t < ta; t++) A += xa[t] = tri_bbox(a, t);
+    for (size_t t = 0; t < tb; t++) B += xb[t] = tri_bbox(b, t);
     std::vector<Box> ba, bb;
-    for (size_t t = 0; t < ta; t++) {
-        CGAL::Bbox_3 x = tri_bbox(a, t);
-        if (CGAL::do_overlap(x, B)) ba.emplace_back(x, t);
-    }
-    for (size_t t = 0; t < tb; t++) {
-        CGAL::Bbox_3 x = tri_bbox(b, t);
-        if (CGAL::do_overlap(x, A)) bb.emplace_back(x, t);
-    }
+    for (size_t t = 0; t < ta; t++)
+        if (CGAL::do_overlap(xa[t], B)) ba.emplace_back(xa[t], t);
+    for (size_t t = 0; t < tb; t++)
+        if (CGAL::do_overlap(xb[t], A)) bb.emplace_back(xb[t], t);
     if (ba.empty() || bb.empty()) return;
     // Most boxes lie far from the other shell's: bitmaps drop them first.
     keep_touching(bb, ba);
@@ -1057,11 +1056,9 @@ bool make_patches(const Refined &r, std::vector<uint32_t> &patch, uint32_t &np)
     const Soup &s = r.s;
     size_t nt = s.tri.size() / 3, nv = s.xyz.size() / 3;
     Soup nearsoup; // the near triangles, with their indices in s
-    std::vector<uint32_t> nid;
     std::vector<char> farv(nv, 0);
     for (size_t t = 0; t < nt; t++) {
         if (r.near[t]) {
-            nid.push_back((uint32_t)t);
             nearsoup.tri.insert(nearsoup.tri.end(), &s.tri[3 * t], &s.tri[3 * t] + 3);
         } else {
             for (int k = 0; k < 3; k++) farv[s.tri[3 * t + k]] = 1;
@@ -1069,17 +1066,10 @@ bool make_patches(const Refined &r, std::vector<uint32_t> &patch, uint32_t &np)
     }
     nearsoup.xyz.resize(3 * nv); // only its size is used
     VertexFaces vf(nearsoup);
-    size_t nn = nid.size();
-    std::vector<uint32_t> up(nv + nn);
+    size_t nn = nearsoup.tri.size() / 3;
+    std::vector<uint32_t> up(nv + nn); // vertices, then near triangles
     for (size_t x = 0; x < up.size(); x++) up[x] = (uint32_t)x;
-    auto find = [&](uint32_t x) {
-        while (up[x] != x) x = up[x] = up[up[x]];
-        return x;
-    };
-    auto join = [&](uint32_t x, uint32_t y) {
-        x = find(x), y = find(y);
-        if (x != y) up[std::max(x, y)] = std::min(x, y);
-    };
+    auto join = [&](uint32_t x, uint32_t y) { coons__uf_union(up.data(), x, y); };
     for (size_t t = 0; t < nt; t++)
         if (!r.near[t]) {
             join(s.tri[3 * t], s.tri[3 * t + 1]);
@@ -1103,7 +1093,7 @@ bool make_patches(const Refined &r, std::vector<uint32_t> &patch, uint32_t &np)
     np = 0;
     size_t ni = 0;
     for (size_t t = 0; t < nt; t++) {
-        uint32_t root = find(r.near[t] ? (uint32_t)(nv + ni++) : s.tri[3 * t]);
+        uint32_t root = coons__uf_find(up.data(), r.near[t] ? (uint32_t)(nv + ni++) : s.tri[3 * t]);
         if (label[root] == UINT32_MAX) label[root] = np++;
         patch[t] = label[root];
     }
@@ -1293,11 +1283,14 @@ bool classify(const Refined &r, const std::vector<uint32_t> &patch, uint32_t np,
     // Grids of o's triangles along each axis (for the rays) and of its
     // near ones (for the coplanar test), made when first needed.
     std::vector<uint32_t> all, onear;
-    for (size_t g = 0; g < o.near.size(); g++) {
-        all.push_back((uint32_t)g);
+    for (size_t g = 0; g < o.near.size(); g++)
         if (o.near[g]) onear.push_back((uint32_t)g);
-    }
     std::unique_ptr<ProjGrid> rays[3], flats[3];
+    auto ray_grid = [&](int d) {
+        if (all.empty())
+            for (size_t g = 0; g < o.near.size(); g++) all.push_back((uint32_t)g);
+        rays[d].reset(new ProjGrid(o.s, all, d));
+    };
     auto flat = [&](int d) -> const ProjGrid & {
         if (!flats[d]) flats[d].reset(new ProjGrid(o.s, onear, d));
         return *flats[d];
@@ -1321,7 +1314,7 @@ bool classify(const Refined &r, const std::vector<uint32_t> &patch, uint32_t np,
             int in = -1;
             // The first rays scan all of o; a grid pays when there are many.
             for (int d = 0; d < 3 && in < 0; d++) {
-                if (!rays[d] && ++cast > 64) rays[d].reset(new ProjGrid(o.s, all, d));
+                if (!rays[d] && ++cast > 64) ray_grid(d);
                 in = ray_parity(o.s, rays[d].get(), q, d);
             }
             if (in >= 0) {
@@ -1439,9 +1432,7 @@ bool near_union(const Soup &a, const Soup &b, Soup &out, coons_csg_report &rep)
     keep(rb, pb, vb, nva, false);
     // Drop the vertices no kept triangle uses, in order.
     std::vector<uint32_t> renum(u.xyz.size() / 3, UINT32_MAX);
-    for (uint32_t &v : u.tri) {
-        if (renum[v] == UINT32_MAX) renum[v] = 0;
-    }
+    for (uint32_t v : u.tri) renum[v] = 0;
     Soup w;
     for (size_t v = 0; v < renum.size(); v++)
         if (renum[v] != UINT32_MAX) {
