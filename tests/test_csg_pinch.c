@@ -15,7 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "mesh/pinch.h"
+#include "pinch.h"
 #include "test_util.h"
 
 static void test_fold_pinch_split(void **state)

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "body_fixtures.h"
-#include "mesh/flat.h"
+#include "flat.h"
 #include "test_util.h"
 
 #define PI 3.14159265358979323846

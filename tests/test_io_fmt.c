@@ -3,7 +3,7 @@
  * this test because it is internal): every double and float reads back to
  * the same bits, the text is the shortest that does (checked against the
  * C library, an independent implementation), and the notation is plain. */
-#include "io/write/fmt.c"
+#include "fmt.c"
 
 #include <float.h>
 

@@ -5,7 +5,7 @@
 #define _XOPEN_SOURCE 700
 #include "io_test_util.h"
 
-#include "mesh/mesh_impl.h"
+#include "mesh_impl.h"
 
 static coons_mesh *sample_mesh(void)
 {

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mesh/pinch.h"
+#include "pinch.h"
 #include "test_util.h"
 
 static const double PI = 3.14159265358979323846;

@@ -30,7 +30,7 @@
 #include <new>
 #include <unordered_map>
 
-#include "csg/cgal_common.hpp"
+#include "cgal_common.hpp"
 extern "C" {
 #include "coons_test_hooks.h"
 #include "union_find.h"

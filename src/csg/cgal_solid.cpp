@@ -81,13 +81,13 @@
 #include <unordered_map>
 #include <vector>
 
-#include "csg/cgal_common.hpp"
+#include "cgal_common.hpp"
 #include "cxx_guard.hpp"
 
 extern "C" {
 #include "coons_internal.h"
 #include "coons_test_hooks.h"
-#include "csg/csg_records.h"
+#include "csg_records.h"
 }
 
 namespace PMP = CGAL::Polygon_mesh_processing;

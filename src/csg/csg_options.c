@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "coons_internal.h"
-#include "csg/csg_records.h"
+#include "csg_records.h"
 
 void coons_csg_options_init(coons_csg_options *o)
 {

@@ -190,20 +190,7 @@ double coons_mesh_deviation(const coons_mesh *m)
 
 double coons_mesh_volume(const coons_mesh *m)
 {
-    /* Sum of signed tetrahedra (0, a, b, c): V = sum a . (b x c) / 6.
-     * Vertices are shifted by the first vertex to reduce cancellation. */
-    if (!m->nt) return 0.0;
-    const double *o = m->xyz;
-    double v = 0.0;
-    for (size_t t = 0; t < m->nt; t++) {
-        double a[3], b[3], c[3], bc[3];
-        v3_sub(a, m->xyz + 3 * m->tri[3 * t], o);
-        v3_sub(b, m->xyz + 3 * m->tri[3 * t + 1], o);
-        v3_sub(c, m->xyz + 3 * m->tri[3 * t + 2], o);
-        v3_cross(bc, b, c);
-        v += v3_dot(a, bc);
-    }
-    return v / 6.0;
+    return coons__signed_volume6(m->xyz, m->tri, m->nt) / 6.0;
 }
 
 double coons_mesh_area(const coons_mesh *m)

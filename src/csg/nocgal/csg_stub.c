@@ -3,7 +3,7 @@
  * available, and say so. */
 #include "coons_internal.h"
 #include "coons_test_hooks.h"
-#include "csg/csg_records.h"
+#include "csg_records.h"
 
 static coons_status unavailable(coons_error *err)
 {

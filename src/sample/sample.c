@@ -1,0 +1,1075 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Sampling a body's boundary into a closed triangle mesh.
+ *
+ * A body F: [0,1]^3 -> R^3 (seed 000, section 2) is bounded by the six
+ * surfaces F(0,v,w), F(1,v,w), F(u,0,w), F(u,1,w), F(u,v,0), F(u,v,1)
+ * (seed 000 section 2.2, "Boundary surfaces"). They are sampled on one
+ * parameter lattice per direction, shared by the four faces that run along
+ * it, so a lattice point on an edge or corner is one vertex whichever face
+ * reaches it: watertight by construction. Points are evaluated once, by the
+ * first face that owns them (order u0 u1 v0 v1 w0 w1); the evaluations of
+ * later faces are discarded rather than welded by distance.
+ *
+ * Collapsed edges and faces (cone apex, a face shrunk to a curve) produce
+ * lattice neighbours at the same place. They are merged only along mesh
+ * edges (lattice lines and the chosen diagonals), never across the surface,
+ * so merging is an edge collapse of zero-length edges. "Same place" is
+ * 1e-9 of the lattice's box diagonal (the model format's consistency
+ * tolerance) plus 64 ulps of the largest coordinate: evaluating the same
+ * point through different blend sums (e.g. (1-v)P + vP) differs from P by
+ * a few ulps of the coordinates, while a real edge of an adaptive lattice
+ * is at least MIN_WIDTH times the parametric speed, many orders above.
+ *
+ * Density: the lattices start proportional to the body's extent along each
+ * direction, plus the breakpoints of the body's data (knots, segment ends,
+ * where the surface may have kinks), and are refined (intervals halved)
+ * where exact points F(s,t) at sub-samples of a cell lie farther than the
+ * tolerance from the cell's two triangles: points on the cell's sides along
+ * a direction refine that direction, interior points the direction with
+ * the longer side. The distance to those triangles is an upper bound of the
+ * distance to the mesh; unlike the parametric error
+ * |F(s,t) - L(s,t)| it ignores sliding within the surface (a cone's
+ * straight generators need no refinement). The final pass (a 7 x 7 sampling of every cell, which holds
+ * the edge midpoints and triangle centroids, against the final merged
+ * vertices) measures the reported deviation and accepts it below
+ * ACCEPT_FRACTION of the tolerance.
+ *
+ * Shape: the starting lattice gives every direction enough intervals that
+ * its cells are at most max_aspect times longer than the shortest
+ * direction's (by the longest lattice line along each direction), so flat
+ * and long bodies start with well-shaped cells; each cell is then split
+ * along its shorter diagonal. Refinement is not driven by shape: in a tensor
+ * lattice, halving intervals to resolve a kink or a curved strip makes thin
+ * cells across the whole lattice, and re-squaring them refines everything
+ * (an aspect-driven loop gave 44 times the triangles on the polyline
+ * example). Cells converging to an apex are thin however they are split.
+ */
+#include <float.h>
+#include <string.h>
+
+#include "body_impl.h"
+#include "coons_internal.h"
+#include "sampling.h"
+#include "mesh_impl.h"
+#include "flat.h"
+#include "sampler.h"
+#include "union_find.h"
+
+enum {
+    START_INTERVALS = 4, /* along the longest direction */
+    MAX_ROUNDS = 200
+};
+#define MIN_WIDTH (1.0 / 1048576.0) /* 2^-20: narrowest interval refinement makes */
+#define LOOP_FRACTION 0.75          /* the coarse estimate aims below the tolerance */
+/* The final measurement must stay below this share of the tolerance: the
+ * true maximum lies between the samples and was seen 5% above them (a
+ * bicubic face of examples/body-blend-cubic.json, 1 mm cells). */
+#define ACCEPT_FRACTION 0.9
+/* The measuring pass samples every cell at multiples of 1/6 of its sides:
+ * edge midpoints and the centroids of both triangles are among them. */
+#define MEASURE_STEPS 6
+/* A lattice predicted above this many times a budget is refused before
+ * refining (predict_budget). The prediction assumes the deviation falls
+ * like h^2; halving overshoots it, so it is low: over every example and
+ * tests/data model at tolerances 0.3 to 0.0003 (984 samplings), no round
+ * predicted more than the final count (the spool at 1e-6: 5.2e7 predicted
+ * from the first round, 5.0e7 on the 2048^3 lattice refinement reaches). */
+#define PREDICT_MARGIN 2.0
+
+const face_desc coons__faces[6] = {
+    {0, 1, 2, 1, 0.0, "u0"}, {0, 1, 2, 0, 1.0, "u1"}, {1, 0, 2, 0, 0.0, "v0"},
+    {1, 0, 2, 1, 1.0, "v1"}, {2, 0, 1, 1, 0.0, "w0"}, {2, 0, 1, 0, 1.0, "w1"}};
+
+#define FACES coons__faces
+
+static coons_status ensure(double **p, size_t *cap, size_t need, coons_error *err)
+{
+    if (need <= *cap) return COONS_OK;
+    double *q = coons__malloc_array(need, sizeof(double));
+    if (!q) return coons__error_nomem(err);
+    coons__free(*p);
+    *p = q;
+    *cap = need;
+    return COONS_OK;
+}
+
+/* Evaluates face f on av[0..na-1] x bv[0..nb-1] into out[(i*nb + j)*3]. */
+static coons_status eval_face(sampler *s, int f, const double *av, size_t na, const double *bv,
+                              size_t nb, double *out)
+{
+    const face_desc *F = &FACES[f];
+    const double *q[3];
+    size_t c[3];
+    q[F->fixed] = &F->val;
+    c[F->fixed] = 1;
+    q[F->a] = av;
+    c[F->a] = na;
+    q[F->b] = bv;
+    c[F->b] = nb;
+    coons_status st = coons_body_eval_grid(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out, s->err);
+    if (st) return st;
+    if (s->scale != 1.0)
+        for (size_t i = 0; i < 3 * na * nb; i++) out[i] *= s->scale;
+    if (!coons__all_finite(out, 3 * na * nb))
+        return coons__error_set(s->err, COONS_E_INVALID,
+                                "body '%s' evaluates to a non-finite point on face %s", s->name,
+                                F->name);
+    return COONS_OK;
+}
+
+static size_t tri_estimate(const size_t n[3], unsigned skip)
+{
+    /* Two triangles per cell of the faces sampled, before degenerate ones
+     * drop; the lattice sizes are bounded far below overflow by the caller. */
+    size_t t = 0;
+    for (int f = 0; f < 6; f++)
+        if (!(skip & 1u << f)) t += 2 * n[FACES[f].a] * n[FACES[f].b];
+    return t;
+}
+
+static coons_status alloc_lattices(sampler *s)
+{
+    for (int d = 0; d < 3; d++) {
+        coons__free(s->mark[d]);
+        coons__free(s->need[d]);
+        s->mark[d] = coons__calloc(s->n[d], 1);
+        s->need[d] = coons__calloc(s->n[d], sizeof(double));
+        if (!s->mark[d] || !s->need[d]) return coons__error_nomem(s->err);
+    }
+    return COONS_OK;
+}
+
+static void free_lattices(sampler *s)
+{
+    for (int d = 0; d < 3; d++) {
+        coons__free(s->t[d]);
+        coons__free(s->mark[d]);
+        coons__free(s->need[d]);
+        s->t[d] = NULL;
+        s->mark[d] = NULL;
+        s->need[d] = NULL;
+    }
+}
+
+/* Starting interval counts from the body's extent along each direction,
+ * raised so that cells are at most max_aspect times longer than wide. */
+static coons_status start_counts(sampler *s)
+{
+    /* Extent along each direction: the longest lattice line of a 9 x 9
+     * sampling of the faces that run along it. */
+    enum { K = 9 };
+    double g[K], len[3] = {0, 0, 0};
+    for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
+    coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+    if (st) return st;
+    for (int f = 0; f < 6; f++) {
+        if ((st = eval_face(s, f, g, K, g, K, s->buf))) return st;
+        for (int j = 0; j < K; j++) {
+            double la = 0, lb = 0;
+            for (int i = 0; i + 1 < K; i++) {
+                la += v3_dist(s->buf + 3 * (i * K + j), s->buf + 3 * ((i + 1) * K + j));
+                lb += v3_dist(s->buf + 3 * (j * K + i), s->buf + 3 * (j * K + i + 1));
+            }
+            if (la > len[FACES[f].a]) len[FACES[f].a] = la;
+            if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
+        }
+    }
+    /* A body whose boundary runs far outside its control box (a huge
+     * tangent) can have lengths that overflow: taken as the largest double,
+     * so the counts stay defined and the budget check refuses it later. */
+    for (int d = 0; d < 3; d++)
+        if (!(len[d] <= DBL_MAX)) len[d] = DBL_MAX;
+    double lmax = fmax(len[0], fmax(len[1], len[2]));
+    for (int d = 0; d < 3; d++) {
+        double k = lmax > 0 ? ceil(START_INTERVALS * len[d] / lmax) : 1.0;
+        s->n[d] = k < 1 ? 1 : (k > START_INTERVALS ? START_INTERVALS : (size_t)k);
+    }
+    /* Cell length along d is about len[d] / n[d]; the shortest of them
+     * (ignoring collapsed directions) bounds the others. */
+    double cmin = INFINITY;
+    for (int d = 0; d < 3; d++)
+        if (len[d] > 1e-9 * lmax) cmin = fmin(cmin, len[d] / (double)s->n[d]);
+    if (isfinite(s->o->max_aspect) && isfinite(cmin))
+        for (int d = 0; d < 3; d++) {
+            double k = ceil(len[d] / (s->o->max_aspect * cmin) - 1e-9);
+            /* capped so that a needle cannot exhaust the budget here */
+            if (k > 4096) k = 4096;
+            if (k > (double)s->n[d]) s->n[d] = (size_t)k;
+        }
+    return COONS_OK;
+}
+
+/* The starting lattice values of direction d: n[d] uniform intervals
+ * merged with the breakpoints of the body's data. */
+static coons_status start_values(sampler *s, int d)
+{
+    /* Adaptive lattices start at the breakpoints of the body's data
+     * (knots, segment ends): a kink inside a cell converges only
+     * linearly, and its peak error falls between the measured samples.
+     * Uniform values closer than a quarter step to a breakpoint yield. */
+    double *br = NULL;
+    size_t nbr = 0, n = s->n[d], k = 0;
+    if (!s->o->resolution) {
+        coons_status st = coons__body_breaks(s->body, d, &br, &nbr, s->err);
+        if (st) return st;
+    }
+    s->t[d] = coons__malloc_array(n + nbr + 1, sizeof(double));
+    if (!s->t[d]) {
+        coons__free(br);
+        return coons__error_nomem(s->err);
+    }
+    for (size_t i = 0, j = 0; i <= n || j < nbr;) {
+        double x = i <= n ? (double)i / (double)n : 2.0, y = j < nbr ? br[j] : 2.0;
+        if (y <= x) {
+            if (!k || y > s->t[d][k - 1]) s->t[d][k++] = y;
+            j++;
+            if (fabs(x - y) < 0.25 / (double)n) i++;
+        } else {
+            int near = (j < nbr && br[j] - x < 0.25 / (double)n) ||
+                       (j > 0 && x - br[j - 1] < 0.25 / (double)n);
+            if (!near && (!k || x > s->t[d][k - 1])) s->t[d][k++] = x;
+            i++;
+        }
+    }
+    coons__free(br);
+    s->t[d][0] = 0.0;
+    s->t[d][k - 1] = 1.0;
+    s->n[d] = k - 1;
+    return COONS_OK;
+}
+
+static coons_status init_lattices(sampler *s)
+{
+    coons_status st = COONS_OK;
+    if (s->start_t[0]) { /* a control lattice's shared values (sample_lattice.c) */
+        for (int d = 0; d < 3; d++) {
+            s->n[d] = s->start_n[d];
+            s->t[d] = coons__malloc_array(s->n[d] + 1, sizeof(double));
+            if (!s->t[d]) return coons__error_nomem(s->err);
+            memcpy(s->t[d], s->start_t[d], (s->n[d] + 1) * sizeof(double));
+        }
+        return alloc_lattices(s);
+    }
+    if (s->skip == 63 && !s->o->resolution) {
+        /* Every face shared (a cell inside a lattice): no boundary of its
+         * own; its lattice comes from its neighbours', its points only
+         * join theirs (sample_lattice.c). */
+        for (int d = 0; d < 3; d++) {
+            s->n[d] = 1;
+            s->t[d] = coons__malloc_array(2, sizeof(double));
+            if (!s->t[d]) return coons__error_nomem(s->err);
+            s->t[d][0] = 0.0;
+            s->t[d][1] = 1.0;
+        }
+        return alloc_lattices(s);
+    }
+    if (s->o->resolution) {
+        for (int d = 0; d < 3; d++) s->n[d] = s->o->resolution;
+    } else if ((st = start_counts(s))) {
+        return st;
+    }
+    for (int d = 0; d < 3 && !st; d++) st = start_values(s, d);
+    return st ? st : alloc_lattices(s);
+}
+
+static coons_status limit_error(sampler *s, size_t need)
+{
+    if (s->o->resolution)
+        return coons__error_set(s->err, COONS_E_LIMIT,
+                                "body '%s': resolution %u gives %zu triangles, more than the "
+                                "limit of %zu; raise max_triangles (coons2stl --max-triangles N) "
+                                "or lower the resolution",
+                                s->name, s->o->resolution, need, s->o->max_triangles);
+    return coons__error_set(s->err, COONS_E_LIMIT,
+                            "body '%s': sampling to tolerance %g needs more than %zu triangles "
+                            "(the limit); raise max_triangles (coons2stl --max-triangles N) or "
+                            "loosen the tolerance",
+                            s->name, s->o->tolerance, s->o->max_triangles);
+}
+
+/* First face (in FACES order) holding lattice point ijk, of those not in
+ * the mask `skip`: that face owns it. -1 when no such face holds it. */
+static int owner(const sampler *s, const size_t ijk[3], unsigned skip)
+{
+    for (int f = 0; f < 6; f++) {
+        if (skip & 1u << f) continue;
+        size_t want = FACES[f].val == 0.0 ? 0 : s->n[FACES[f].fixed];
+        if (ijk[FACES[f].fixed] == want) return f;
+    }
+    return -1;
+}
+
+static void merge_close(sampler *s, uint32_t a, uint32_t b)
+{
+    uint32_t ra = coons__uf_find(s->uf, a), rb = coons__uf_find(s->uf, b);
+    if (ra == rb || v3_dist(s->pos + 3 * (size_t)ra, s->pos + 3 * (size_t)rb) > s->merge_tol)
+        return;
+    /* The lower id, evaluated first, stays the representative. */
+    coons__uf_link(s->uf, ra, rb);
+}
+
+static void free_mesh(sampler *s)
+{
+    coons__free(s->pos);
+    coons__free(s->uf);
+    coons__free(s->tri);
+    coons__free(s->evaluated);
+    coons__free(s->flat_uvw);
+    s->flat_uvw = NULL;
+    s->pos = NULL;
+    s->uf = NULL;
+    s->tri = NULL;
+    s->evaluated = NULL;
+    s->nt = 0;
+    for (int f = 0; f < 6; f++) {
+        coons__free(s->ids[f]);
+        coons__free(s->diag[f]);
+        s->ids[f] = NULL;
+        s->diag[f] = NULL;
+    }
+}
+
+static inline const double *rep_pos(sampler *s, uint32_t id)
+{
+    return s->pos + 3 * (size_t)coons__uf_find(s->uf, id);
+}
+
+/* Raw vertex of lattice point (ia, ib) of face f. */
+static inline uint32_t lattice_id(const sampler *s, int f, size_t ia, size_t ib)
+{
+    return s->ids[f][ia * (s->n[FACES[f].b] + 1) + ib];
+}
+
+/* The arrays of one build: raw vertices (the lattice points on the
+ * boundary), their union-find, per face its lattice ids and diagonals, and
+ * room for two triangles per cell. */
+static coons_status alloc_mesh(sampler *s)
+{
+    const size_t *n = s->n;
+    size_t total = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
+    size_t inner = (n[0] - 1) * (n[1] - 1) * (n[2] - 1);
+    s->nv = total - inner;
+    if (s->nv > UINT32_MAX)
+        return coons__error_set(s->err, COONS_E_LIMIT, "body '%s': more than %u vertices",
+                                s->name, (unsigned)UINT32_MAX);
+    s->pos = coons__malloc_array(s->nv, 3 * sizeof(double));
+    s->uf = coons__malloc_array(s->nv, sizeof(uint32_t));
+    s->evaluated = coons__calloc(s->nv, 1);
+    if (!s->pos || !s->uf || !s->evaluated) return coons__error_nomem(s->err);
+    size_t cells = 0;
+    for (int f = 0; f < 6; f++) {
+        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
+        s->ids[f] = coons__malloc_array((na + 1) * (nb + 1), sizeof(uint32_t));
+        s->diag[f] = coons__malloc_array(na * nb, 1);
+        if (!s->ids[f] || !s->diag[f]) return coons__error_nomem(s->err);
+        cells += na * nb;
+    }
+    s->tri = coons__malloc_array(cells, 6 * sizeof(uint32_t));
+    if (!s->tri) return coons__error_nomem(s->err);
+    return COONS_OK;
+}
+
+/* Evaluates every face on its lattice; a point is stored by the face that
+ * owns it (owner()) and shared by id with the later faces, so seams are
+ * one vertex by construction. Extends lo/hi by the stored points. Faces
+ * in s->skip are not evaluated: their points get ids (in the same order),
+ * and positions only from the other faces that hold them. */
+static coons_status eval_lattice(sampler *s, double lo[3], double hi[3])
+{
+    const size_t *n = s->n;
+    uint32_t next = 0;
+    for (int f = 0; f < 6; f++) {
+        const face_desc *F = &FACES[f];
+        size_t na = n[F->a], nb = n[F->b];
+        int sampled = !(s->skip & 1u << f);
+        coons_status st = COONS_OK;
+        if (sampled) {
+            st = ensure(&s->buf, &s->buf_cap, 3 * (na + 1) * (nb + 1), s->err);
+            if (!st) st = eval_face(s, f, s->t[F->a], na + 1, s->t[F->b], nb + 1, s->buf);
+            if (st) return st;
+        }
+        for (size_t ia = 0; ia <= na; ia++)
+            for (size_t ib = 0; ib <= nb; ib++) {
+                size_t ijk[3];
+                ijk[F->fixed] = F->val == 0.0 ? 0 : n[F->fixed];
+                ijk[F->a] = ia;
+                ijk[F->b] = ib;
+                int g = owner(s, ijk, 0);
+                uint32_t id;
+                if (g == f) {
+                    id = next++;
+                    v3_set(s->pos + 3 * (size_t)id, 0, 0, 0);
+                } else {
+                    id = lattice_id(s, g, ijk[FACES[g].a], ijk[FACES[g].b]);
+                }
+                s->ids[f][ia * (nb + 1) + ib] = id;
+                if (sampled && owner(s, ijk, s->skip) == f) {
+                    v3_copy(s->pos + 3 * (size_t)id, s->buf + 3 * (ia * (nb + 1) + ib));
+                    s->evaluated[id] = 1;
+                    bbox_add(lo, hi, s->pos + 3 * (size_t)id);
+                }
+            }
+    }
+    if (next != s->nv)
+        return coons__error_set(s->err, COONS_E_INTERNAL, "lattice vertex count %u != %zu",
+                                (unsigned)next, s->nv);
+    return COONS_OK;
+}
+
+/* Opposite faces that coincide point for point (a body closed on itself
+ * along u, v or w: a ring made with closed edge curves) are glued and
+ * left out: they are inside the solid, and what remains is its boundary
+ * (a torus for one such pair). */
+static void glue_opposite_faces(sampler *s)
+{
+    s->glued = 0;
+    for (int d = 0; d < 3; d++) {
+        if (s->skip & 3u << 2 * d) continue;
+        const uint32_t *i0 = s->ids[2 * d], *i1 = s->ids[2 * d + 1];
+        size_t np = (s->n[FACES[2 * d].a] + 1) * (s->n[FACES[2 * d].b] + 1), k;
+        for (k = 0; k < np; k++)
+            if (v3_dist(s->pos + 3 * (size_t)i0[k], s->pos + 3 * (size_t)i1[k]) > s->merge_tol)
+                break;
+        if (k < np) continue;
+        s->glued |= 1 << d;
+        for (k = 0; k < np; k++) coons__uf_union(s->uf, i0[k], i1[k]);
+    }
+}
+
+/* Collapses the zero-length lattice lines (cone apex, shrunk faces). */
+static void merge_lattice_lines(sampler *s)
+{
+    for (int f = 0; f < 6; f++) {
+        if (s->skip & 1u << f) continue;
+        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
+        for (size_t ia = 0; ia <= na; ia++)
+            for (size_t ib = 0; ib <= nb; ib++) {
+                if (ia < na) merge_close(s, lattice_id(s, f, ia, ib), lattice_id(s, f, ia + 1, ib));
+                if (ib < nb) merge_close(s, lattice_id(s, f, ia, ib), lattice_id(s, f, ia, ib + 1));
+            }
+    }
+}
+
+/* Splits each cell along its shorter diagonal, and collapses that
+ * diagonal where it has zero length. */
+static void choose_diagonals(sampler *s)
+{
+    for (int f = 0; f < 6; f++) {
+        if (s->skip & 1u << f) continue;
+        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
+        for (size_t p = 0; p < na; p++)
+            for (size_t q = 0; q < nb; q++) {
+                uint32_t i00 = lattice_id(s, f, p, q), i10 = lattice_id(s, f, p + 1, q);
+                uint32_t i01 = lattice_id(s, f, p, q + 1), i11 = lattice_id(s, f, p + 1, q + 1);
+                double d1 = v3_dist(rep_pos(s, i00), rep_pos(s, i11));
+                double d2 = v3_dist(rep_pos(s, i10), rep_pos(s, i01));
+                unsigned char dg = d2 < d1;
+                s->diag[f][p * nb + q] = dg;
+                if (dg)
+                    merge_close(s, i10, i01);
+                else
+                    merge_close(s, i00, i11);
+            }
+    }
+}
+
+/* The two triangles of every cell of the faces not glued, between the
+ * representatives, wound by the face's orientation; collapsed ones drop. */
+static void emit_cells(sampler *s)
+{
+    size_t nt = 0;
+    s->flat_faces = 0;
+    for (int f = 0; f < 6; f++) {
+        s->face_tri[f] = nt;
+        if (s->glued & 1 << FACES[f].fixed || s->skip & 1u << f) continue;
+        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
+        for (size_t p = 0; p < na; p++)
+            for (size_t q = 0; q < nb; q++) {
+                uint32_t A = coons__uf_find(s->uf, lattice_id(s, f, p, q));
+                uint32_t B = coons__uf_find(s->uf, lattice_id(s, f, p + 1, q));
+                uint32_t C = coons__uf_find(s->uf, lattice_id(s, f, p + 1, q + 1));
+                uint32_t D = coons__uf_find(s->uf, lattice_id(s, f, p, q + 1));
+                uint32_t t[2][3];
+                if (!s->diag[f][p * nb + q]) {
+                    t[0][0] = A, t[0][1] = B, t[0][2] = C;
+                    t[1][0] = A, t[1][1] = C, t[1][2] = D;
+                } else {
+                    t[0][0] = A, t[0][1] = B, t[0][2] = D;
+                    t[1][0] = B, t[1][1] = C, t[1][2] = D;
+                }
+                for (int k = 0; k < 2; k++) {
+                    uint32_t x = t[k][0], y = t[k][1], z = t[k][2];
+                    if (x == y || y == z || z == x) continue; /* collapsed */
+                    if (FACES[f].flip) {
+                        uint32_t tmp = y;
+                        y = z;
+                        z = tmp;
+                    }
+                    s->tri[3 * nt] = x;
+                    s->tri[3 * nt + 1] = y;
+                    s->tri[3 * nt + 2] = z;
+                    nt++;
+                }
+            }
+    }
+    s->face_tri[6] = nt;
+    s->nt = nt;
+}
+
+/* Outward whatever the handedness: a left-handed body (det J < 0) maps
+ * the outward lattice orientation inward, which makes the volume
+ * negative. Shifting by one vertex reduces cancellation. */
+static void orient_outward(sampler *s)
+{
+    size_t nt = s->nt;
+    double vol = 0;
+    if (s->skip) { /* an open shell: the sign found from the whole body */
+        if (s->sign < 0)
+            for (size_t t = 0; t < nt; t++) {
+                uint32_t tmp = s->tri[3 * t + 1];
+                s->tri[3 * t + 1] = s->tri[3 * t + 2];
+                s->tri[3 * t + 2] = tmp;
+            }
+        return;
+    }
+    const double *o = nt ? s->pos + 3 * (size_t)s->tri[0] : NULL;
+    for (size_t t = 0; t < nt; t++) {
+        double a[3], b[3], c[3], bc[3];
+        v3_sub(a, s->pos + 3 * (size_t)s->tri[3 * t], o);
+        v3_sub(b, s->pos + 3 * (size_t)s->tri[3 * t + 1], o);
+        v3_sub(c, s->pos + 3 * (size_t)s->tri[3 * t + 2], o);
+        v3_cross(bc, b, c);
+        vol += v3_dot(a, bc);
+    }
+    if (vol < 0)
+        for (size_t t = 0; t < nt; t++) {
+            uint32_t tmp = s->tri[3 * t + 1];
+            s->tri[3 * t + 1] = s->tri[3 * t + 2];
+            s->tri[3 * t + 2] = tmp;
+        }
+}
+
+/* Evaluates the lattice, shares seam vertices, merges collapsed edges,
+ * splits cells along the shorter diagonal and orients the triangles. */
+static coons_status build(sampler *s)
+{
+    free_mesh(s);
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    coons_status st = alloc_mesh(s);
+    if (!st) st = eval_lattice(s, lo, hi);
+    if (st) return st;
+    double maxabs = 0;
+    for (int d = 0; d < 3; d++) maxabs = fmax(maxabs, fmax(fabs(lo[d]), fabs(hi[d])));
+    s->merge_tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
+    for (uint32_t i = 0; i < (uint32_t)s->nv; i++) s->uf[i] = i;
+    glue_opposite_faces(s);
+    merge_lattice_lines(s);
+    choose_diagonals(s);
+    emit_cells(s);
+    orient_outward(s);
+    return COONS_OK;
+}
+
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+static inline double dmax(double a, double b) { return a > b ? a : b; }
+
+/* |o - t dir|^2: the squared distance of a point, o from a base point,
+ * to the point at t along dir. */
+static double off_dist2(const double o[3], double t, const double dir[3])
+{
+    double q[3];
+    v3_copy(q, o);
+    v3_axpy(q, -t, dir);
+    return v3_dot(q, q);
+}
+
+/* Squared distance from p to segment ab. */
+static double seg_dist2(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3];
+    v3_sub(ab, b, a);
+    v3_sub(ap, p, a);
+    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(ap, ab) / l2 : 0;
+    return off_dist2(ap, clamp01(t), ab);
+}
+
+/* Squared distance from p to triangle abc (closest point by Voronoi
+ * regions: Ericson, Real-Time Collision Detection, 5.1.5); also right for
+ * degenerate triangles, whose regions reduce to sides and corners. */
+static double tri_dist2(const double p[3], const double a[3], const double b[3],
+                        const double c[3])
+{
+    double ab[3], ac[3], ap[3], q[3];
+    v3_sub(ab, b, a);
+    v3_sub(ac, c, a);
+    v3_sub(ap, p, a);
+    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return v3_dot(ap, ap);
+    double bp[3];
+    v3_sub(bp, p, b);
+    double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return v3_dot(bp, bp);
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        double v = d1 / (d1 - d3);
+        return off_dist2(ap, v, ab);
+    }
+    double cp[3];
+    v3_sub(cp, p, c);
+    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return v3_dot(cp, cp);
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        double w = d2 / (d2 - d6);
+        return off_dist2(ap, w, ac);
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        double bc[3];
+        v3_sub(bc, c, b);
+        return off_dist2(bp, w, bc);
+    }
+    double den = va + vb + vc;
+    if (!(den > 0)) /* degenerate (collinear): the nearest side */
+        return dmin(seg_dist2(p, a, b), dmin(seg_dist2(p, b, c), seg_dist2(p, c, a)));
+    double v = vb / den, w = vc / den;
+    v3_copy(q, ap);
+    v3_axpy(q, -v, ab);
+    v3_axpy(q, -w, ac);
+    return v3_dot(q, q);
+}
+
+/* Distance from p to the cell's two triangles (diagonal dg): an upper bound
+ * of the distance from p to the mesh. Both count: on a twisted cell the
+ * tilted neighbour of the triangle that holds p's parameters is often the
+ * nearer one (taking only that triangle gave the deformed cube example 4
+ * times the lattice lines along w). */
+static double cell_dist(const double p[3], const double *P00, const double *P10,
+                        const double *P01, const double *P11, int dg)
+{
+    if (!dg) return sqrt(dmin(tri_dist2(p, P00, P10, P11), tri_dist2(p, P00, P11, P01)));
+    return sqrt(dmin(tri_dist2(p, P00, P10, P01), tri_dist2(p, P10, P11, P01)));
+}
+
+static void mark(sampler *s, int d, size_t i)
+{
+    if (s->t[d][i + 1] - s->t[d][i] >= 2 * MIN_WIDTH) s->mark[d][i] = 1;
+}
+
+/* Records that interval i of direction d showed the deviation `ratio`
+ * times the threshold: the deviation of a smooth surface from its
+ * triangles falls like h^2 with the cell's side h, so the interval must
+ * shrink about sqrt(ratio) times (never below MIN_WIDTH). A kink inside
+ * a cell falls only like h: it needs more, so the prediction is low,
+ * never high, there. */
+static void note_need(sampler *s, int d, size_t i, double ratio)
+{
+    if (!(ratio > 1)) return;
+    double k = sqrt(ratio), most = (s->t[d][i + 1] - s->t[d][i]) / MIN_WIDTH;
+    if (k > most) k = most;
+    if (k > s->need[d][i]) s->need[d][i] = k;
+}
+
+/* Compares F with the mesh at the (r+1)^2 sub-samples of every cell, keeps
+ * the largest distance in s->dev and, when thr > 0, marks the intervals to
+ * halve. Rows of sub-samples are evaluated in blocks of cells along a, so
+ * that the basis along b is computed once per block. */
+static coons_status scan(sampler *s, int r, double thr)
+{
+    enum { BLOCK_POINTS = 1 << 15 };
+    s->dev = 0;
+    if (thr > 0)
+        for (int d = 0; d < 3; d++) memset(s->need[d], 0, s->n[d] * sizeof(double));
+    for (int f = 0; f < 6; f++) {
+        const face_desc *F = &FACES[f];
+        if (s->glued & 1 << F->fixed || s->skip & 1u << f) continue;
+        size_t na = s->n[F->a], nb = s->n[F->b], nbs = (size_t)r * nb + 1;
+        size_t block = BLOCK_POINTS / ((size_t)r * nbs);
+        if (block < 1) block = 1;
+        if (block > na) block = na;
+        const double *ta = s->t[F->a], *tb = s->t[F->b];
+        coons_status st = ensure(&s->bs, &s->bs_cap, nbs + (size_t)r * block + 1, s->err);
+        if (!st) st = ensure(&s->buf, &s->buf_cap, 3 * ((size_t)r * block + 1) * nbs, s->err);
+        if (st) return st;
+        double *as = s->bs + nbs;
+        for (size_t q = 0; q < nb; q++)
+            for (int j = 0; j < r; j++) s->bs[q * r + j] = tb[q] + (tb[q + 1] - tb[q]) * j / r;
+        s->bs[nb * r] = tb[nb];
+        for (size_t p0 = 0; p0 < na; p0 += block) {
+            size_t p1 = p0 + block < na ? p0 + block : na, rows = (p1 - p0) * (size_t)r + 1;
+            for (size_t p = p0; p < p1; p++)
+                for (int i = 0; i < r; i++)
+                    as[(p - p0) * r + i] = ta[p] + (ta[p + 1] - ta[p]) * i / r;
+            as[rows - 1] = ta[p1];
+            if ((st = eval_face(s, f, as, rows, s->bs, nbs, s->buf))) return st;
+            for (size_t p = p0; p < p1; p++)
+                for (size_t q = 0; q < nb; q++) {
+                    const uint32_t *id = s->ids[f];
+                    const double *P00 = rep_pos(s, id[p * (nb + 1) + q]);
+                    const double *P10 = rep_pos(s, id[(p + 1) * (nb + 1) + q]);
+                    const double *P01 = rep_pos(s, id[p * (nb + 1) + q + 1]);
+                    const double *P11 = rep_pos(s, id[(p + 1) * (nb + 1) + q + 1]);
+                    int dg = s->diag[f][p * nb + q];
+                    double ea = 0, eb = 0, ec = 0;
+                    for (int i = 0; i <= r; i++)
+                        for (int j = 0; j <= r; j++) {
+                            int ei = i == 0 || i == r, ej = j == 0 || j == r;
+                            if (ei && ej) continue; /* lattice point */
+                            size_t row = (p - p0) * (size_t)r + (size_t)i;
+                            const double *X = s->buf + 3 * (row * nbs + q * r + j);
+                            double e = cell_dist(X, P00, P10, P01, P11, dg);
+                            if (ej)
+                                ea = dmax(ea, e);
+                            else if (ei)
+                                eb = dmax(eb, e);
+                            else
+                                ec = dmax(ec, e);
+                        }
+                    double e = dmax(ea, dmax(eb, ec));
+                    if (e > s->dev) s->dev = e;
+                    if (!(thr > 0)) continue;
+                    double la = dmax(v3_dist(P00, P10), v3_dist(P01, P11));
+                    double lb = dmax(v3_dist(P00, P01), v3_dist(P10, P11));
+                    int ma = ea > thr, mb = eb > thr;
+                    if (ec > thr && !ma && !mb) {
+                        ma = la >= lb;
+                        mb = lb >= la;
+                    }
+                    if (ma) mark(s, F->a, p);
+                    if (mb) mark(s, F->b, q);
+                    note_need(s, F->a, p, (ma && !(ea > thr) ? ec : ea) / thr);
+                    note_need(s, F->b, q, (mb && !(eb > thr) ? ec : eb) / thr);
+                }
+        }
+    }
+    return COONS_OK;
+}
+
+/* Halves the marked intervals; returns how many were split. */
+static coons_status refine(sampler *s, size_t *split)
+{
+    *split = 0;
+    for (int d = 0; d < 3; d++) {
+        size_t m = 0;
+        for (size_t i = 0; i < s->n[d]; i++) m += s->mark[d][i];
+        if (!m) continue;
+        double *t = coons__malloc_array(s->n[d] + m + 1, sizeof(double));
+        if (!t) return coons__error_nomem(s->err);
+        size_t k = 0;
+        for (size_t i = 0; i < s->n[d]; i++) {
+            t[k++] = s->t[d][i];
+            if (s->mark[d][i]) t[k++] = 0.5 * (s->t[d][i] + s->t[d][i + 1]);
+        }
+        t[k] = 1.0;
+        coons__free(s->t[d]);
+        s->t[d] = t;
+        s->n[d] += m;
+        *split += m;
+    }
+    return alloc_lattices(s);
+}
+
+static coons_status check_budget(sampler *s)
+{
+    size_t need = tri_estimate(s->n, s->skip);
+    return need > s->o->max_triangles ? limit_error(s, need) : COONS_OK;
+}
+
+/* Bounded work: from the deviations the last coarse scan measured
+ * (note_need), the interval counts refinement would reach, and the
+ * triangles (and volume cells) they give. A request predicted above
+ * PREDICT_MARGIN times a budget is refused at once, before the rounds
+ * that would fill memory; one that may fit runs on to the exact checks
+ * (check_budget, the volume mesh's cell count). */
+static coons_status predict_budget(sampler *s)
+{
+    double m[3], tri = 0;
+    for (int d = 0; d < 3; d++) {
+        m[d] = 0;
+        for (size_t i = 0; i < s->n[d]; i++) m[d] += dmax(1.0, s->need[d][i]);
+    }
+    for (int f = 0; f < 6; f++)
+        if (!(s->skip & 1u << f)) tri += 2 * m[FACES[f].a] * m[FACES[f].b];
+    double cells = m[0] * m[1] * m[2];
+    double tmax = (double)s->o->max_triangles, cmax = (double)s->o->max_cells;
+    if (!(tri > PREDICT_MARGIN * tmax) && !(cmax > 0 && cells > PREDICT_MARGIN * cmax))
+        return COONS_OK;
+    int by_cells = !(tri > PREDICT_MARGIN * tmax);
+    /* The count goes about as 1 / tolerance (h^2 per face, two directions). */
+    double fit = s->o->tolerance * (by_cells ? pow(cells / cmax, 2.0 / 3.0) : tri / tmax);
+    return coons__error_set(s->err, COONS_E_LIMIT,
+                            "body '%s': sampling to tolerance %g needs more than %zu %s (the "
+                            "limit): about %.3g predicted from the deviation %.3g on the "
+                            "%zu x %zu x %zu lattice; raise %s or loosen the tolerance (try "
+                            "%.2g or more)",
+                            s->name, s->o->tolerance, by_cells ? s->o->max_cells
+                                                               : s->o->max_triangles,
+                            by_cells ? "volume cells" : "triangles", by_cells ? cells : tri,
+                            s->dev / s->scale, s->n[0], s->n[1], s->n[2],
+                            by_cells ? "max_cells (or give coons2stl --resolution)"
+                                     : "max_triangles (coons2stl --max-triangles N)",
+                            fit);
+}
+
+/* The body's orientation, for a sampler that leaves faces out (its own
+ * shell is then open): the sign of the volume enclosed by all six faces
+ * sampled on a K x K grid each, wound as emit_cells() winds them. */
+static coons_status coarse_sign(sampler *s)
+{
+    enum { K = 9 };
+    double g[K], vol = 0, o[3] = {0, 0, 0};
+    for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
+    coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+    for (int f = 0; f < 6 && !st; f++) {
+        if ((st = eval_face(s, f, g, K, g, K, s->buf))) break;
+        if (f == 0) v3_copy(o, s->buf); /* a point of the shell: less cancellation */
+        for (int p = 0; p + 1 < K; p++)
+            for (int q = 0; q + 1 < K; q++) {
+                const double *A = s->buf + 3 * (p * K + q), *B = s->buf + 3 * ((p + 1) * K + q);
+                const double *C = s->buf + 3 * ((p + 1) * K + q + 1);
+                const double *D = s->buf + 3 * (p * K + q + 1);
+                const double *tri[2][3] = {{A, B, C}, {A, C, D}};
+                for (int k = 0; k < 2; k++) {
+                    double a[3], b[3], c[3], bc[3];
+                    v3_sub(a, tri[k][0], o);
+                    v3_sub(b, tri[k][FACES[f].flip ? 2 : 1], o);
+                    v3_sub(c, tri[k][FACES[f].flip ? 1 : 2], o);
+                    v3_cross(bc, b, c);
+                    vol += v3_dot(a, bc);
+                }
+            }
+    }
+    s->sign = vol < 0 ? -1 : 1;
+    return st;
+}
+
+static coons_status run(sampler *s)
+{
+    coons_status st = init_lattices(s);
+    if (st) return st;
+    if (s->skip && s->skip != 63 && (st = coarse_sign(s))) return st;
+    if (s->o->resolution) {
+        if ((st = check_budget(s)) || (st = build(s))) return st;
+        if (s->o->flags & COONS_SAMPLE_UNMEASURED) return COONS_OK;
+        s->measured = 1;
+        return scan(s, MEASURE_STEPS, 0.0);
+    }
+    for (int round = 0; round < MAX_ROUNDS; round++) {
+        if ((st = check_budget(s)) || (st = build(s))) return st;
+        if ((st = scan(s, 2, LOOP_FRACTION * s->tol)) || (st = predict_budget(s))) return st;
+        size_t split;
+        if ((st = refine(s, &split))) return st;
+        if (split) continue;
+        /* The coarse estimate is satisfied: measure on the finer samples. */
+        if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->tol))) return st;
+        s->measured = 1;
+        if (s->dev <= ACCEPT_FRACTION * s->tol) return COONS_OK;
+        if ((st = refine(s, &split))) return st;
+        if (!split) break;
+    }
+    return coons__error_set(s->err, COONS_E_LIMIT,
+                            "body '%s': cannot reach tolerance %g (deviation %g remains where "
+                            "the parameter step is already %g)",
+                            s->name, s->o->tolerance, s->dev / s->scale, MIN_WIDTH);
+}
+
+static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
+{
+    coons_status fst = coons__flat_faces(s);
+    if (fst) return fst;
+    if (!s->nt)
+        return coons__error_set(s->err, COONS_E_INVALID,
+                                "body '%s' has no boundary surface: it collapses to a curve or "
+                                "a point",
+                                s->name);
+    uint32_t *map = coons__malloc_array(s->nv, sizeof(uint32_t));
+    uint32_t *tri = coons__malloc_array(s->nt, 3 * sizeof(uint32_t));
+    double *xyz = coons__malloc_array(s->nv, 3 * sizeof(double));
+    /* Parameters on request (isoparametric output with the boundary). */
+    int params = (s->o->flags & COONS__SAMPLE_PARAMS) != 0;
+    double *uvw = params ? coons__malloc_array(s->nv, 6 * sizeof(double)) : NULL;
+    coons_status st = COONS_OK;
+    if (!map || !tri || !xyz || (params && !uvw)) {
+        st = coons__error_nomem(s->err);
+        goto done;
+    }
+    if (params) { /* raw vertex parameters in uvw[3 nv ..], then compacted */
+        for (int f = 0; f < 6; f++) {
+            const face_desc *F = &FACES[f];
+            for (size_t ia = 0; ia <= s->n[F->a]; ia++)
+                for (size_t ib = 0; ib <= s->n[F->b]; ib++) {
+                    double *q = uvw + 3 * (s->nv + (size_t)lattice_id(s, f, ia, ib));
+                    q[F->fixed] = F->val;
+                    q[F->a] = s->t[F->a][ia];
+                    q[F->b] = s->t[F->b][ib];
+                }
+        }
+        /* and the Steiner points of flat faces (flat.c) */
+        for (size_t v = s->flat_v0; s->flat_uvw && v < s->nv; v++)
+            v3_copy(uvw + 3 * (s->nv + v), s->flat_uvw + 3 * (v - s->flat_v0));
+    }
+    memset(map, 0xff, s->nv * sizeof(uint32_t));
+    uint32_t nv = 0;
+    for (size_t i = 0; i < 3 * s->nt; i++) {
+        uint32_t v = s->tri[i];
+        if (map[v] == UINT32_MAX) {
+            coons__sampler_unscaled(s, v, xyz + 3 * (size_t)nv);
+            if (params) v3_copy(uvw + 3 * (size_t)nv, uvw + 3 * (s->nv + (size_t)v));
+            map[v] = nv++;
+        }
+        tri[i] = map[v];
+    }
+    size_t part = mesh->nparts;
+    st = coons__mesh_add_part_uvw(mesh, s->name, xyz, uvw, nv, tri, s->nt, s->err);
+    if (!st) {
+        coons__mesh_part *P = &mesh->parts[part];
+        P->tolerance = s->o->tolerance;
+        P->sampled = 1;
+        P->deviation = s->measured ? s->dev / s->scale : NAN;
+        for (int d = 0; d < 3; d++) P->lattice[d] = s->n[d];
+        P->glued = s->glued;
+        if (triangles) *triangles = s->nt;
+    }
+done:
+    coons__free(map);
+    coons__free(tri);
+    coons__free(xyz);
+    coons__free(uvw);
+    return st;
+}
+
+void coons__sampler_init(sampler *s, const coons_body *b, const coons__sample_opts *o,
+                         const char *name, coons_error *err)
+{
+    memset(s, 0, sizeof *s);
+    s->body = b;
+    s->o = o;
+    s->name = name ? name : "body";
+    s->err = err;
+    s->sign = 1;
+    /* A power of two near 1 / the body's extent (control box). */
+    double lo[3], hi[3], ext = 0;
+    coons_body_control_bbox(b, lo, hi);
+    for (int d = 0; d < 3; d++) ext = fmax(ext, hi[d] - lo[d]);
+    s->scale = ext > 0 && isfinite(ext) ? ldexp(1.0, -ilogb(ext)) : 1.0;
+    s->tol = o->tolerance * s->scale;
+}
+
+coons_status coons__sampler_run(sampler *s)
+{
+    /* A sampler may run again (from a new starting lattice). */
+    free_mesh(s);
+    free_lattices(s);
+    s->measured = 0;
+    s->dev = 0;
+    coons_status st = run(s);
+    return st ? st : coons__flat_faces(s);
+}
+
+void coons__sampler_free(sampler *s)
+{
+    free_mesh(s);
+    free_lattices(s);
+    coons__free(s->buf);
+    coons__free(s->bs);
+    s->buf = s->bs = NULL;
+    s->buf_cap = s->bs_cap = 0;
+}
+
+coons_status coons__body_sample_into(const coons_body *b, const coons__sample_opts *o,
+                                     const char *name, coons_mesh *mesh, size_t *triangles,
+                                     coons_error *err)
+{
+    sampler s;
+    coons__sampler_init(&s, b, o, name, err);
+    coons_status st = run(&s);
+    if (!st) st = emit(&s, mesh, triangles);
+    coons__sampler_free(&s);
+    return st;
+}
+
+coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample_opts *o,
+                                        const char *name, double *t[3], size_t n[3],
+                                        double *deviation, coons_error *err)
+{
+    sampler s;
+    coons__sampler_init(&s, b, o, name, err);
+    coons_status st = run(&s);
+    for (int d = 0; d < 3; d++) {
+        if (st == COONS_OK) {
+            t[d] = s.t[d];
+            n[d] = s.n[d];
+            s.t[d] = NULL;
+        } else {
+            t[d] = NULL;
+            n[d] = 0;
+        }
+    }
+    if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev / s.scale : NAN;
+    coons__sampler_free(&s);
+    return st;
+}
+
+coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__sample_opts *out,
+                                        coons_error *err)
+{
+    coons_sample_options def = COONS_SAMPLE_OPTIONS_INIT;
+    if (!in) in = &def;
+    if (in->version != COONS_SAMPLE_OPTIONS_VERSION)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "sample options version %u, expected %u (use "
+                                "COONS_SAMPLE_OPTIONS_INIT)",
+                                in->version, (unsigned)COONS_SAMPLE_OPTIONS_VERSION);
+    if (isnan(in->tolerance) || isinf(in->tolerance))
+        return coons__error_set(err, COONS_E_INVALID, "tolerance must be a finite number");
+    if (isnan(in->max_aspect) || (in->max_aspect != 0.0 && in->max_aspect < 1.0))
+        return coons__error_set(err, COONS_E_INVALID,
+                                "max_aspect must be 0 (default) or at least 1, not %g",
+                                in->max_aspect);
+    /* Caps the lattice so that no size computation can overflow: 2^20
+     * intervals per direction is far beyond any triangle budget. */
+    if (in->resolution > (1u << 20))
+        return coons__error_set(err, COONS_E_LIMIT, "resolution %u is above %u", in->resolution,
+                                1u << 20);
+    out->tolerance = in->tolerance;
+    out->resolution = in->resolution;
+    out->max_triangles = in->max_triangles ? in->max_triangles : COONS_MESH_MAX_TRIANGLES;
+    out->max_aspect = in->max_aspect != 0.0 ? in->max_aspect : COONS_SAMPLE_DEFAULT_MAX_ASPECT;
+    if (in->flags & ~COONS_SAMPLE_UNMEASURED)
+        return coons__error_set(err, COONS_E_INVALID, "unknown sample option flags 0x%x",
+                                in->flags & ~COONS_SAMPLE_UNMEASURED);
+    out->flags = in->flags;
+    out->max_cells = 0;
+    return COONS_OK;
+}
+
+coons_status coons_body_sample(const coons_body *b, const coons_sample_options *opts,
+                               const char *name, coons_mesh **out, coons_error *err)
+{
+    *out = NULL;
+    coons__sample_opts o;
+    coons_status st = coons__sample_opts_resolve(opts, &o, err);
+    if (st) return st;
+    if (!(o.tolerance > 0)) {
+        double lo[3], hi[3];
+        coons_body_control_bbox(b, lo, hi);
+        double d = bbox_diag(lo, hi);
+        o.tolerance = d > 0 ? 1e-3 * d : 1e-3;
+    }
+    coons_mesh *m;
+    if ((st = coons_mesh_new(&m, err))) return st;
+    if ((st = coons__body_sample_into(b, &o, name, m, NULL, err))) {
+        coons_mesh_free(m);
+        return st;
+    }
+    *out = m;
+    return COONS_OK;
+}
+
+void coons_sample_options_init(coons_sample_options *o)
+{
+    const coons_sample_options d = COONS_SAMPLE_OPTIONS_INIT;
+    if (o) *o = d;
+}

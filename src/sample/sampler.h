@@ -1,0 +1,95 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* The boundary sampler's record (sample.c), shared with the control-lattice
+ * assembler (sample_lattice.c), which samples several bodies and joins
+ * them along their shared faces by lattice index. Internal. */
+#ifndef COONS_SAMPLER_H
+#define COONS_SAMPLER_H
+
+#include "sampling.h"
+
+typedef struct face_desc {
+    int fixed, a, b; /* fixed direction; the face's (s,t) directions, a < b */
+    int flip;        /* 1 when (a,b) is clockwise seen from outside a right-handed body */
+    double val;
+    const char *name;
+} face_desc;
+
+/* u0 u1 v0 v1 w0 w1 (sample.c). */
+extern const face_desc coons__faces[6];
+
+typedef struct sampler {
+    const coons_body *body;
+    const coons__sample_opts *o;
+    const char *name;
+    coons_error *err;
+    double merge_tol;
+    double *t[3];          /* lattice values, n[d] + 1 of them, t[d][0] = 0, t[d][n] = 1 */
+    size_t n[3];           /* intervals per direction */
+    unsigned char *mark[3];/* intervals to halve */
+    double *need[3];       /* per interval: the factor by which the last scan
+                              predicts it must shrink (budget prediction) */
+    size_t nv;             /* raw lattice vertices */
+    double *pos;           /* 3 * nv */
+    uint32_t *uf;          /* union-find parents over raw vertices */
+    uint32_t *ids[6];      /* raw vertex of each face lattice point, (na+1)*(nb+1) */
+    unsigned char *diag[6];/* per cell: 0 = diagonal 00-11, 1 = diagonal 10-01 */
+    uint32_t *tri;         /* 3 * nt representative raw ids */
+    size_t nt;
+    double *buf, *bs;      /* evaluation scratch */
+    size_t buf_cap, bs_cap;
+    int glued;             /* bit d: faces d0 and d1 coincide and are left out */
+    int measured;          /* s->dev holds the final measurement */
+    double dev;            /* largest deviation found by the last scan */
+    /* Control lattices (sample_lattice.c): */
+    unsigned skip;         /* bit f: face f is shared with another body: not
+                              sampled beyond the points other faces hold,
+                              not measured, not emitted */
+    const double *start_t[3]; /* starting lattice (NULL: the body's own) */
+    size_t start_n[3];
+    int sign;              /* with skip: +1 / -1 the body's orientation */
+    unsigned char *evaluated; /* per raw vertex: its position was computed */
+    /* Scale invariance: positions are the body's points times `scale`, a
+     * power of two (exact) that makes the body's extent about 1, so that
+     * squared distances and the products of the distance tests neither
+     * overflow nor underflow at any size the format allows; `tol` is the
+     * tolerance in those units. */
+    double scale, tol;
+    /* Flat faces (flat.c): the triangles of face f are tri[face_tri[f] ..
+     * face_tri[f+1]-1] (emit_cells(), in face order); bit f of flat_faces:
+     * face f is meshed from its boundary polygon. */
+    size_t face_tri[7];
+    unsigned flat_faces;
+    /* The parameters (u,v,w) of the Steiner points of flat faces, raw
+     * vertices flat_v0 .. nv-1 (3 each; NULL when there are none). */
+    double *flat_uvw;
+    size_t flat_v0;
+    /* bit f: face f, ruled between two straight lines, is meshed as one
+     * strip of quads spanning its rulings (flat.c). */
+    unsigned ruled_faces;
+} sampler;
+
+/* Internal flag of coons__sample_opts: every face keeps its lattice
+ * triangles, also where it is flat (flat.c). */
+#define COONS__SAMPLE_LATTICE_FACES (1u << 30)
+
+
+/* A sampler for body b (name may be NULL); run it, read it, free it. */
+void coons__sampler_init(sampler *s, const coons_body *b, const coons__sample_opts *o,
+                         const char *name, coons_error *err);
+/* Adaptive (or fixed-resolution) sampling: the lattice, its mesh, the
+ * measured deviation. */
+coons_status coons__sampler_run(sampler *s);
+void coons__sampler_free(sampler *s);
+/* Raw vertex of lattice point (ia, ib) of face f. */
+static inline uint32_t coons__sampler_id(const sampler *s, int f, size_t ia, size_t ib)
+{
+    return s->ids[f][ia * (s->n[coons__faces[f].b] + 1) + ib];
+}
+
+/* The body's point of raw vertex v (positions are scaled: see `scale`). */
+static inline void coons__sampler_unscaled(const sampler *s, uint32_t v, double out[3])
+{
+    for (int d = 0; d < 3; d++) out[d] = s->pos[3 * (size_t)v + (size_t)d] / s->scale;
+}
+
+#endif

@@ -1,0 +1,47 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Private helpers shared by the C sources: allocation through the user's
+ * hooks, error recording, and small vector maths. Never installed. */
+#ifndef COONS_INTERNAL_H
+#define COONS_INTERNAL_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "coons.h"
+
+#if defined(__GNUC__)
+#define COONS__PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define COONS__PRINTF(a, b)
+#endif
+
+void *coons__malloc(size_t n);
+void *coons__calloc(size_t count, size_t size); /* zeroed, overflow-checked */
+void *coons__realloc(void *p, size_t n);
+void coons__free(void *p);
+/* malloc of count*size with overflow check; NULL on overflow or failure. */
+void *coons__malloc_array(size_t count, size_t size);
+/* Duplicate count*size bytes (NULL input or count 0 gives NULL and ok). */
+void *coons__memdup(const void *src, size_t count, size_t size);
+
+/* Records code and a formatted message in err (if not NULL) and returns code.
+ * Clears file/line/column/path. */
+coons_status coons__error_set(coons_error *err, coons_status code, const char *fmt, ...)
+    COONS__PRINTF(3, 4);
+/* Shorthand for the common out-of-memory case. */
+coons_status coons__error_nomem(coons_error *err);
+
+#include "geom.h"
+
+/* All values of an array finite? */
+int coons__all_finite(const double *a, size_t n);
+
+/* Consistency tolerance: tol > 0 is absolute, otherwise 1e-9 * diag. */
+static inline double coons__tolerance(double tol, double diag)
+{
+    if (tol > 0.0) return tol;
+    return COONS__REL_TOL * (diag > 0.0 ? diag : 1.0);
+}
+
+#endif

@@ -1,0 +1,806 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Hexahedral meshes of bodies on their (u,v,w) lattice: the interior of
+ * seed 000 (section 2: a Coons body F: [0,1]^3 -> R^3; sections 1, 2.2 and
+ * 5: "hexahedral elements" of FEM), coons_body_volume_mesh() and
+ * coons_model_volume_mesh() (coons/volume.h).
+ *
+ * The lattice along each direction is the boundary sampler's (the same
+ * intervals coons_body_sample() settles on at the tolerance, so the volume
+ * mesh's boundary is the boundary mesh's lattice) or uniform. Nodes live on
+ * the node lattice: the lattice values, plus for hex20/hex27 the interval
+ * midpoints in parameter space; each is evaluated on the exact map (one
+ * coons_body_eval_grid() call per body), so the mesh is isoparametric to
+ * the body: a cell's node k is F at the parameters of its reference
+ * position (Gmsh order, coons/volume.h).
+ *
+ * Bodies that share a face (shared_faces.c) get one lattice along the
+ * directions that face connects (share_lattices()), so the face's points
+ * are evaluated at the same parameters from both sides.
+ *
+ * Coincident nodes are one node: only boundary points of a body can
+ * coincide with another point (the map of a valid body is injective inside),
+ * so the boundary points of every body go into one hash grid of cell size
+ * `merge_tol` and points within it are joined (union-find, lower raw id
+ * stays the representative). That one rule makes collapsed edges and faces
+ * (apex, tip), closed bodies (a tube whose faces u0 and u1 coincide) and
+ * faces shared by two bodies conformal alike. The tolerance is the
+ * consistency tolerance of the model format, 1e-9 of the box diagonal,
+ * plus 64 ulps of the largest coordinate (as the sampler's).
+ *
+ * Orientation: a body whose det J is negative at most nodes is
+ * left-handed; its cells take their nodes mirrored in r (node k at the
+ * reference position (1 - r, s, t) of node k), which makes them positive.
+ * The `det_j` field keeps the body's own sign. */
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "body_impl.h"
+#include "coons_internal.h"
+#include "sampling.h"
+#include "union_find.h"
+#include "volume_impl.h"
+
+/* Doubled reference position of each Gmsh node of a hex27 (coons/volume.h);
+ * hex8 and hex20 are its first 8 and 20 rows. */
+static const unsigned char REF[27][3] = {
+    {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2},
+    {0, 2, 2}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 1, 0}, {2, 0, 1}, {1, 2, 0},
+    {2, 2, 1}, {0, 2, 1}, {1, 0, 2}, {0, 1, 2}, {2, 1, 2}, {1, 2, 2}, {1, 1, 0},
+    {1, 0, 1}, {0, 1, 1}, {2, 1, 1}, {1, 2, 1}, {1, 1, 2}, {1, 1, 1}};
+
+/* Corners of each local face (numbered as the body faces u0 .. w1). */
+static const unsigned char FACE_CORNERS[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
+                                                 {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+
+typedef struct vbody {
+    const coons_body *b;
+    const char *name;
+    double *t[3];  /* cell lattice values, n[d] + 1 of them */
+    double *L[3];  /* node lattice values, m[d] of them */
+    size_t n[3];   /* cell intervals */
+    size_t m[3];   /* node lattice points: step * n + 1 */
+    size_t base;   /* first raw id */
+    int left;      /* left-handed: cells mirrored in r */
+    double lo[3], hi[3]; /* box of its points */
+} vbody;
+
+typedef struct vbuild {
+    coons_element el;
+    int step;        /* 1 (hex8) or 2: node lattice index per cell interval */
+    size_t npc;
+    vbody *vb;
+    size_t nb;
+    size_t nraw;
+    double *pos;     /* 3 * nraw */
+    uint32_t *uf;    /* nraw */
+    uint32_t *id;    /* nraw: final node of a representative, UINT32_MAX if unused */
+    size_t nn;       /* final nodes */
+    coons_error *err;
+} vbuild;
+
+static void vbuild_free(vbuild *v)
+{
+    for (size_t i = 0; i < v->nb; i++)
+        for (int d = 0; d < 3; d++) {
+            coons__free(v->vb[i].L[d]);
+            coons__free(v->vb[i].t[d]);
+        }
+    coons__free(v->vb);
+    coons__free(v->pos);
+    coons__free(v->uf);
+    coons__free(v->id);
+}
+
+static coons_status opts_resolve(const coons_volume_options *in, coons_volume_options *out,
+                                 coons_error *err)
+{
+    coons_volume_options def = COONS_VOLUME_OPTIONS_INIT;
+    if (!in) in = &def;
+    if (in->version != COONS_VOLUME_OPTIONS_VERSION)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "volume options version %u, expected %u (use "
+                                "COONS_VOLUME_OPTIONS_INIT)",
+                                in->version, (unsigned)COONS_VOLUME_OPTIONS_VERSION);
+    *out = *in;
+    if (out->element == 0) out->element = COONS_ELEMENT_HEX8;
+    if (out->element != COONS_ELEMENT_HEX8 && out->element != COONS_ELEMENT_HEX20 &&
+        out->element != COONS_ELEMENT_HEX27)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "element kind %d: expected hex8 (8), hex20 (20) or hex27 (27)",
+                                (int)out->element);
+    int fixed = out->resolution[0] || out->resolution[1] || out->resolution[2];
+    for (int d = 0; d < 3 && fixed; d++) {
+        if (!out->resolution[d])
+            return coons__error_set(err, COONS_E_INVALID,
+                                    "resolution %u,%u,%u: every direction needs at least one "
+                                    "interval (or all 0 for the sampled lattice)",
+                                    out->resolution[0], out->resolution[1], out->resolution[2]);
+        if (out->resolution[d] > (1u << 20))
+            return coons__error_set(err, COONS_E_LIMIT, "resolution %u is above %u",
+                                    out->resolution[d], 1u << 20);
+    }
+    if (isnan(out->tolerance) || isinf(out->tolerance))
+        return coons__error_set(err, COONS_E_INVALID, "tolerance must be a finite number");
+    if (!out->max_cells) out->max_cells = COONS_VOLUME_MAX_CELLS;
+    return COONS_OK;
+}
+
+/* The cell lattice of a body: sampled or uniform. */
+static coons_status body_lattice(vbuild *v, vbody *B, const coons_volume_options *o,
+                                 double tolerance)
+{
+    double **t = B->t;
+    coons_status st = COONS_OK;
+    if (o->resolution[0]) {
+        for (int d = 0; d < 3 && !st; d++) {
+            B->n[d] = o->resolution[d];
+            t[d] = coons__malloc_array(B->n[d] + 1, sizeof(double));
+            if (!t[d]) {
+                st = coons__error_nomem(v->err);
+                break;
+            }
+            for (size_t i = 0; i <= B->n[d]; i++) t[d][i] = (double)i / (double)B->n[d];
+        }
+    } else {
+        coons__sample_opts so;
+        if ((st = coons__sample_opts_resolve(NULL, &so, v->err))) return st;
+        so.tolerance = tolerance;
+        so.max_cells = o->max_cells; /* a lattice far above it is refused at once */
+        st = coons__body_sample_lattice(B->b, &so, B->name, t, B->n, NULL, v->err);
+    }
+    return st;
+}
+
+/* The node lattice: the cell lattice, with the interval midpoints for
+ * hex20 and hex27. */
+static coons_status node_lattice(vbuild *v, vbody *B)
+{
+    double **t = B->t;
+    coons_status st = COONS_OK;
+    for (int d = 0; d < 3 && !st; d++) {
+        B->m[d] = (size_t)v->step * B->n[d] + 1;
+        B->L[d] = coons__malloc_array(B->m[d], sizeof(double));
+        if (!B->L[d]) {
+            st = coons__error_nomem(v->err);
+            break;
+        }
+        for (size_t i = 0; i < B->n[d]; i++) {
+            B->L[d][(size_t)v->step * i] = t[d][i];
+            if (v->step == 2) B->L[d][2 * i + 1] = 0.5 * (t[d][i] + t[d][i + 1]);
+        }
+        B->L[d][B->m[d] - 1] = 1.0;
+    }
+    return st;
+}
+
+/* ---- one lattice along directions that shared faces connect ----------- */
+
+/* Union-find with parity over the 3 nb directions (body i, axis d) = 3i+d:
+ * par[x] = 1 when x runs opposite to its parent (t <-> 1 - t). */
+/* Gives every set of directions that shared faces connect (in either
+ * sense) one lattice (lattice_share.c), so each body's lattice is refined,
+ * never coarsened (each still meets its tolerance). */
+static coons_status share_lattices(vbuild *v)
+{
+    if (v->nb < 2) return COONS_OK;
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    const coons_body **bodies = coons__malloc_array(v->nb, sizeof *bodies);
+    if (!bodies) return coons__error_nomem(v->err);
+    for (size_t i = 0; i < v->nb; i++) {
+        double a[3], b[3];
+        coons_body_control_bbox(v->vb[i].b, a, b);
+        bbox_add(lo, hi, a);
+        bbox_add(lo, hi, b);
+        bodies[i] = v->vb[i].b;
+    }
+    coons__shared_face *sf = NULL;
+    size_t nsf = 0;
+    coons_status st =
+        coons__find_shared_faces(bodies, v->nb, 1e-9 * bbox_diag(lo, hi), &sf, &nsf, v->err);
+    coons__free(bodies);
+    if (st || !nsf) {
+        coons__free(sf);
+        return st;
+    }
+    double **t = coons__malloc_array(3 * v->nb, sizeof *t);
+    size_t *n = coons__malloc_array(3 * v->nb, sizeof *n);
+    if (!t || !n) {
+        st = coons__error_nomem(v->err);
+    } else {
+        for (size_t x = 0; x < 3 * v->nb; x++) t[x] = v->vb[x / 3].t[x % 3], n[x] = v->vb[x / 3].n[x % 3];
+        st = coons__share_lattices(v->nb, t, n, sf, nsf, NULL, v->err);
+        /* The arrays were replaced in t (also on failure, up to it). */
+        for (size_t x = 0; x < 3 * v->nb; x++) v->vb[x / 3].t[x % 3] = t[x], v->vb[x / 3].n[x % 3] = n[x];
+    }
+    coons__free(t);
+    coons__free(n);
+    coons__free(sf);
+    return st;
+}
+
+/* Raw id of node lattice point (a, b, c) of body B (coons_body_eval_grid's
+ * order: u slowest). */
+static inline size_t raw_id(const vbody *B, size_t a, size_t b, size_t c)
+{
+    return B->base + (a * B->m[1] + b) * B->m[2] + c;
+}
+
+/* Whether a node lattice point is a node of some cell: hex20 uses corners
+ * and edge midpoints (at most one odd index), the others every point. */
+static inline int needed(const vbuild *v, size_t a, size_t b, size_t c)
+{
+    return v->el != COONS_ELEMENT_HEX20 || (a & 1) + (b & 1) + (c & 1) <= 1;
+}
+
+static coons_status evaluate(vbuild *v)
+{
+    for (size_t i = 0; i < v->nb; i++) {
+        vbody *B = &v->vb[i];
+        coons_status st = coons_body_eval_grid(B->b, B->L[0], B->m[0], B->L[1], B->m[1],
+                                               B->L[2], B->m[2], v->pos + 3 * B->base, v->err);
+        if (st) return st;
+        bbox_empty(B->lo, B->hi);
+        for (size_t a = 0; a < B->m[0]; a++)
+            for (size_t b = 0; b < B->m[1]; b++)
+                for (size_t c = 0; c < B->m[2]; c++) {
+                    const double *p = v->pos + 3 * raw_id(B, a, b, c);
+                    if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+                        return coons__error_set(v->err, COONS_E_INVALID,
+                                                "body '%s' evaluates to a point that is not "
+                                                "finite at (u,v,w) = (%g, %g, %g)",
+                                                B->name, B->L[0][a], B->L[1][b], B->L[2][c]);
+                    bbox_add(B->lo, B->hi, p);
+                }
+    }
+    return COONS_OK;
+}
+
+/* ---- merging coincident boundary points -------------------------------- */
+
+typedef struct hgrid {
+    int64_t *key;  /* 3 per slot */
+    uint32_t *head;/* first point of the slot's chain, UINT32_MAX: empty */
+    uint32_t *next;/* per raw id */
+    size_t cap;    /* power of two */
+} hgrid;
+
+static size_t hslot(const hgrid *h, const int64_t k[3])
+{
+    uint64_t x = (uint64_t)k[0] * 0x9E3779B97F4A7C15ull ^ (uint64_t)k[1] * 0xC2B2AE3D27D4EB4Full ^
+                 (uint64_t)k[2] * 0x165667B19E3779F9ull;
+    x ^= x >> 29;
+    size_t s = (size_t)x & (h->cap - 1);
+    while (h->head[s] != UINT32_MAX &&
+           (h->key[3 * s] != k[0] || h->key[3 * s + 1] != k[1] || h->key[3 * s + 2] != k[2]))
+        s = (s + 1) & (h->cap - 1);
+    return s;
+}
+
+static int is_boundary(const vbody *B, size_t a, size_t b, size_t c)
+{
+    return a == 0 || b == 0 || c == 0 || a + 1 == B->m[0] || b + 1 == B->m[1] ||
+           c + 1 == B->m[2];
+}
+
+static coons_status merge(vbuild *v)
+{
+    double lo[3], hi[3], maxabs = 0;
+    bbox_empty(lo, hi);
+    size_t nbnd = 0;
+    for (size_t i = 0; i < v->nb; i++) {
+        const vbody *B = &v->vb[i];
+        bbox_add(lo, hi, B->lo);
+        bbox_add(lo, hi, B->hi);
+        size_t inner = 1;
+        for (int d = 0; d < 3; d++) inner *= B->m[d] > 2 ? B->m[d] - 2 : 0;
+        nbnd += B->m[0] * B->m[1] * B->m[2] - inner;
+    }
+    for (int d = 0; d < 3; d++) maxabs = fmax(maxabs, fmax(fabs(lo[d]), fabs(hi[d])));
+    double tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
+    if (!(tol > 0)) tol = DBL_MIN;
+    for (size_t r = 0; r < v->nraw; r++) v->uf[r] = (uint32_t)r;
+    hgrid h = {NULL, NULL, NULL, 16};
+    while (h.cap < 2 * nbnd) h.cap *= 2;
+    h.key = coons__malloc_array(h.cap, 3 * sizeof(int64_t));
+    h.head = coons__malloc_array(h.cap, sizeof(uint32_t));
+    h.next = coons__malloc_array(v->nraw, sizeof(uint32_t));
+    if (!h.key || !h.head || !h.next) {
+        coons__free(h.key);
+        coons__free(h.head);
+        coons__free(h.next);
+        return coons__error_nomem(v->err);
+    }
+    memset(h.head, 0xff, h.cap * sizeof(uint32_t));
+    /* Cells of side 2 tol: two points within tol are in neighbouring cells. */
+    double inv = 1.0 / (2 * tol);
+    for (size_t i = 0; i < v->nb; i++) {
+        const vbody *B = &v->vb[i];
+        for (size_t a = 0; a < B->m[0]; a++)
+            for (size_t b = 0; b < B->m[1]; b++)
+                for (size_t c = 0; c < B->m[2]; c++) {
+                    if (!is_boundary(B, a, b, c) || !needed(v, a, b, c)) continue;
+                    size_t r = raw_id(B, a, b, c);
+                    const double *p = v->pos + 3 * r;
+                    int64_t k[3];
+                    for (int d = 0; d < 3; d++) k[d] = (int64_t)floor((p[d] - lo[d]) * inv);
+                    for (int dx = -1; dx <= 1; dx++)
+                        for (int dy = -1; dy <= 1; dy++)
+                            for (int dz = -1; dz <= 1; dz++) {
+                                int64_t q[3] = {k[0] + dx, k[1] + dy, k[2] + dz};
+                                size_t s = hslot(&h, q);
+                                for (uint32_t o = h.head[s]; o != UINT32_MAX; o = h.next[o]) {
+                                    const double *w = v->pos + 3 * (size_t)o;
+                                    if (fabs(w[0] - p[0]) <= tol && fabs(w[1] - p[1]) <= tol &&
+                                        fabs(w[2] - p[2]) <= tol)
+                                        coons__uf_union(v->uf, o, (uint32_t)r);
+                                }
+                            }
+                    size_t s = hslot(&h, k);
+                    if (h.head[s] == UINT32_MAX) memcpy(h.key + 3 * s, k, sizeof k);
+                    h.next[r] = h.head[s];
+                    h.head[s] = (uint32_t)r;
+                }
+    }
+    coons__free(h.key);
+    coons__free(h.head);
+    coons__free(h.next);
+    return COONS_OK;
+}
+
+/* ---- nodes, cells, fields and sets ------------------------------------- */
+
+/* Node of lattice point (a, b, c): its representative's final id. */
+static inline uint32_t node_at(const vbuild *v, const vbody *B, size_t a, size_t b, size_t c)
+{
+    return v->id[coons__uf_find(v->uf, (uint32_t)raw_id(B, a, b, c))];
+}
+
+/* The nodes of cell (i, j, k) of body B in Gmsh order (mirrored in r for a
+ * left-handed body). */
+static void cell_nodes(const vbuild *v, const vbody *B, size_t i, size_t j, size_t k,
+                       uint32_t *out)
+{
+    size_t s = (size_t)v->step;
+    for (size_t q = 0; q < v->npc; q++) {
+        size_t r = REF[q][0], t1 = REF[q][1], t2 = REF[q][2];
+        if (B->left) r = 2 - r;
+        out[q] = node_at(v, B, s * i + r * s / 2, s * j + t1 * s / 2, s * k + t2 * s / 2);
+    }
+}
+
+static size_t distinct_corners(const uint32_t *c)
+{
+    size_t n = 0;
+    for (int i = 0; i < 8; i++) {
+        int dup = 0;
+        for (int j = 0; j < i; j++) dup |= c[j] == c[i];
+        n += !dup;
+    }
+    return n;
+}
+
+/* Numbers the nodes (representatives used by some kept cell, in raw
+ * order), decides each body's handedness from det J at its nodes. */
+static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **param,
+                                 double **detj)
+{
+    memset(v->id, 0xff, v->nraw * sizeof(uint32_t));
+    /* Mark every representative some needed point maps to. */
+    for (size_t i = 0; i < v->nb; i++) {
+        const vbody *B = &v->vb[i];
+        for (size_t a = 0; a < B->m[0]; a++)
+            for (size_t b = 0; b < B->m[1]; b++)
+                for (size_t c = 0; c < B->m[2]; c++)
+                    if (needed(v, a, b, c))
+                        v->id[coons__uf_find(v->uf, (uint32_t)raw_id(B, a, b, c))] = 0;
+    }
+    size_t nn = 0;
+    for (size_t r = 0; r < v->nraw; r++)
+        if (v->id[r] == 0) v->id[r] = (uint32_t)nn++;
+    double *xyz = coons__malloc_array(nn, 3 * sizeof(double));
+    double *par = coons__malloc_array(nn, 3 * sizeof(double));
+    double *det = coons__malloc_array(nn, sizeof(double));
+    if (!xyz || !par || !det) {
+        coons__free(xyz);
+        coons__free(par);
+        coons__free(det);
+        return coons__error_nomem(v->err);
+    }
+    coons_status st = COONS_OK;
+    for (size_t i = 0; i < v->nb && !st; i++) {
+        vbody *B = &v->vb[i];
+        long sign = 0;
+        /* det J on the node lattice in slabs of u (one grid call each: the
+         * types' grid paths are many times faster than point by point). */
+        size_t plane = B->m[1] * B->m[2], slab = plane ? ((size_t)1 << 18) / plane : 1;
+        if (slab < 1) slab = 1;
+        double *dg = coons__malloc_array(slab * plane, sizeof(double));
+        if (!dg) {
+            st = coons__error_nomem(v->err);
+            break;
+        }
+        for (size_t a0 = 0; a0 < B->m[0] && !st; a0 += slab) {
+            size_t na = B->m[0] - a0 < slab ? B->m[0] - a0 : slab;
+            st = coons__body_det_grid(B->b, B->L[0] + a0, na, B->L[1], B->m[1], B->L[2], B->m[2],
+                                      dg, v->err);
+            for (size_t a = a0; a < a0 + na && !st; a++)
+                for (size_t b = 0; b < B->m[1]; b++)
+                    for (size_t c = 0; c < B->m[2]; c++) {
+                        size_t r = raw_id(B, a, b, c);
+                        if (!needed(v, a, b, c) || v->uf[r] != r) continue;
+                        uint32_t n = v->id[r];
+                        double d = dg[((a - a0) * B->m[1] + b) * B->m[2] + c];
+                        v3_copy(xyz + 3 * (size_t)n, v->pos + 3 * r);
+                        par[3 * (size_t)n] = B->L[0][a];
+                        par[3 * (size_t)n + 1] = B->L[1][b];
+                        par[3 * (size_t)n + 2] = B->L[2][c];
+                        det[n] = isfinite(d) ? d : 0.0;
+                        sign += d > 0 ? 1 : d < 0 ? -1 : 0;
+                    }
+        }
+        coons__free(dg);
+        B->left = sign < 0;
+    }
+    v->nn = nn;
+    if (!st) st = coons_volume_mesh_add_nodes(vm, xyz, nn, NULL, v->err);
+    coons__free(xyz);
+    if (st) {
+        coons__free(par);
+        coons__free(det);
+        return st;
+    }
+    *param = par;
+    *detj = det;
+    return COONS_OK;
+}
+
+static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, unsigned char **kept)
+{
+    size_t total = 0;
+    for (size_t i = 0; i < v->nb; i++) total += v->vb[i].n[0] * v->vb[i].n[1] * v->vb[i].n[2];
+    unsigned char *keep = coons__malloc_array(total ? total : 1, 1);
+    if (!keep) return coons__error_nomem(v->err);
+    size_t base = 0;
+    coons_status st = COONS_OK;
+    for (size_t i = 0; i < v->nb && !st; i++) {
+        const vbody *B = &v->vb[i];
+        size_t nc = B->n[0] * B->n[1] * B->n[2], nk = 0;
+        uint32_t *rows = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
+        if (!rows) {
+            st = coons__error_nomem(v->err);
+            break;
+        }
+        size_t q = 0;
+        for (size_t a = 0; a < B->n[0]; a++)
+            for (size_t b = 0; b < B->n[1]; b++)
+                for (size_t c = 0; c < B->n[2]; c++, q++) {
+                    uint32_t *row = rows + v->npc * nk;
+                    cell_nodes(v, B, a, b, c, row);
+                    /* Fewer than 4 distinct corners: no volume at all. */
+                    keep[base + q] = distinct_corners(row) >= 4;
+                    nk += keep[base + q];
+                }
+        if (!(st = coons_volume_mesh_add_part(vm, B->name, NULL, v->err)))
+            st = coons_volume_mesh_add_cells(vm, rows, nk, i, NULL, v->err);
+        coons__free(rows);
+        base += nc;
+    }
+    if (st) {
+        coons__free(keep);
+        return st;
+    }
+    *kept = keep;
+    return COONS_OK;
+}
+
+static coons_status add_fields(vbuild *v, coons_volume_mesh *vm, const double *par,
+                               const double *det)
+{
+    coons_status st = COONS_OK;
+    double *f = coons__malloc_array(v->nn ? v->nn : 1, sizeof(double));
+    if (!f) return coons__error_nomem(v->err);
+    static const char *names[3] = {"u", "v", "w"};
+    for (int d = 0; d < 3 && !st; d++) {
+        for (size_t n = 0; n < v->nn; n++) f[n] = par[3 * n + (size_t)d];
+        st = coons_volume_mesh_add_field(vm, COONS_FIELD_NODE, names[d], COONS_FIELD_FLOAT64, f,
+                                         v->err);
+    }
+    coons__free(f);
+    if (!st)
+        st = coons_volume_mesh_add_field(vm, COONS_FIELD_NODE, "det_j", COONS_FIELD_FLOAT64, det,
+                                         v->err);
+    size_t nc = coons_volume_mesh_cell_count(vm);
+    int32_t *body = coons__malloc_array(nc ? nc : 1, sizeof(int32_t));
+    double *sj = coons__malloc_array(nc ? nc : 1, sizeof(double));
+    if (!st && (!body || !sj)) st = coons__error_nomem(v->err);
+    if (!st) {
+        const uint32_t *part = coons_volume_mesh_cell_parts(vm);
+        for (size_t c = 0; c < nc; c++) {
+            body[c] = (int32_t)part[c];
+            sj[c] = coons_volume_mesh_cell_scaled_jacobian(vm, c, NULL);
+        }
+        st = coons_volume_mesh_add_field(vm, COONS_FIELD_CELL, "body", COONS_FIELD_INT32, body,
+                                         v->err);
+    }
+    if (!st)
+        st = coons_volume_mesh_add_field(vm, COONS_FIELD_CELL, "scaled_jacobian",
+                                         COONS_FIELD_FLOAT64, sj, v->err);
+    coons__free(body);
+    coons__free(sj);
+    return st;
+}
+
+/* Cell set per body; node and face set per body face. `keep` says which
+ * lattice cells were kept (in lattice order over all bodies). */
+static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned char *keep)
+{
+    size_t maxc = 0, maxf = 0;
+    for (size_t i = 0; i < v->nb; i++) {
+        const vbody *B = &v->vb[i];
+        maxc = B->n[0] * B->n[1] * B->n[2] > maxc ? B->n[0] * B->n[1] * B->n[2] : maxc;
+        size_t f = B->m[0] * B->m[1] + B->m[1] * B->m[2] + B->m[0] * B->m[2];
+        maxf = f > maxf ? f : maxf;
+    }
+    uint32_t *items = coons__malloc_array(2 * maxc + 2 * maxf + 2, sizeof(uint32_t));
+    uint32_t *stamp = coons__malloc_array(v->nn ? v->nn : 1, sizeof(uint32_t));
+    if (!items || !stamp) {
+        coons__free(items);
+        coons__free(stamp);
+        return coons__error_nomem(v->err);
+    }
+    memset(stamp, 0xff, (v->nn ? v->nn : 1) * sizeof(uint32_t));
+    uint32_t tag = 0;
+    coons_status st = COONS_OK;
+    size_t base = 0, cell0 = 0;
+    for (size_t i = 0; i < v->nb && !st; i++) {
+        const vbody *B = &v->vb[i];
+        size_t nc = B->n[0] * B->n[1] * B->n[2];
+        /* Kept cell number of each lattice cell of this body. */
+        size_t kept = 0;
+        for (size_t q = 0; q < nc; q++) kept += keep[base + q];
+        for (size_t q = 0; q < kept; q++) items[q] = (uint32_t)(cell0 + q);
+        st = coons_volume_mesh_add_cell_set(vm, B->name, items, kept, v->err);
+        /* A closed body's two faces along a direction that coincide point
+         * for point (a tube's seam) are inside it: their sets stay empty. */
+        int glued[3];
+        for (int ax = 0; ax < 3; ax++) {
+            glued[ax] = 1;
+            size_t m0 = B->m[(ax + 1) % 3], m1 = B->m[(ax + 2) % 3];
+            for (size_t x = 0; x < m0 && glued[ax]; x++)
+                for (size_t y = 0; y < m1 && glued[ax]; y++) {
+                    size_t p[3], q[3];
+                    p[ax] = 0;
+                    q[ax] = B->m[ax] - 1;
+                    p[(ax + 1) % 3] = q[(ax + 1) % 3] = x;
+                    p[(ax + 2) % 3] = q[(ax + 2) % 3] = y;
+                    if (!needed(v, p[0], p[1], p[2])) continue;
+                    glued[ax] = node_at(v, B, p[0], p[1], p[2]) == node_at(v, B, q[0], q[1], q[2]);
+                }
+        }
+        for (int f = 0; f < 6 && !st; f++) {
+            int ax = f / 2, hi = f % 2;
+            int lf = (B->left && ax == 0) ? 1 - hi : f; /* local face of the cell */
+            char name[COONS_VOLUME_NAME_MAX + 1];
+            snprintf(name, sizeof name, "%s.%s", B->name, coons_body_face_name(f));
+            /* Face set: cells on the face whose local face keeps 3 corners. */
+            size_t np = 0, q = 0, k = 0;
+            uint32_t row[27];
+            for (size_t a = 0; a < B->n[0]; a++)
+                for (size_t b = 0; b < B->n[1]; b++)
+                    for (size_t c = 0; c < B->n[2]; c++, q++) {
+                        if (!keep[base + q]) continue;
+                        size_t idx[3] = {a, b, c};
+                        size_t cell = cell0 + k++;
+                        if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
+                        cell_nodes(v, B, a, b, c, row);
+                        uint32_t fc[4];
+                        for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
+                        size_t nd = 0;
+                        for (int z = 0; z < 4; z++) {
+                            int dup = 0;
+                            for (int y = 0; y < z; y++) dup |= fc[y] == fc[z];
+                            nd += !dup;
+                        }
+                        if (nd < 3) continue;
+                        items[2 * np] = (uint32_t)cell;
+                        items[2 * np + 1] = (uint32_t)lf;
+                        np++;
+                    }
+            st = coons_volume_mesh_add_face_set(vm, name, items, np, v->err);
+            if (st) break;
+            /* Node set: every node on the face, once. */
+            tag++;
+            size_t nn = 0;
+            size_t m0 = B->m[(ax + 1) % 3], m1 = B->m[(ax + 2) % 3];
+            for (size_t x = 0; x < m0 && !glued[ax]; x++)
+                for (size_t y = 0; y < m1; y++) {
+                    size_t p[3];
+                    p[ax] = hi ? B->m[ax] - 1 : 0;
+                    p[(ax + 1) % 3] = x;
+                    p[(ax + 2) % 3] = y;
+                    if (!needed(v, p[0], p[1], p[2])) continue;
+                    uint32_t n = node_at(v, B, p[0], p[1], p[2]);
+                    if (n == UINT32_MAX || stamp[n] == tag) continue;
+                    stamp[n] = tag;
+                    items[nn++] = n;
+                }
+            st = coons_volume_mesh_add_node_set(vm, name, items, nn, v->err);
+        }
+        base += nc;
+        cell0 += kept;
+    }
+    coons__free(items);
+    coons__free(stamp);
+    return st;
+}
+
+/* ---- conformity between bodies ----------------------------------------- */
+
+/* Whether face f of body A (its node set) lies entirely on nodes of body
+ * B's boundary (marked in `mark`). */
+static coons_status check_conformal(vbuild *v, const coons_volume_mesh *vm)
+{
+    if (v->nb < 2) return COONS_OK;
+    unsigned char *mark = coons__calloc(v->nn ? v->nn : 1, 1);
+    if (!mark) return coons__error_nomem(v->err);
+    coons_status st = COONS_OK;
+    for (size_t i = 0; i < v->nb && !st; i++)
+        for (size_t j = i + 1; j < v->nb && !st; j++) {
+            const vbody *A = &v->vb[i], *B = &v->vb[j];
+            double g = 1e-9 * fmax(bbox_diag(A->lo, A->hi), bbox_diag(B->lo, B->hi));
+            int apart = 0;
+            for (int d = 0; d < 3; d++)
+                apart |= A->lo[d] > B->hi[d] + g || B->lo[d] > A->hi[d] + g;
+            if (apart) continue;
+            /* Mark B's face nodes; look for a face of A wholly on them. */
+            memset(mark, 0, v->nn ? v->nn : 1);
+            for (int f = 0; f < 6; f++) {
+                const uint32_t *items;
+                size_t cnt;
+                coons_volume_mesh_node_set(vm, 6 * j + (size_t)f, &items, &cnt);
+                for (size_t z = 0; z < cnt; z++) mark[items[z]] = 1;
+            }
+            int shared = 0;
+            for (int f = 0; f < 6 && !shared; f++) {
+                const uint32_t *items;
+                size_t cnt;
+                coons_volume_mesh_node_set(vm, 6 * i + (size_t)f, &items, &cnt);
+                size_t on = 0;
+                for (size_t z = 0; z < cnt; z++) on += mark[items[z]];
+                shared = cnt >= 3 && on == cnt;
+            }
+            if (!shared)
+                st = coons__error_set(v->err, COONS_E_UNSUPPORTED,
+                                      "bodies '%s' and '%s' overlap or touch without sharing "
+                                      "a whole face: a conformal volume mesh needs bodies that "
+                                      "meet only along whole shared faces",
+                                      A->name, B->name);
+        }
+    coons__free(mark);
+    return st;
+}
+
+/* ---- entry points -------------------------------------------------------- */
+
+static coons_status build(vbuild *v, const coons_volume_options *o, double tolerance,
+                          coons_volume_mesh **out)
+{
+    coons_status st = COONS_OK;
+    size_t cells = 0;
+    for (size_t i = 0; i < v->nb && !st; i++) st = body_lattice(v, &v->vb[i], o, tolerance);
+    if (!st) st = share_lattices(v);
+    for (size_t i = 0; i < v->nb && !st; i++) {
+        vbody *B = &v->vb[i];
+        if ((st = node_lattice(v, B))) break;
+        size_t c = B->n[0] * B->n[1] * B->n[2];
+        cells += c;
+        if (cells > o->max_cells)
+            return coons__error_set(v->err, COONS_E_LIMIT,
+                                    "the volume mesh would have %zu cells or more (body '%s': "
+                                    "%zu x %zu x %zu), above the limit of %zu",
+                                    cells, B->name, B->n[0], B->n[1], B->n[2], o->max_cells);
+        B->base = v->nraw;
+        size_t raw = B->m[0] * B->m[1] * B->m[2];
+        if (raw > (size_t)UINT32_MAX - 1 - v->nraw)
+            return coons__error_set(v->err, COONS_E_LIMIT,
+                                    "the volume mesh would have more than %lu nodes",
+                                    (unsigned long)UINT32_MAX - 1);
+        v->nraw += raw;
+    }
+    if (st) return st;
+    v->pos = coons__malloc_array(v->nraw, 3 * sizeof(double));
+    v->uf = coons__malloc_array(v->nraw, sizeof(uint32_t));
+    v->id = coons__malloc_array(v->nraw, sizeof(uint32_t));
+    if (!v->pos || !v->uf || !v->id) return coons__error_nomem(v->err);
+    if ((st = evaluate(v)) || (st = merge(v))) return st;
+    coons_volume_mesh *vm;
+    if ((st = coons_volume_mesh_new(v->el, &vm, v->err))) return st;
+    double *par = NULL, *det = NULL;
+    unsigned char *keep = NULL;
+    st = number_nodes(v, vm, &par, &det);
+    if (!st) st = add_cells(v, vm, &keep);
+    if (!st) st = add_fields(v, vm, par, det);
+    if (!st) st = add_sets(v, vm, keep);
+    if (!st) st = check_conformal(v, vm);
+    coons__free(par);
+    coons__free(det);
+    coons__free(keep);
+    if (st) {
+        coons_volume_mesh_free(vm);
+        return st;
+    }
+    *out = vm;
+    return COONS_OK;
+}
+
+static coons_status run(const coons_body *const *bodies, const char *const *names, size_t nb,
+                        const coons_volume_options *opts, double tolerance,
+                        coons_volume_mesh **out, coons_error *err)
+{
+    coons_volume_options o;
+    coons_status st = opts_resolve(opts, &o, err);
+    if (st) return st;
+    if (o.tolerance > 0) tolerance = o.tolerance;
+    vbuild v;
+    memset(&v, 0, sizeof v);
+    v.el = o.element;
+    v.npc = (size_t)o.element;
+    v.step = o.element == COONS_ELEMENT_HEX8 ? 1 : 2;
+    v.err = err;
+    v.vb = coons__calloc(nb ? nb : 1, sizeof(vbody));
+    if (!v.vb) return coons__error_nomem(err);
+    v.nb = nb;
+    for (size_t i = 0; i < nb; i++) {
+        v.vb[i].b = bodies[i];
+        v.vb[i].name = names[i];
+    }
+    st = build(&v, &o, tolerance, out);
+    vbuild_free(&v);
+    return st;
+}
+
+void coons_volume_options_init(coons_volume_options *o)
+{
+    const coons_volume_options d = COONS_VOLUME_OPTIONS_INIT;
+    if (o) *o = d;
+}
+
+coons_status coons_body_volume_mesh(const coons_body *b, const coons_volume_options *opts,
+                                    const char *name, coons_volume_mesh **out,
+                                    coons_error *err)
+{
+    if (!out) return coons__error_set(err, COONS_E_INVALID, "no output pointer given");
+    *out = NULL;
+    if (!b) return coons__error_set(err, COONS_E_INVALID, "no body given");
+    double lo[3], hi[3];
+    coons_body_control_bbox(b, lo, hi);
+    double d = bbox_diag(lo, hi);
+    const char *nm = name ? name : "body0";
+    return run(&b, &nm, 1, opts, d > 0 ? 1e-3 * d : 1e-3, out, err);
+}
+
+coons_status coons_model_volume_mesh(const coons_model *m, const coons_volume_options *opts,
+                                     coons_volume_mesh **out, coons_error *err)
+{
+    if (!out) return coons__error_set(err, COONS_E_INVALID, "no output pointer given");
+    *out = NULL;
+    if (!m) return coons__error_set(err, COONS_E_INVALID, "no model given");
+    size_t nb = coons_model_body_count(m);
+    const coons_body **bodies = coons__malloc_array(nb ? nb : 1, sizeof *bodies);
+    const char **names = coons__malloc_array(nb ? nb : 1, sizeof *names);
+    coons_status st;
+    if (!bodies || !names) {
+        st = coons__error_nomem(err);
+    } else {
+        for (size_t i = 0; i < nb; i++) {
+            bodies[i] = coons_model_body(m, i);
+            names[i] = coons_model_body_name(m, i);
+        }
+        st = run(bodies, names, nb, opts, coons_model_tolerance(m), out, err);
+    }
+    coons__free(bodies);
+    coons__free(names);
+    return st;
+}
