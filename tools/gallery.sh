@@ -1,6 +1,6 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Renders the README's gallery: seed 000's Figs. 2-9 made from coons2stl's
+# Renders the gallery (docs/gallery.md): seed 000's Figs. 2-9 made from coons2stl's
 # own output by a real renderer, OpenSCAD's preview under a virtual X server
 # (xvfb-run), as small PNGs in examples/img/:
 #

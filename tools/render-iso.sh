@@ -1,6 +1,6 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Renders the isoparametric-surface pictures of the README (seed 000 Fig. 4
+# Renders the isoparametric-surface pictures of docs/gallery.md (seed 000 Fig. 4
 # and 6: the same outer shape, a different interior "density"):
 #
 #     tools/render-iso.sh [BUILD_DIR]      (default: build)

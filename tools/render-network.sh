@@ -1,6 +1,6 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Renders the network pictures of the README (seed 001 Fig. 1.3 and the
+# Renders the network pictures of docs/gallery.md (seed 001 Fig. 1.3 and the
 # hood panel):
 #
 #     tools/render-network.sh [BUILD_DIR]      (default: build)

@@ -4,7 +4,7 @@
 
 With lib3mf built in (COONS_WITH_LIB3MF in the build's CMakeCache.txt):
 - PrusaSlicer's `--info` reads the spool (examples/spool.json): manifold,
-  nothing repaired, 12 mm across (the README's figure) and 10 mm high, the
+  nothing repaired, 12 mm across (examples/README.md) and 10 mm high, the
   same volume as the binary STL of the same run (read here);
 - the `operation: none` example with three bodies gives three objects
   (PrusaSlicer lists three), the first the body0 box of corners

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The README gallery (tools/gallery.sh): seed 000's figures rendered by the
+"""The gallery (docs/gallery.md, made by tools/gallery.sh): seed 000's figures rendered by the
 real OpenSCAD (preview, under xvfb-run) from coons2stl's output.
 
 - `gallery.sh --list` names every picture with an existing example model
@@ -12,7 +12,7 @@ real OpenSCAD (preview, under xvfb-run) from coons2stl's output.
   (the colour of the corners) and none of them touching the border
   (--viewall keeps the model inside the picture);
 - every picture committed in examples/img/ is such a PNG, under 60 kB, and
-  the README shows it with its model file and its coons2stl command.
+  docs/gallery.md shows it with its model file and its coons2stl command.
 
 Usage: test_gallery.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -141,8 +141,8 @@ def main():
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
-    with open(os.path.join(r.src, "README.md"), encoding="utf-8") as f:
-        readme = f.read()
+    with open(os.path.join(r.src, "docs", "gallery.md"), encoding="utf-8") as f:
+        gallery = f.read()
     for name, model, args, fig in pics:
         path = os.path.join(r.src, "examples", "img", name + ".png")
         if not r.check(f"examples/img/{name}.png is committed", os.path.exists(path)):
@@ -152,8 +152,8 @@ def main():
         check_png(r, f"examples/img/{name}.png", path)
         cmd = " ".join(["coons2stl", f"examples/{model}"] + args.split() +
                        ["-o", f"{name}.scad"])
-        r.check(f"README shows {name}.png with `{cmd}`",
-                f"(examples/img/{name}.png)" in readme and f"`{cmd}`" in readme)
+        r.check(f"docs/gallery.md shows {name}.png with `{cmd}`",
+                f"(../examples/img/{name}.png)" in gallery and f"`{cmd}`" in gallery)
     r.finish()
 
 

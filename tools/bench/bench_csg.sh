@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Union benchmark, all in one run (README "Benchmarks"): three overlapping
+# Union benchmark, all in one run (BENCHMARKS.md): three overlapping
 # bodies (spool, nail, deformed cube) sampled at about 100k triangles each,
 #  1. libcoons: model file -> sampled shells -> repair + union (CGAL) ->
 #     binary STL (bench_csg --model-path, minimum of 3 runs), on 1 and on 2

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Free-form deformation benchmark (issue 12, README "Free-form deformation"):
+# Free-form deformation benchmark (issue 12, BENCHMARKS.md):
 # a unit cube whose faces are N x N grids of squares, two triangles each
 # (default N = 289: 1 002 252 triangles, a 50 MB binary STL), deformed
 #  1. through the spool (examples/spool.json, a body 2 of NURBS faces) at the

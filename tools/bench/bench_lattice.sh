@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Control-lattice benchmark (issue 11, README "Benchmarks"), all in one run:
+# Control-lattice benchmark (issue 11, BENCHMARKS.md), all in one run:
 # two structured lattices of N x N x N cells (default N = 10: 1000 bodies),
 #  a. body 0 cells on one lattice of points (10 mm cells, inner points moved:
 #     they share faces by equal corners),

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Meshing + writing benchmark, all in one run (README "Benchmarks"):
+# Meshing + writing benchmark, all in one run (BENCHMARKS.md):
 #  1. bench_mesh: sample one body (cubic Bezier volume, fixed lattice, 12 N^2
 #     triangles) and write binary STL, next to the I/O floor (the same number
 #     of bytes written to the same directory; both with temp file, fsync and

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Volume-mesh benchmark (issue 10, README "Benchmarks"), all in one run:
+# Volume-mesh benchmark (issue 10, BENCHMARKS.md), all in one run:
 #  1. coons2stl: a body 2 whose six faces are bicubic B-spline surfaces
 #     (5 x 5 control points each: the boundary nets of a curved 5 x 5 x 5
 #     control lattice, so the faces agree along their edges) meshed into
