@@ -32,6 +32,17 @@ coons_status coons__error_set(coons_error *err, coons_status code, const char *f
 /* Shorthand for the common out-of-memory case. */
 coons_status coons__error_nomem(coons_error *err);
 
+/* COONS_E_INVALID, with the one wording of records.c, unless `version` (of
+ * the record named `record`, e.g. "sample options") lies in [oldest,
+ * current]; `init` names the record's INIT macro. COONS__RECORD_CHECK(err,
+ * "sample options", o->version, COONS_SAMPLE_OPTIONS) is the usual call, for
+ * a record that knows one version. */
+coons_status coons__record_version_check(const char *record, unsigned version, unsigned oldest,
+                                         unsigned current, const char *init, coons_error *err);
+#define COONS__RECORD_CHECK(err, record, version, PREFIX)                                         \
+    coons__record_version_check(record, version, PREFIX##_VERSION, PREFIX##_VERSION,               \
+                                #PREFIX "_INIT", err)
+
 /* Small double[3] maths. */
 static inline void v3_set(double o[3], double x, double y, double z) { o[0] = x; o[1] = y; o[2] = z; }
 static inline void v3_copy(double o[3], const double a[3]) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
