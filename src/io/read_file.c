@@ -13,11 +13,7 @@
 
 #include "io/read_file.h"
 
-/* An error about the file as a whole: "path: message", err->file the path
- * (cut to fit), no line, column or JSON path. */
-static coons_status file_error(coons_error *err, coons_status code, const char *path,
-                               const char *fmt, ...) COONS__PRINTF(4, 5);
-static coons_status file_error(coons_error *err, coons_status code, const char *path,
+coons_status coons__file_error(coons_error *err, coons_status code, const char *path,
                                const char *fmt, ...)
 {
     if (!err) return code;
@@ -36,7 +32,7 @@ static coons_status io_error(coons_error *err, const char *path, const char *ver
 {
     char buf[256] = "unknown error";
     if (errnum) (void)strerror_r(errnum, buf, sizeof buf);
-    return file_error(err, COONS_E_IO, path, "cannot %s the %s: %s", verb, what, buf);
+    return coons__file_error(err, COONS_E_IO, path, "cannot %s the %s: %s", verb, what, buf);
 }
 
 /* Reads all of f, at most max_bytes + 1 bytes; cap: the first guess of the
@@ -71,7 +67,7 @@ static coons_status read_all(FILE *f, const char *path, const char *what, const 
     if (bad)
         rc = io_error(err, path, "read", what, errnum);
     else if (len > max_bytes) /* not a regular file, or one that grew */
-        rc = file_error(err, COONS_E_LIMIT, path, "the %s is more than %zu bytes, the limit (%s)",
+        rc = coons__file_error(err, COONS_E_LIMIT, path, "the %s is more than %zu bytes, the limit (%s)",
                         what, max_bytes, hint);
     if (rc) {
         coons__free(buf);
@@ -95,7 +91,7 @@ coons_status coons__read_file(const char *path, const char *what, const char *hi
     if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
         if ((uintmax_t)st.st_size > max_bytes) {
             fclose(f);
-            return file_error(err, COONS_E_LIMIT, path,
+            return coons__file_error(err, COONS_E_LIMIT, path,
                               "the %s is %jd bytes, above the limit of %zu bytes (%s)", what,
                               (intmax_t)st.st_size, max_bytes, hint);
         }

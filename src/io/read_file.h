@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Reading a whole input file under a size limit (read_file.c), shared by the
- * model loader (json/load.c) and the mesh reader (read/mesh_read.c). */
+/* Reading a whole input file under a size limit, and errors about a file as
+ * a whole (read_file.c), shared by the model loader (json/load.c) and the
+ * mesh reader (read/mesh_read.c). */
 #ifndef COONS_IO_READ_FILE_H
 #define COONS_IO_READ_FILE_H
 
@@ -15,6 +16,10 @@
  * Errors about the file as a whole: the message starts with the path, which
  * also goes to err->file. COONS_E_IO (cannot open, cannot read),
  * COONS_E_LIMIT, COONS_E_NOMEM. */
+/* An error about a file as a whole: "path: message" in err, err->file the
+ * path (cut to fit), no line, column or JSON path; returns code. */
+coons_status coons__file_error(coons_error *err, coons_status code, const char *path,
+                               const char *fmt, ...) COONS__PRINTF(4, 5);
 coons_status coons__read_file(const char *path, const char *what, const char *hint, size_t max_bytes,
                               unsigned char **out, size_t *len, coons_error *err);
 

@@ -5,7 +5,6 @@
  * the limits, reading the file, and errors about the file as a whole; the
  * model itself is read by read_model.c (loader.h).
  */
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -25,23 +24,6 @@ static void resolve(const coons_model_load_options *o, coons_model_load_options 
     *r = d;
 }
 
-/* An error about the file as a whole: no line, column or path. */
-static coons_status file_error(coons_error *err, coons_status code, const char *file,
-                               const char *fmt, ...) COONS__PRINTF(4, 5);
-static coons_status file_error(coons_error *err, coons_status code, const char *file,
-                               const char *fmt, ...)
-{
-    if (!err) return code;
-    char msg[COONS_ERROR_MESSAGE_MAX];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    coons__error_set(err, code, "%s: %s", file, msg);
-    coons__ld_copy_trunc(err->file, sizeof err->file, file);
-    return code;
-}
-
 coons_status coons_model_load_memory(const char *data, size_t size, const char *name,
                                      const coons_model_load_options *opts,
                                      coons_model **out, coons_error *err)
@@ -49,13 +31,13 @@ coons_status coons_model_load_memory(const char *data, size_t size, const char *
     if (out) *out = NULL;
     const char *file = name ? name : "<buffer>";
     if (!out || (!data && size))
-        return file_error(err, COONS_E_INVALID, file, "no data or no place for the model");
+        return coons__file_error(err, COONS_E_INVALID, file, "no data or no place for the model");
     coons_status vrc = coons__model_load_options_check(opts, err);
     if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     if (size > o.max_bytes)
-        return file_error(err, COONS_E_LIMIT, file,
+        return coons__file_error(err, COONS_E_LIMIT, file,
                           "the model is %zu bytes, above the limit of %zu bytes (raise "
                           "max_bytes; coons2stl --max-bytes N)",
                           size, o.max_bytes);
@@ -95,7 +77,7 @@ coons_status coons_model_load_file(const char *path, const coons_model_load_opti
                                    coons_model **out, coons_error *err)
 {
     if (out) *out = NULL;
-    if (!path || !out) return file_error(err, COONS_E_INVALID, "?", "no file name");
+    if (!path || !out) return coons__file_error(err, COONS_E_INVALID, "?", "no file name");
     coons_status vrc = coons__model_load_options_check(opts, err);
     if (vrc) return vrc;
     coons_model_load_options o;
