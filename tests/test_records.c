@@ -124,6 +124,15 @@ static coons_model *cube(void)
     return m;
 }
 
+/* The model's boundary mesh. */
+static coons_mesh *sampled(const coons_model *m)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh = NULL;
+    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    return mesh;
+}
+
 static void test_sample_options_version(void **state)
 {
     (void)state;
@@ -153,8 +162,7 @@ static void test_write_options_version(void **state)
     (void)state;
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *mesh = NULL;
-    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    coons_mesh *mesh = sampled(m);
     char path[64];
     snprintf(path, sizeof path, "records-%ld.stl", (long)getpid());
     for (int k = 0; k < 2; k++) {
@@ -179,8 +187,7 @@ static void test_csg_records_version(void **state)
     (void)state;
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *mesh = NULL;
-    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    coons_mesh *mesh = sampled(m);
     for (int k = 0; k < 2; k++) {
         coons_csg_options o = COONS_CSG_OPTIONS_INIT;
         o.version = wrong_version(COONS_CSG_OPTIONS_VERSION, k);
@@ -273,8 +280,7 @@ static void test_mesh_report_version(void **state)
     (void)state;
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *mesh = NULL;
-    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    coons_mesh *mesh = sampled(m);
     for (int k = 0; k < 2; k++) {
         coons_mesh_report r = COONS_MESH_REPORT_INIT;
         r.version = wrong_version(COONS_MESH_REPORT_VERSION, k);
@@ -350,8 +356,7 @@ static void test_deform_report_version(void **state)
     (void)state;
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *mesh = NULL;
-    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    coons_mesh *mesh = sampled(m);
     const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     for (int k = 0; k < 2; k++) {
         coons_deform_report r = COONS_DEFORM_REPORT_INIT;
