@@ -380,6 +380,33 @@ static void test_alloc_failures(void **state)
     }
 }
 
+/* A file that is not a regular one cannot be measured first: reading stops
+ * one byte past the limit (the model loader shares this reader). */
+static void test_stream_limit(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *m = NULL;
+    coons_mesh_read_options o = COONS_MESH_READ_OPTIONS_INIT;
+    o.max_bytes = 100;
+    assert_int_equal(coons_mesh_read_file("/dev/zero", &o, &m, &err), COONS_E_LIMIT);
+    assert_string_equal(err.message,
+                        "/dev/zero: the mesh is more than 100 bytes, the limit (max_bytes)");
+    assert_string_equal(err.file, "/dev/zero");
+    assert_null(m);
+    coons_model_load_options lo = COONS_MODEL_LOAD_OPTIONS_INIT;
+    lo.max_bytes = 100;
+    coons_model *model = NULL;
+    assert_int_equal(coons_model_load_file("/dev/zero", &lo, &model, &err), COONS_E_LIMIT);
+    assert_string_equal(err.message, "/dev/zero: the model is more than 100 bytes, the limit "
+                                     "(raise max_bytes; coons2stl --max-bytes N)");
+    assert_null(model);
+    assert_int_equal(coons_mesh_read_file("no-such-dir/none.stl", NULL, &m, &err), COONS_E_IO);
+    assert_string_equal(err.message,
+                        "no-such-dir/none.stl: cannot open the mesh: No such file or directory");
+    assert_string_equal(err.file, "no-such-dir/none.stl");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -387,6 +414,7 @@ int main(void)
         cmocka_unit_test(test_ascii),      cmocka_unit_test(test_ascii_errors),
         cmocka_unit_test(test_off),        cmocka_unit_test(test_off_errors),
         cmocka_unit_test(test_file),       cmocka_unit_test(test_alloc_failures),
+        cmocka_unit_test(test_stream_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,7 +2,8 @@
 /* The options and report records of the public headers: each _init()
  * function gives exactly its _INIT macro (for language bindings), and every
  * function that takes a record refuses another version with
- * COONS_E_INVALID and a message naming the record, before doing anything. */
+ * COONS_E_INVALID and the one message of every record ("<record> version N,
+ * expected M (use <INIT macro>)"), before doing anything. */
 #define _XOPEN_SOURCE 700
 #include <stdio.h>
 #include <string.h>
@@ -99,14 +100,21 @@ static const char MODEL[] =
 /* The versions a caller might wrongly pass for a record of version v. */
 static unsigned wrong_version(unsigned v, int k) { return k == 0 ? 0u : v + (unsigned)k; }
 
-/* st is COONS_E_INVALID and the message names `what` and a version. */
-static void assert_refused(coons_status st, const coons_error *err, const char *what)
+/* st is COONS_E_INVALID and the message is the one wording of every record:
+ * "<what> version <given>, expected <current> (use <INIT macro>)". */
+static void assert_refused_as(coons_status st, const coons_error *err, const char *what,
+                              unsigned given, unsigned current, const char *init)
 {
     if (st != COONS_E_INVALID) fail_msg("%s: status %d (%s), not COONS_E_INVALID", what, st, err->message);
     assert_int_equal(err->code, COONS_E_INVALID);
-    if (!strstr(err->message, what) || !strstr(err->message, "version"))
-        fail_msg("message \"%s\" does not name \"%s\" and its version", err->message, what);
+    char want[256];
+    snprintf(want, sizeof want, "%s version %u, expected %u (use %s)", what, given, current, init);
+    if (strcmp(err->message, want) != 0)
+        fail_msg("message \"%s\", expected \"%s\"", err->message, want);
 }
+/* assert_refused_as() for the record COONS_<PREFIX>, given version v. */
+#define assert_refused(st, err, what, v, PREFIX)                                                   \
+    assert_refused_as(st, err, what, v, PREFIX##_VERSION, #PREFIX "_INIT")
 
 static coons_model *cube(void)
 {
@@ -114,6 +122,15 @@ static coons_model *cube(void)
     coons_model *m = NULL;
     assert_coons_ok(coons_model_load_memory(MODEL, sizeof MODEL - 1, "cube", NULL, &m, &err), &err);
     return m;
+}
+
+/* The model's boundary mesh. */
+static coons_mesh *sampled(const coons_model *m)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh = NULL;
+    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    return mesh;
 }
 
 static void test_sample_options_version(void **state)
@@ -126,13 +143,15 @@ static void test_sample_options_version(void **state)
         coons_error err = COONS_ERROR_INIT;
         coons_mesh *out = (coons_mesh *)m;
         assert_refused(coons_body_sample(coons_model_body(m, 0), &o, "b", &out, &err), &err,
-                       "sample options");
+                       "sample options", o.version, COONS_SAMPLE_OPTIONS);
         assert_null(out);
         out = (coons_mesh *)m;
-        assert_refused(coons_model_sample(m, &o, &out, &err), &err, "sample options");
+        assert_refused(coons_model_sample(m, &o, &out, &err), &err, "sample options", o.version,
+                       COONS_SAMPLE_OPTIONS);
         assert_null(out);
         out = (coons_mesh *)m;
-        assert_refused(coons_model_solidify(m, &o, NULL, &out, NULL, &err), &err, "sample options");
+        assert_refused(coons_model_solidify(m, &o, NULL, &out, NULL, &err), &err, "sample options",
+                       o.version, COONS_SAMPLE_OPTIONS);
         assert_null(out);
     }
     coons_model_free(m);
@@ -143,20 +162,19 @@ static void test_write_options_version(void **state)
     (void)state;
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *mesh = NULL;
-    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    coons_mesh *mesh = sampled(m);
     char path[64];
     snprintf(path, sizeof path, "records-%ld.stl", (long)getpid());
     for (int k = 0; k < 2; k++) {
         coons_write_options o = COONS_WRITE_OPTIONS_INIT;
         o.version = wrong_version(COONS_WRITE_OPTIONS_VERSION, k);
         assert_refused(coons_mesh_write(mesh, path, COONS_FORMAT_STL_BINARY, &o, &err), &err,
-                       "write options");
+                       "write options", o.version, COONS_WRITE_OPTIONS);
         assert_int_equal(access(path, F_OK), -1); /* nothing created */
         FILE *fp = tmpfile();
         assert_non_null(fp);
         assert_refused(coons_mesh_write_stream(mesh, fp, COONS_FORMAT_OFF, &o, &err), &err,
-                       "write options");
+                       "write options", o.version, COONS_WRITE_OPTIONS);
         assert_int_equal(ftell(fp), 0);
         fclose(fp);
     }
@@ -169,17 +187,18 @@ static void test_csg_records_version(void **state)
     (void)state;
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *mesh = NULL;
-    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    coons_mesh *mesh = sampled(m);
     for (int k = 0; k < 2; k++) {
         coons_csg_options o = COONS_CSG_OPTIONS_INIT;
         o.version = wrong_version(COONS_CSG_OPTIONS_VERSION, k);
         coons_csg_report r = COONS_CSG_REPORT_INIT;
         coons_mesh *out = mesh;
-        assert_refused(coons_mesh_solidify(mesh, &o, &out, &r, &err), &err, "csg options");
+        assert_refused(coons_mesh_solidify(mesh, &o, &out, &r, &err), &err, "csg options", o.version,
+                       COONS_CSG_OPTIONS);
         assert_null(out);
         out = mesh;
-        assert_refused(coons_model_solidify(m, NULL, &o, &out, &r, &err), &err, "csg options");
+        assert_refused(coons_model_solidify(m, NULL, &o, &out, &r, &err), &err, "csg options",
+                       o.version, COONS_CSG_OPTIONS);
         assert_null(out);
         assert_int_equal(r.version, COONS_CSG_REPORT_VERSION);
 
@@ -187,10 +206,12 @@ static void test_csg_records_version(void **state)
         bad.version = wrong_version(COONS_CSG_REPORT_VERSION, k);
         bad.triangles_in = 7;
         out = mesh;
-        assert_refused(coons_mesh_solidify(mesh, NULL, &out, &bad, &err), &err, "csg report");
+        assert_refused(coons_mesh_solidify(mesh, NULL, &out, &bad, &err), &err, "csg report",
+                       bad.version, COONS_CSG_REPORT);
         assert_null(out);
         out = mesh;
-        assert_refused(coons_model_solidify(m, NULL, NULL, &out, &bad, &err), &err, "csg report");
+        assert_refused(coons_model_solidify(m, NULL, NULL, &out, &bad, &err), &err, "csg report",
+                       bad.version, COONS_CSG_REPORT);
         assert_null(out);
         assert_int_equal(bad.triangles_in, 7); /* untouched */
     }
@@ -224,10 +245,11 @@ static void test_model_load_options_version(void **state)
         coons_error err = COONS_ERROR_INIT;
         coons_model *m = (coons_model *)&o;
         assert_refused(coons_model_load_memory(MODEL, sizeof MODEL - 1, "cube", &o, &m, &err),
-                       &err, "model load options");
+                       &err, "model load options", o.version, COONS_MODEL_LOAD_OPTIONS);
         assert_null(m);
         m = (coons_model *)&o;
-        assert_refused(coons_model_load_file(path, &o, &m, &err), &err, "model load options");
+        assert_refused(coons_model_load_file(path, &o, &m, &err), &err, "model load options",
+                       o.version, COONS_MODEL_LOAD_OPTIONS);
         assert_null(m);
     }
     coons_model_load_options o = COONS_MODEL_LOAD_OPTIONS_INIT;
@@ -247,7 +269,8 @@ static void test_hermite_options_version(void **state)
         coons_error err = COONS_ERROR_INIT;
         coons_patch *p = (coons_patch *)&o;
         /* the version is checked before the boundary is looked at */
-        assert_refused(coons_patch_new_hermite_coons(NULL, &o, &p, &err), &err, "options version");
+        assert_refused(coons_patch_new_hermite_coons(NULL, &o, &p, &err), &err,
+                       "hermite-coons options", o.version, COONS_HERMITE_OPTIONS);
         assert_null(p);
     }
 }
@@ -257,13 +280,92 @@ static void test_mesh_report_version(void **state)
     (void)state;
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
-    coons_mesh *mesh = NULL;
-    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    coons_mesh *mesh = sampled(m);
     for (int k = 0; k < 2; k++) {
         coons_mesh_report r = COONS_MESH_REPORT_INIT;
         r.version = wrong_version(COONS_MESH_REPORT_VERSION, k);
-        assert_refused(coons_mesh_check(mesh, &r, &err), &err, "mesh report");
+        assert_refused(coons_mesh_check(mesh, &r, &err), &err, "mesh report", r.version,
+                       COONS_MESH_REPORT);
         assert_int_equal(r.triangles, 0);
+    }
+    coons_mesh_free(mesh);
+    coons_model_free(m);
+}
+
+static void test_network_options_version(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        coons_network_options o = COONS_NETWORK_OPTIONS_INIT;
+        o.version = wrong_version(COONS_NETWORK_OPTIONS_VERSION, k);
+        coons_error err = COONS_ERROR_INIT;
+        coons_patch *p = (coons_patch *)&o;
+        /* the version is checked before the curves are looked at */
+        assert_refused(coons_patch_new_network(NULL, 0, NULL, 0, &o, &p, &err), &err,
+                       "network options", o.version, COONS_NETWORK_OPTIONS);
+        assert_null(p);
+    }
+}
+
+static void test_mesh_read_options_version(void **state)
+{
+    (void)state;
+    static const char OFF[] = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    for (int k = 0; k < 2; k++) {
+        coons_mesh_read_options o = COONS_MESH_READ_OPTIONS_INIT;
+        o.version = wrong_version(COONS_MESH_READ_OPTIONS_VERSION, k);
+        coons_error err = COONS_ERROR_INIT;
+        coons_mesh *m = (coons_mesh *)&o;
+        assert_refused(coons_mesh_read_memory(OFF, sizeof OFF - 1, "t.off", &o, &m, &err), &err,
+                       "mesh read options", o.version, COONS_MESH_READ_OPTIONS);
+        assert_null(m);
+        m = (coons_mesh *)&o;
+        assert_refused(coons_mesh_read_file("no-such-file.off", &o, &m, &err), &err,
+                       "mesh read options", o.version, COONS_MESH_READ_OPTIONS);
+        assert_null(m);
+    }
+}
+
+static void test_volume_records_version(void **state)
+{
+    (void)state;
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    coons_volume_mesh *vm = NULL;
+    for (int k = 0; k < 2; k++) {
+        coons_volume_options o = COONS_VOLUME_OPTIONS_INIT;
+        o.version = wrong_version(COONS_VOLUME_OPTIONS_VERSION, k);
+        vm = (coons_volume_mesh *)&o;
+        assert_refused(coons_model_volume_mesh(m, &o, &vm, &err), &err, "volume options", o.version,
+                       COONS_VOLUME_OPTIONS);
+        assert_null(vm);
+    }
+    assert_coons_ok(coons_model_volume_mesh(m, NULL, &vm, &err), &err);
+    for (int k = 0; k < 2; k++) {
+        coons_volume_quality q = COONS_VOLUME_QUALITY_INIT;
+        q.version = wrong_version(COONS_VOLUME_QUALITY_VERSION, k);
+        assert_refused(coons_volume_mesh_quality(vm, 0, &q, &err), &err, "volume quality report",
+                       q.version, COONS_VOLUME_QUALITY);
+    }
+    coons_volume_mesh_free(vm);
+    coons_model_free(m);
+}
+
+static void test_deform_report_version(void **state)
+{
+    (void)state;
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh = sampled(m);
+    const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    for (int k = 0; k < 2; k++) {
+        coons_deform_report r = COONS_DEFORM_REPORT_INIT;
+        r.version = wrong_version(COONS_DEFORM_REPORT_VERSION, k);
+        coons_mesh *out = mesh;
+        assert_refused(coons_body_deform_mesh_report(coons_model_body(m, 0), mesh, lo, hi, 1e-3, 0,
+                                                     &out, &r, &err),
+                       &err, "deform report", r.version, COONS_DEFORM_REPORT);
+        assert_null(out);
     }
     coons_mesh_free(mesh);
     coons_model_free(m);
@@ -285,6 +387,10 @@ int main(void)
         cmocka_unit_test(test_model_load_options_version),
         cmocka_unit_test(test_hermite_options_version),
         cmocka_unit_test(test_mesh_report_version),
+        cmocka_unit_test(test_network_options_version),
+        cmocka_unit_test(test_mesh_read_options_version),
+        cmocka_unit_test(test_volume_records_version),
+        cmocka_unit_test(test_deform_report_version),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

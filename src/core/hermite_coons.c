@@ -25,10 +25,8 @@ static const char *const cross_name[4] = {"t0", "t1", "s0", "s1"};
 static coons_status check_options(const coons_hermite_options *opts, int *ncross,
                                   coons_error *err)
 {
-    if (opts->version != COONS_HERMITE_OPTIONS_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "hermite-coons patch: options version %u, expected %d",
-                                opts->version, COONS_HERMITE_OPTIONS_VERSION);
+    if (COONS__RECORD_CHECK(err, "hermite-coons options", opts->version, COONS_HERMITE_OPTIONS))
+        return COONS_E_INVALID;
     if ((int)opts->twist < (int)COONS_TWIST_ZERO || (int)opts->twist > (int)COONS_TWIST_EXPLICIT)
         return coons__error_set(err, COONS_E_INVALID, "hermite-coons patch: unknown twist %d",
                                 (int)opts->twist);

@@ -267,9 +267,8 @@ static coons_status make_cell(const build *B, size_t i, size_t j, coons_blend bl
 static coons_status check_args(coons_curve *const *rows, size_t nr, coons_curve *const *cols,
                                size_t nc, const coons_network_options *o, coons_error *err)
 {
-    if (o->version != COONS_NETWORK_OPTIONS_VERSION)
-        return coons__error_set(err, COONS_E_INVALID, "network: options version %u, expected %d",
-                                o->version, COONS_NETWORK_OPTIONS_VERSION);
+    if (COONS__RECORD_CHECK(err, "network options", o->version, COONS_NETWORK_OPTIONS))
+        return COONS_E_INVALID;
     if (!rows || !cols || nr < 2 || nc < 2)
         return coons__error_set(err, COONS_E_INVALID,
                                 "network: needs at least 2 rows and 2 columns (%zu, %zu given)",

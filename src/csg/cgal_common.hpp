@@ -52,17 +52,16 @@ struct Soup {
     std::vector<uint32_t> tri;
 };
 
-// A triangle by its three points, rotated to start at the smallest (by
-// bytes): the same oriented triangle whatever its vertex indices.
-struct TriKey {
-    double v[9];
-    bool operator==(const TriKey &o) const { return std::memcmp(v, o.v, sizeof v) == 0; }
+// N doubles compared by their bytes (-0 and 0 differ), as a hash key.
+template <int N> struct DoublesKey {
+    double v[N];
+    bool operator==(const DoublesKey &o) const { return std::memcmp(v, o.v, sizeof v) == 0; }
 };
-struct TriKeyHash {
-    size_t operator()(const TriKey &k) const
+struct DoublesKeyHash {
+    template <int N> size_t operator()(const DoublesKey<N> &k) const
     {
         uint64_t h = 0x9e3779b97f4a7c15ull;
-        for (int i = 0; i < 9; i++) {
+        for (int i = 0; i < N; i++) {
             uint64_t w;
             std::memcpy(&w, &k.v[i], sizeof w);
             h = (h ^ w) * 0xff51afd7ed558ccdull;
@@ -71,10 +70,15 @@ struct TriKeyHash {
         return (size_t)h;
     }
 };
+// A point by its coordinates.
+typedef DoublesKey<3> PointKey;
+// A triangle by its three points, rotated to start at the smallest (by
+// bytes): the same oriented triangle whatever its vertex indices.
+typedef DoublesKey<9> TriKey;
 TriKey tri_key(const double *a, const double *b, const double *c);
 // The input triangles of a group: a result triangle found here was taken
 // unchanged from an input shell (the local final check skips pairs of them).
-typedef std::unordered_set<TriKey, TriKeyHash> InputTriangles;
+typedef std::unordered_set<TriKey, DoublesKeyHash> InputTriangles;
 void input_triangles(const double *xyz, const uint32_t *tri, const std::vector<Part> &parts,
                      const std::vector<size_t> &ids, InputTriangles &out);
 
@@ -131,17 +135,49 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
 // meet, or does one lie inside the other (winding number of a vertex)?
 bool parts_interact(const double *xyz, const uint32_t *tri, const Part &a, const Part &b);
 
-// Renumbers s canonically: vertices sorted by coordinates, each triangle
-// rotated to start at its lowest vertex, triangles sorted. CGAL's output
-// order depends on where its allocations land (handles compared by
-// address), so results are made independent of the heap, and of threads.
+// Three numbers of up to 21 bits in one key, x in the low bits: the cells
+// of the box grids (box_grid.cpp); the hash of a vertex triple (weld.cpp).
+inline uint64_t pack21(uint64_t x, uint64_t y, uint64_t z) { return x | y << 21 | z << 42; }
+// An edge of vertex indices as one key: directed (a, b), or undirected.
+inline uint64_t directed_edge_key(uint32_t a, uint32_t b) { return (uint64_t)a << 32 | b; }
+inline uint64_t edge_key(uint32_t a, uint32_t b)
+{
+    return a < b ? directed_edge_key(a, b) : directed_edge_key(b, a);
+}
+
+// The order of canonical_order(): by coordinates, ties (-0 and 0) by bytes.
+inline bool point_less(const double *p, const double *q)
+{
+    for (int c = 0; c < 3; c++) {
+        if (p[c] < q[c]) return true;
+        if (q[c] < p[c]) return false;
+    }
+    return std::memcmp(p, q, 3 * sizeof(double)) < 0;
+}
+
+// A Boolean's result finished (weld.cpp): canonical_order(), fresh_vertices()
+// merged where close (merge_close), fix_slivers(); xyz, parts, ids: the
+// input shells.
+void weld(Soup &s, const double *xyz, const std::vector<Part> &parts, const std::vector<size_t> &ids,
+          coons_csg_report &rep);
+// Renumbers s canonically (canonical_order.cpp): vertices sorted by
+// coordinates, each triangle rotated to start at its lowest vertex,
+// triangles sorted. CGAL's output order depends on where its allocations
+// land (handles compared by address), so results are made independent of
+// the heap, and of threads.
 void canonical_order(Soup &s);
+// Vertices of s closer than 1e-11 of its size merged (weld.cpp); with
+// `fresh`, only the flagged ones move.
 void merge_close(Soup &s, coons_csg_report &rep, const std::vector<char> *fresh = nullptr);
 // Per vertex of s (in canonical_order()): 1 unless it is bitwise a vertex of
-// one of the parts `ids` (coordinates xyz), which corefinement keeps.
+// one of the parts `ids` (coordinates xyz), which corefinement keeps
+// (input_identity.cpp).
 std::vector<char> fresh_vertices(const Soup &s, const double *xyz, const std::vector<Part> &parts,
                                  const std::vector<size_t> &ids);
+// Slivers that rounding flattened split away (slivers.cpp).
 void fix_slivers(Soup &s, coons_csg_report &rep);
+// Are p, q, r collinear? Exact (CGAL's predicate; cgal_fast.cpp).
+bool exact_collinear(const double *p, const double *q, const double *r);
 
 // The verified fast path (cgal_fast.cpp); true with s filled, or false.
 bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part> &parts,

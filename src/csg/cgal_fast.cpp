@@ -5,8 +5,12 @@
 // cross themselves on the inexact-constructions kernel (corefinement of the
 // triangles near the other shell only, patches classified here; the whole
 // shells by CGAL's Boolean when that fails its checks), the exact
-// self-intersection test (input checks and the final check of every result),
-// the triangle-level test of which parts meet, and the welding of results.
+// self-intersection test (input checks and the final check of every result;
+// its candidate pairs from the box grids of box_grid.cpp), and the
+// triangle-level test of which parts meet. What needs no CGAL lives in its
+// own files: welding (weld.cpp, slivers.cpp), canonical order
+// (canonical_order.cpp), input identity (input_identity.cpp), the grids
+// (box_grid.cpp, proj_grid.cpp).
 // Every result made here is checked exactly before it is used (the final
 // check), so CGAL's assertions, which cost about 40% of the corefinement
 // chain, buy nothing; they stay on in cgal_solid.cpp, where they turn CGAL
@@ -30,7 +34,9 @@
 #include <new>
 #include <unordered_map>
 
+#include "box_grid.hpp"
 #include "cgal_common.hpp"
+#include "proj_grid.hpp"
 extern "C" {
 #include "coons_test_hooks.h"
 #include "union_find.h"
@@ -185,250 +191,11 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
 
 } // namespace
 
-// Exact intersections of inputs whose own rounding noise differs (a NURBS
-// point at x = 2e-16 against a wall at x = 0) give features narrower than
-// doubles can hold, which rounding turns into overlaps. Vertices closer
-// than 1e-11 of the part's size (far below any tolerance) are merged, and
-// the triangles that this collapses or doubles (two opposite copies) go.
-// With `fresh` (a flag per vertex), only the flagged vertices (those that
-// corefinement made) move, each onto the first earlier vertex that stays
-// within that distance; the others (input vertices, distinct and checked
-// with their shells) are looked at only where a flagged one is near.
-void merge_close(Soup &s, coons_csg_report &rep, const std::vector<char> *fresh)
+// Exact collinearity of three points (for fix_slivers, slivers.cpp).
+bool exact_collinear(const double *p, const double *q, const double *r)
 {
-    size_t nv = s.xyz.size() / 3;
-    if (!nv) return;
-    double lo[3], hi[3];
-    bbox_empty(lo, hi);
-    for (size_t v = 0; v < nv; v++) bbox_add(lo, hi, &s.xyz[3 * v]);
-    double eps = 1e-11 * bbox_diag(lo, hi);
-    if (!(eps > 0)) return;
-    auto cell = [&](size_t v, int c) { return (int64_t)std::floor((s.xyz[3 * v + c] - lo[c]) / eps); };
-    struct H {
-        size_t operator()(const std::array<int64_t, 3> &k) const
-        {
-            return (size_t)(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
-        }
-    };
-    std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, H> grid;
-    std::vector<uint32_t> rep_of(nv);
-    for (size_t v = 0; v < nv; v++) rep_of[v] = (uint32_t)v;
-    if (fresh) {
-        // the cells next to a fresh vertex, then the fixed vertices in them
-        std::unordered_map<std::array<int64_t, 3>, char, H> hot;
-        for (size_t v = 0; v < nv; v++)
-            if ((*fresh)[v])
-                for (int dx = -1; dx <= 1; dx++)
-                    for (int dy = -1; dy <= 1; dy++)
-                        for (int dz = -1; dz <= 1; dz++)
-                            hot[{cell(v, 0) + dx, cell(v, 1) + dy, cell(v, 2) + dz}] = 1;
-        if (hot.empty()) return;
-        for (size_t v = 0; v < nv; v++) {
-            if ((*fresh)[v]) continue;
-            std::array<int64_t, 3> k{cell(v, 0), cell(v, 1), cell(v, 2)};
-            if (hot.count(k)) grid[k].push_back((uint32_t)v);
-        }
-    }
-    for (size_t v = 0; v < nv; v++) {
-        if (fresh && !(*fresh)[v]) continue;
-        std::array<int64_t, 3> k{cell(v, 0), cell(v, 1), cell(v, 2)};
-        uint32_t found = UINT32_MAX;
-        for (int dx = -1; dx <= 1 && found == UINT32_MAX; dx++)
-            for (int dy = -1; dy <= 1 && found == UINT32_MAX; dy++)
-                for (int dz = -1; dz <= 1 && found == UINT32_MAX; dz++) {
-                    auto it = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
-                    if (it == grid.end()) continue;
-                    for (uint32_t w : it->second) {
-                        double d = 0;
-                        for (int c = 0; c < 3; c++) d = std::max(d, std::fabs(s.xyz[3 * v + c] - s.xyz[3 * w + c]));
-                        if (d <= eps) {
-                            found = w;
-                            break;
-                        }
-                    }
-                }
-        if (found != UINT32_MAX) {
-            rep_of[v] = found;
-            rep.close_merged++;
-        } else {
-            grid[k].push_back((uint32_t)v);
-        }
-    }
-    if (!rep.close_merged) return;
-    std::vector<uint32_t> out;
-    std::unordered_map<uint64_t, size_t> seen; // sorted vertex triple -> index in out/3
-    std::vector<char> dead;
-    auto key = [](uint32_t a, uint32_t b, uint32_t c) {
-        uint32_t v[3] = {a, b, c};
-        std::sort(v, v + 3);
-        return ((uint64_t)v[0] * 2654435761u) ^ ((uint64_t)v[1] << 21) ^ ((uint64_t)v[2] << 42);
-    };
-    for (size_t t = 0; t < s.tri.size() / 3; t++) {
-        uint32_t a = rep_of[s.tri[3 * t]], b = rep_of[s.tri[3 * t + 1]], c = rep_of[s.tri[3 * t + 2]];
-        if (a == b || b == c || a == c) continue;
-        uint64_t k = key(a, b, c);
-        auto it = seen.find(k);
-        if (it != seen.end() && !dead[it->second]) {
-            const uint32_t *o = &out[3 * it->second];
-            uint32_t x[3] = {a, b, c}, y[3] = {o[0], o[1], o[2]};
-            std::sort(x, x + 3);
-            std::sort(y, y + 3);
-            if (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) {
-                dead[it->second] = 1; // two copies: opposite ones cancel, equal ones are one
-                bool same = (o[0] == a && o[1] == b) || (o[1] == a && o[2] == b) || (o[2] == a && o[0] == b);
-                if (same) dead[it->second] = 0;
-                continue;
-            }
-        }
-        seen[k] = out.size() / 3;
-        out.insert(out.end(), {a, b, c});
-        dead.push_back(0);
-    }
-    s.tri.clear();
-    for (size_t t = 0; t < out.size() / 3; t++)
-        if (!dead[t]) s.tri.insert(s.tri.end(), out.begin() + 3 * t, out.begin() + 3 * t + 3);
-}
-
-// Rounding can flatten a thin exact triangle (a, b, c) so that one vertex
-// m lies on the segment between the other two, p and q. Such a sliver is
-// removed and the triangle across its long edge (q, p, d) is split at m into
-// (q, m, d) and (m, p, d): the surface stays closed and oriented, and the
-// split triangles lie in the plane of the old one.
-void fix_slivers(Soup &s, coons_csg_report &rep)
-{
-    auto P = [&](uint32_t i) { return IK::Point_3(s.xyz[3 * i], s.xyz[3 * i + 1], s.xyz[3 * i + 2]); };
-    for (int round = 0; round < 8; round++) {
-        size_t nt = s.tri.size() / 3;
-        bool any = false;
-        for (size_t t = 0; t < nt && !any; t++)
-            any = CGAL::collinear(P(s.tri[3 * t]), P(s.tri[3 * t + 1]), P(s.tri[3 * t + 2]));
-        if (!any) return;
-        std::unordered_map<uint64_t, size_t> edge; // directed edge -> triangle
-        for (size_t t = 0; t < nt; t++)
-            for (int k = 0; k < 3; k++)
-                edge[((uint64_t)s.tri[3 * t + k] << 32) | s.tri[3 * t + (k + 1) % 3]] = t;
-        std::vector<char> dead(nt, 0);
-        std::vector<uint32_t> extra;
-        size_t fixed = 0;
-        for (size_t t = 0; t < nt; t++) {
-            if (dead[t]) continue;
-            uint32_t v[3] = {s.tri[3 * t], s.tri[3 * t + 1], s.tri[3 * t + 2]};
-            if (!CGAL::collinear(P(v[0]), P(v[1]), P(v[2]))) continue;
-            // k: index of the middle vertex m; the long edge is v[k+1] -> v[k+2].
-            int k = -1;
-            for (int i = 0; i < 3 && k < 0; i++)
-                if (CGAL::collinear_are_ordered_along_line(P(v[(i + 1) % 3]), P(v[i]), P(v[(i + 2) % 3])))
-                    k = i;
-            if (k < 0) continue;
-            uint32_t m = v[k], p = v[(k + 1) % 3], q = v[(k + 2) % 3];
-            auto it = edge.find(((uint64_t)q << 32) | p);
-            if (it == edge.end() || dead[it->second] || it->second == t) continue;
-            size_t n = it->second;
-            uint32_t d = UINT32_MAX;
-            for (int i = 0; i < 3; i++)
-                if (s.tri[3 * n + i] != q && s.tri[3 * n + i] != p) d = s.tri[3 * n + i];
-            if (d == UINT32_MAX || d == m) continue;
-            dead[t] = dead[n] = 1;
-            extra.insert(extra.end(), {q, m, d, m, p, d});
-            fixed++;
-        }
-        if (!fixed) return;
-        rep.slivers_fixed += fixed;
-        std::vector<uint32_t> keep;
-        keep.reserve(s.tri.size());
-        for (size_t t = 0; t < nt; t++)
-            if (!dead[t]) keep.insert(keep.end(), s.tri.begin() + 3 * t, s.tri.begin() + 3 * t + 3);
-        keep.insert(keep.end(), extra.begin(), extra.end());
-        s.tri.swap(keep);
-    }
-}
-
-
-namespace {
-
-// The order of canonical_order(): by coordinates, ties (-0 and 0) by bytes.
-inline bool point_less(const double *p, const double *q)
-{
-    for (int c = 0; c < 3; c++) {
-        if (p[c] < q[c]) return true;
-        if (q[c] < p[c]) return false;
-    }
-    return std::memcmp(p, q, 3 * sizeof(double)) < 0;
-}
-
-} // namespace
-
-void canonical_order(Soup &s)
-{
-    size_t nv = s.xyz.size() / 3, nt = s.tri.size() / 3;
-    std::vector<uint32_t> order(nv), rank(nv);
-    for (size_t v = 0; v < nv; v++) order[v] = (uint32_t)v;
-    const double *x = s.xyz.data();
-    std::stable_sort(order.begin(), order.end(),
-                     [x](uint32_t a, uint32_t b) { return point_less(x + 3 * a, x + 3 * b); });
-    std::vector<double> xyz(3 * nv);
-    for (size_t k = 0; k < nv; k++) {
-        rank[order[k]] = (uint32_t)k;
-        std::memcpy(&xyz[3 * k], x + 3 * order[k], 3 * sizeof(double));
-    }
-    std::vector<std::array<uint32_t, 3>> t(nt);
-    for (size_t i = 0; i < nt; i++) {
-        uint32_t a = rank[s.tri[3 * i]], b = rank[s.tri[3 * i + 1]], c = rank[s.tri[3 * i + 2]];
-        if (b < a && b < c)
-            t[i] = {b, c, a};
-        else if (c < a && c < b)
-            t[i] = {c, a, b};
-        else
-            t[i] = {a, b, c};
-    }
-    std::sort(t.begin(), t.end());
-    s.xyz.swap(xyz);
-    for (size_t i = 0; i < nt; i++)
-        for (int k = 0; k < 3; k++) s.tri[3 * i + k] = t[i][k];
-}
-
-std::vector<char> fresh_vertices(const Soup &s, const double *xyz, const std::vector<Part> &parts,
-                                 const std::vector<size_t> &ids)
-{
-    std::vector<const double *> in;
-    for (size_t id : ids)
-        for (size_t v = 0; v < parts[id].vert_count; v++)
-            in.push_back(xyz + 3 * (parts[id].vert_first + v));
-    std::sort(in.begin(), in.end(), point_less);
-    size_t nv = s.xyz.size() / 3, j = 0;
-    std::vector<char> fresh(nv, 1);
-    for (size_t v = 0; v < nv; v++) {
-        const double *p = &s.xyz[3 * v];
-        while (j < in.size() && point_less(in[j], p)) j++;
-        if (j < in.size() && !point_less(p, in[j])) fresh[v] = 0;
-    }
-    return fresh;
-}
-
-TriKey tri_key(const double *a, const double *b, const double *c)
-{
-    const double *q[3] = {a, b, c};
-    int first = 0;
-    for (int i = 1; i < 3; i++)
-        if (std::memcmp(q[i], q[first], 3 * sizeof(double)) < 0) first = i;
-    TriKey k;
-    for (int i = 0; i < 3; i++) std::memcpy(k.v + 3 * i, q[(first + i) % 3], 3 * sizeof(double));
-    return k;
-}
-
-void input_triangles(const double *xyz, const uint32_t *tri, const std::vector<Part> &parts,
-                     const std::vector<size_t> &ids, InputTriangles &out)
-{
-    size_t n = 0;
-    for (size_t id : ids) n += parts[id].tri_count;
-    out.reserve(n);
-    for (size_t id : ids) {
-        const Part &p = parts[id];
-        for (size_t t = p.tri_first; t < p.tri_first + p.tri_count; t++) {
-            const uint32_t *q = tri + 3 * t;
-            out.insert(tri_key(xyz + 3 * q[0], xyz + 3 * q[1], xyz + 3 * q[2]));
-        }
-    }
+    return CGAL::collinear(IK::Point_3(p[0], p[1], p[2]), IK::Point_3(q[0], q[1], q[2]),
+                           IK::Point_3(r[0], r[1], r[2]));
 }
 
 namespace {
@@ -496,236 +263,6 @@ size_t count_in_slab(const std::vector<IK::Point_3> &P, const uint32_t *tri,
                                                        old.end(), test);
     return count;
 }
-
-} // namespace
-
-namespace {
-
-// The pairs of boxes that meet (closed boxes, as box_intersection_d), among
-// `fresh` and between `fresh` and `kept`, each tested once with
-// pair_intersects: hierarchical uniform grids. Level L has cells of side
-// h 4^L, h half the smallest box; a box lives at the first level where it
-// is at most two cells long, in the cells it overlaps (at most 3 per axis),
-// so that a cell holds boxes of about its own size however the sizes vary
-// (a shell's fine lattice at a pole next to a flat face's large triangles). Two
-// boxes of one level meet in the cells they share and are tested in one of
-// them, the home cell: the one holding the low corner of their common box.
-// A box looks for the boxes of the coarser levels in the cells of those
-// levels that it overlaps, again in the home cell only. Shells sampled on
-// lattices have few boxes per cell: on the union benchmark's shells this
-// takes 0.15 s where box_intersection_d's segment tree took 0.33 s (with
-// the projection tests of pair_intersects), with the same pairs.
-class BoxGrid {
-  public:
-    BoxGrid(const std::vector<IK::Point_3> &P, const uint32_t *tri, const std::vector<Box> &fresh,
-            const std::vector<Box> &kept)
-        : P_(P), tri_(tri), nf_(fresh.size()), n_(fresh.size() + kept.size())
-    {
-        bx_.reserve(n_);
-        for (size_t i = 0; i < n_; i++) {
-            const Box &b = i < nf_ ? fresh[i] : kept[i - nf_];
-            BB q;
-            for (int c = 0; c < 3; c++) q.lo[c] = b.min_coord(c), q.hi[c] = b.max_coord(c);
-            q.t = (uint32_t)b.info();
-            q.old = i >= nf_;
-            bx_.push_back(q);
-        }
-        double emin = HUGE_VAL, span = 0, top[3];
-        for (int c = 0; c < 3; c++) org_[c] = HUGE_VAL, top[c] = -HUGE_VAL;
-        for (const BB &q : bx_) {
-            for (int c = 0; c < 3; c++) {
-                org_[c] = std::min(org_[c], q.lo[c]);
-                top[c] = std::max(top[c], q.hi[c]);
-            }
-            double e = extent(q);
-            if (e > 0) emin = std::min(emin, e);
-        }
-        for (int c = 0; c < 3; c++) span = std::max(span, top[c] - org_[c]);
-        ok_ = std::isfinite(span);
-        if (!ok_) return; // extents beyond doubles: the caller uses the reference
-        // the finest level fits the smallest box, with at most 2^20 cells
-        // along an axis (keys pack 21 bits per axis)
-        double h = std::max(0.5 * emin, span / 1048576.0);
-        if (!(h > 0) || !std::isfinite(h)) h = 1.0;
-        int nlev = 1;
-        for (BB &q : bx_) {
-            double e = extent(q), hl = h;
-            int L = 0;
-            while (e > 2 * hl && L < 15) {
-                hl *= 4;
-                L++;
-            }
-            q.level = (unsigned char)L;
-            nlev = std::max(nlev, L + 1);
-        }
-        inv_.assign(nlev, 1.0 / h);
-        for (int L = 1; L < nlev; L++) inv_[L] = 0.25 * inv_[L - 1];
-        cells_.resize(nlev);
-        std::vector<size_t> per(nlev, 0);
-        for (BB &q : bx_) {
-            uint32_t hi[3];
-            range(q, q.level, q.cell, hi);
-            per[q.level] += (size_t)(hi[0] - q.cell[0] + 1) * (hi[1] - q.cell[1] + 1) * (hi[2] - q.cell[2] + 1);
-        }
-        for (int L = 0; L < nlev; L++) cells_[L].reserve(per[L]);
-        for (size_t i = 0; i < n_; i++) {
-            const BB &q = bx_[i];
-            uint32_t hi[3];
-            range(q, q.level, nullptr, hi);
-            for (uint64_t z = q.cell[2]; z <= hi[2]; z++)
-                for (uint64_t y = q.cell[1]; y <= hi[1]; y++)
-                    for (uint64_t x = q.cell[0]; x <= hi[0]; x++)
-                        cells_[q.level].push_back({x | y << 21 | z << 42, (uint32_t)i});
-        }
-        for (auto &E : cells_) {
-            radix_sort(E);
-            std::vector<size_t> g;
-            for (size_t k = 0; k < E.size(); k++)
-                if (k == 0 || E[k].key != E[k - 1].key) g.push_back(k);
-            g.push_back(E.size());
-            groups_.push_back(std::move(g));
-        }
-        for (int L = 0; L < nlev; L++)
-            if (!cells_[L].empty()) used_.push_back(L);
-    }
-
-    bool ok() const { return ok_; }
-
-    // Tasks for parallel_for: chunks of cells of each level, then chunks of
-    // boxes (their look at the coarser levels).
-    size_t tasks() const { return cell_chunks() + box_chunks(); }
-
-    size_t run(size_t task) const
-    {
-        size_t count = 0, cc = cell_chunks();
-        if (task < cc) {
-            size_t L = 0, t = task;
-            while (t >= chunks(groups_[L].size() - 1)) t -= chunks(groups_[L++].size() - 1);
-            const std::vector<Entry> &E = cells_[L];
-            const std::vector<size_t> &g = groups_[L];
-            size_t g1 = std::min(g.size() - 1, (t + 1) * kChunk);
-            for (size_t gi = t * kChunk; gi < g1; gi++)
-                for (size_t a = g[gi]; a < g[gi + 1]; a++) {
-                    const BB &A = bx_[E[a].box];
-                    for (size_t b = a + 1; b < g[gi + 1]; b++)
-                        count += test(A, bx_[E[b].box], A.cell, E[a].key);
-                }
-            return count;
-        }
-        size_t i1 = std::min(n_, (task - cc + 1) * kChunk);
-        for (size_t i = (task - cc) * kChunk; i < i1; i++) {
-            const BB &A = bx_[i];
-            for (int L : used_) {
-                if (L <= A.level) continue;
-                const std::vector<Entry> &E = cells_[L];
-                uint32_t lo[3], hi[3];
-                range(A, L, lo, hi);
-                for (uint64_t z = lo[2]; z <= hi[2]; z++)
-                    for (uint64_t y = lo[1]; y <= hi[1]; y++)
-                        for (uint64_t x = lo[0]; x <= hi[0]; x++) {
-                            uint64_t k = x | y << 21 | z << 42;
-                            auto it = std::lower_bound(E.begin(), E.end(), k,
-                                                       [](const Entry &e, uint64_t v) { return e.key < v; });
-                            for (; it != E.end() && it->key == k; ++it)
-                                count += test(A, bx_[it->box], lo, k);
-                        }
-            }
-        }
-        return count;
-    }
-
-  private:
-    // A box: its corners, the cell of its low corner at its own level, the
-    // triangle, and whether it is a kept (old) one.
-    struct BB {
-        double lo[3], hi[3];
-        uint32_t cell[3];
-        uint32_t t;
-        unsigned char level;
-        bool old;
-    };
-    struct Entry {
-        uint64_t key;
-        uint32_t box;
-    };
-    static constexpr size_t kChunk = 4096;
-    const std::vector<IK::Point_3> &P_;
-    const uint32_t *tri_;
-    size_t nf_, n_;
-    bool ok_ = true;
-    double org_[3];
-    std::vector<BB> bx_;
-    std::vector<double> inv_; // per level: 1 / cell side
-    std::vector<std::vector<Entry>> cells_;
-    std::vector<std::vector<size_t>> groups_; // per level: first entry of each cell, then the end
-    std::vector<int> used_;                   // the levels that hold boxes
-
-    static double extent(const BB &q)
-    {
-        return std::max(q.hi[0] - q.lo[0], std::max(q.hi[1] - q.lo[1], q.hi[2] - q.lo[2]));
-    }
-    static size_t chunks(size_t n) { return (n + kChunk - 1) / kChunk; }
-    size_t cell_chunks() const
-    {
-        size_t k = 0;
-        for (const auto &g : groups_) k += chunks(g.size() - 1);
-        return k;
-    }
-    size_t box_chunks() const { return used_.size() > 1 ? chunks(n_) : 0; }
-    // The cell index along c of x at level L (monotone in x, so the cell of
-    // the larger of two coordinates is the larger of their cells).
-    uint32_t index(double x, int c, int L) const
-    {
-        double q = std::floor((x - org_[c]) * inv_[L]);
-        return q > 0 ? (uint32_t)std::min(q, 2097151.0) : 0;
-    }
-    void range(const BB &q, int L, uint32_t *lo, uint32_t hi[3]) const
-    {
-        for (int c = 0; c < 3; c++) {
-            if (lo) lo[c] = index(q.lo[c], c, L);
-            hi[c] = index(q.hi[c], c, L);
-        }
-    }
-    // Keys sorted (the order inside a cell does not matter: every pair in
-    // it is looked at): least significant 16 bits first, skipping the
-    // digits all keys share; small sets by std::sort.
-    static void radix_sort(std::vector<Entry> &E)
-    {
-        auto by_key = [](const Entry &a, const Entry &b) { return a.key < b.key; };
-        if (E.size() < 4096) {
-            std::sort(E.begin(), E.end(), by_key);
-            return;
-        }
-        std::vector<Entry> tmp(E.size());
-        std::vector<size_t> cnt(1u << 16);
-        for (int shift = 0; shift < 64; shift += 16) {
-            std::fill(cnt.begin(), cnt.end(), 0);
-            for (const Entry &e : E) cnt[(e.key >> shift) & 0xFFFF]++;
-            if (cnt[(E[0].key >> shift) & 0xFFFF] == E.size()) continue;
-            size_t sum = 0;
-            for (size_t &c : cnt) {
-                size_t k = c;
-                c = sum;
-                sum += k;
-            }
-            for (const Entry &e : E) tmp[cnt[(e.key >> shift) & 0xFFFF]++] = e;
-            E.swap(tmp);
-        }
-    }
-    // Boxes a and b meet, in cell `key` as their home (`acell`: a's low
-    // corner's cell at this level), and their triangles intersect: 1.
-    size_t test(const BB &a, const BB &b, const uint32_t *acell, uint64_t key) const
-    {
-        if (a.old && b.old) return 0; // two kept triangles
-        uint64_t home = 0;
-        for (int c = 0; c < 3; c++) {
-            if (a.hi[c] < b.lo[c] || b.hi[c] < a.lo[c]) return 0;
-            home |= (uint64_t)std::max(acell[c], b.cell[c]) << (21 * c);
-        }
-        if (home != key) return 0;
-        return pair_intersects(P_, tri_ + 3 * (size_t)a.t, tri_ + 3 * (size_t)b.t) ? 1 : 0;
-    }
-};
 
 // The reference for the tests (coons__csg_count_pairs): the candidate
 // pairs by CGAL's box_intersection_d, by slabs along x, and the 3-D tests
@@ -795,7 +332,23 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
         // Only kept boxes near a fresh one can take part.
         keep_touching(fresh, kept);
     }
-    BoxGrid grid(P, tri, fresh, kept);
+    std::vector<GridBox> boxes;
+    boxes.reserve(fresh.size() + kept.size());
+    for (const std::vector<Box> *v : {&fresh, &kept})
+        for (const Box &b : *v)
+            boxes.push_back({{b.min_coord(0), b.min_coord(1), b.min_coord(2)},
+                             {b.max_coord(0), b.max_coord(1), b.max_coord(2)},
+                             (uint32_t)b.info(),
+                             v == &kept});
+    struct Ctx {
+        const std::vector<IK::Point_3> &P;
+        const uint32_t *tri;
+    } ctx{P, tri};
+    PairTest test = [](const void *c, uint32_t s, uint32_t t) {
+        const Ctx &x = *static_cast<const Ctx *>(c);
+        return pair_intersects(x.P, x.tri + 3 * (size_t)s, x.tri + 3 * (size_t)t);
+    };
+    BoxGrid grid(boxes, test, &ctx);
     if (!grid.ok()) return count_boxes_cgal(P, tri, fresh, kept, threads);
     size_t nt_ = grid.tasks();
     std::vector<size_t> counts(nt_, 0);
@@ -891,11 +444,6 @@ namespace {
 // only when it is a closed, oriented 2-manifold whose volume lies between
 // the larger input's and their sum; the caller checks it exactly as any
 // fast union.
-
-inline uint64_t edge_key(uint32_t a, uint32_t b)
-{
-    return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
-}
 
 inline CGAL::Bbox_3 tri_bbox(const Soup &s, size_t t)
 {
@@ -1099,90 +647,6 @@ bool make_patches(const Refined &r, std::vector<uint32_t> &patch, uint32_t &np)
     }
     return true;
 }
-
-// Triangles of a shell in the cells of a uniform grid over their
-// projection along axis d (dropping coordinate d): the candidates whose
-// projected closed box holds a point are those of its cell (a box that
-// holds the point overlaps its cell, cells being found by the same
-// monotone function of the coordinates) and the few large ones, kept
-// apart.
-class ProjGrid {
-  public:
-    ProjGrid(const Soup &s, const std::vector<uint32_t> &tris, int d)
-        : d1_((d + 1) % 3), d2_((d + 2) % 3)
-    {
-        lo_[0] = lo_[1] = HUGE_VAL;
-        double *hi = hi_;
-        hi[0] = hi[1] = -HUGE_VAL;
-        for (uint32_t t : tris)
-            for (int k = 0; k < 3; k++) {
-                const double *v = &s.xyz[3 * s.tri[3 * (size_t)t + k]];
-                lo_[0] = std::min(lo_[0], v[d1_]), hi[0] = std::max(hi[0], v[d1_]);
-                lo_[1] = std::min(lo_[1], v[d2_]), hi[1] = std::max(hi[1], v[d2_]);
-            }
-        double ex[2] = {hi[0] - lo_[0], hi[1] - lo_[1]};
-        double side = std::sqrt(std::max(ex[0], 1e-300) * std::max(ex[1], 1e-300) /
-                                std::max<size_t>(tris.size(), 1));
-        for (int c = 0; c < 2; c++) {
-            double n = ex[c] > 0 && side > 0 ? std::ceil(ex[c] / side) : 1;
-            n_[c] = n < 1 || !(n < 4096) ? (n < 1 ? 1 : 4096) : (int)n;
-            w_[c] = ex[c] > 0 ? ex[c] / n_[c] : 1.0;
-        }
-        std::vector<std::array<int, 4>> span(tris.size());
-        std::vector<uint32_t> count((size_t)n_[0] * n_[1] + 1, 0);
-        for (size_t i = 0; i < tris.size(); i++) {
-            const uint32_t *q = &s.tri[3 * (size_t)tris[i]];
-            double a[2] = {HUGE_VAL, HUGE_VAL}, b[2] = {-HUGE_VAL, -HUGE_VAL};
-            for (int k = 0; k < 3; k++) {
-                const double *v = &s.xyz[3 * q[k]];
-                a[0] = std::min(a[0], v[d1_]), b[0] = std::max(b[0], v[d1_]);
-                a[1] = std::min(a[1], v[d2_]), b[1] = std::max(b[1], v[d2_]);
-            }
-            std::array<int, 4> &sp = span[i];
-            sp = {cell(a[0], 0), cell(b[0], 0), cell(a[1], 1), cell(b[1], 1)};
-            if ((size_t)(sp[1] - sp[0] + 1) * (size_t)(sp[3] - sp[2] + 1) > 64) {
-                big_.push_back(tris[i]);
-                sp[0] = -1;
-                continue;
-            }
-            for (int x = sp[0]; x <= sp[1]; x++)
-                for (int y = sp[2]; y <= sp[3]; y++) count[(size_t)x * n_[1] + y + 1]++;
-        }
-        for (size_t c = 1; c < count.size(); c++) count[c] += count[c - 1];
-        first_ = count;
-        items_.resize(count.back());
-        for (size_t i = 0; i < tris.size(); i++) {
-            const std::array<int, 4> &sp = span[i];
-            if (sp[0] < 0) continue;
-            for (int x = sp[0]; x <= sp[1]; x++)
-                for (int y = sp[2]; y <= sp[3]; y++) items_[count[(size_t)x * n_[1] + y]++] = tris[i];
-        }
-    }
-
-    // Calls f(t) for every candidate triangle t at point q (3-D, q[d]
-    // ignored); stops early when f returns false.
-    template <class F> bool each(const double *q, F f) const
-    {
-        for (uint32_t t : big_)
-            if (!f(t)) return false;
-        if (!(q[d1_] >= lo_[0] && q[d1_] <= hi_[0] && q[d2_] >= lo_[1] && q[d2_] <= hi_[1]))
-            return true;
-        size_t c = (size_t)cell(q[d1_], 0) * n_[1] + cell(q[d2_], 1);
-        for (uint32_t i = first_[c]; i < first_[c + 1]; i++)
-            if (!f(items_[i])) return false;
-        return true;
-    }
-
-  private:
-    int cell(double x, int c) const
-    {
-        double q = std::floor((x - lo_[c]) / w_[c]);
-        return q < 0 ? 0 : q > n_[c] - 1 ? n_[c] - 1 : (int)q;
-    }
-    int d1_, d2_, n_[2];
-    double lo_[2], hi_[2], w_[2];
-    std::vector<uint32_t> first_, items_, big_;
-};
 
 // Parity of the crossings of s by the ray from q along +axis d (exact
 // predicates on the doubles): 1 inside, 0 outside, -1 when the ray is not
@@ -1483,10 +947,7 @@ bool fast_union(const double *sxyz, const uint32_t *tri, const std::vector<Part>
         // crossing or a zero-area triangle.
         auto finish = [&](Soup &r, coons_csg_report &scratch) {
             prog("verify", p0 + (p1 - p0) * 0.95);
-            canonical_order(r);
-            std::vector<char> fresh = fresh_vertices(r, sxyz, parts, ids);
-            merge_close(r, scratch, &fresh);
-            fix_slivers(r, scratch);
+            weld(r, sxyz, parts, ids, scratch);
             // The local final check: only pairs with a triangle that is
             // not an input triangle unchanged (new vertices, or moved by
             // merging and sliver fixing) are tested; the input shells were

@@ -100,8 +100,6 @@ using coons_csg::Part;
 using coons_csg::Progress;
 using coons_csg::Soup;
 using coons_csg::count_self_intersections;
-using coons_csg::fix_slivers;
-using coons_csg::merge_close;
 using coons_csg::parallel_for;
 
 typedef CGAL::Exact_predicates_exact_constructions_kernel EK;
@@ -111,24 +109,6 @@ typedef CGAL::Surface_mesh<EPoint> EMesh;
 typedef CGAL::Surface_mesh<IK::Point_3> IMesh;
 typedef EMesh::Face_index EFace;
 typedef EMesh::Vertex_index EVert;
-
-
-
-
-
-struct Key3 {
-    double v[3];
-    bool operator==(const Key3 &o) const { return std::memcmp(v, o.v, sizeof v) == 0; }
-};
-struct Key3Hash {
-    size_t operator()(const Key3 &k) const
-    {
-        uint64_t h = 1469598103934665603ull;
-        const unsigned char *p = reinterpret_cast<const unsigned char *>(k.v);
-        for (size_t i = 0; i < sizeof k.v; i++) h = (h ^ p[i]) * 1099511628211ull;
-        return (size_t)h;
-    }
-};
 
 // Gives faces that autorefinement splits off the body of their parent.
 struct BodyVisitor : PMP::Corefinement::Default_visitor<EMesh> {
@@ -512,11 +492,7 @@ void edge_stats(const Soup &s, coons_csg_report &rep)
     std::vector<uint64_t> e;
     e.reserve(s.tri.size());
     for (size_t t = 0; t < s.tri.size() / 3; t++)
-        for (int k = 0; k < 3; k++) {
-            uint64_t a = s.tri[3 * t + k], b = s.tri[3 * t + (k + 1) % 3];
-            if (a > b) std::swap(a, b);
-            e.push_back((a << 32) | b);
-        }
+        for (int k = 0; k < 3; k++) e.push_back(coons_csg::edge_key(s.tri[3 * t + k], s.tri[3 * t + (k + 1) % 3]));
     std::sort(e.begin(), e.end());
     size_t border = 0, nonman = 0;
     for (size_t i = 0; i < e.size();) {
@@ -558,11 +534,11 @@ void soup_of(const EMesh &m, ExactSoup &e)
 void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep, const double *sxyz,
                 const std::vector<Part> &parts, const std::vector<size_t> &ids)
 {
-    std::unordered_map<Key3, uint32_t, Key3Hash> index;
+    std::unordered_map<coons_csg::PointKey, uint32_t, coons_csg::DoublesKeyHash> index;
     std::vector<uint32_t> id(e.pts.size());
     for (size_t i = 0; i < e.pts.size(); i++) {
         const EPoint &p = e.pts[i];
-        Key3 k{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+        coons_csg::PointKey k{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
         for (double &x : k.v)
             if (x == 0.0) x = 0.0; // -0 and +0 are one vertex
         auto it = index.find(k);
@@ -581,10 +557,7 @@ void round_soup(const ExactSoup &e, Soup &out, coons_csg_report &rep, const doub
         if (a == b || b == c || a == c) continue;
         out.tri.insert(out.tri.end(), {a, b, c});
     }
-    coons_csg::canonical_order(out);
-    std::vector<char> fresh = coons_csg::fresh_vertices(out, sxyz, parts, ids);
-    merge_close(out, rep, &fresh);
-    fix_slivers(out, rep);
+    coons_csg::weld(out, sxyz, parts, ids, rep);
 }
 
 // The triangles of part p, with vertex indices local to the part.

@@ -23,14 +23,14 @@ void coons_csg_report_init(coons_csg_report *r)
 coons_status coons__csg_records_check(const coons_csg_options *opts, const coons_csg_report *report,
                                       coons_error *err)
 {
-    if (opts && opts->version != COONS_CSG_OPTIONS_VERSION && opts->version != 2)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "csg options version %u, expected %u (use COONS_CSG_OPTIONS_INIT)",
-                                opts->version, (unsigned)COONS_CSG_OPTIONS_VERSION);
-    if (report && report->version != COONS_CSG_REPORT_VERSION && report->version != 1)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "csg report version %u, expected %u (use COONS_CSG_REPORT_INIT)",
-                                report->version, (unsigned)COONS_CSG_REPORT_VERSION);
+    /* options of version 2 (no `threads`) and reports of version 1 (no
+     * pinch fields) are read too */
+    if (opts && coons__record_version_check("csg options", opts->version, 2, COONS_CSG_OPTIONS_VERSION,
+                                            "COONS_CSG_OPTIONS_INIT", err))
+        return COONS_E_INVALID;
+    if (report && coons__record_version_check("csg report", report->version, 1, COONS_CSG_REPORT_VERSION,
+                                              "COONS_CSG_REPORT_INIT", err))
+        return COONS_E_INVALID;
     return COONS_OK;
 }
 

@@ -5,14 +5,12 @@
  * the limits, reading the file, and errors about the file as a whole; the
  * model itself is read by read_model.c (loader.h).
  */
-#include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "loader.h"
 #include "load_options.h"
+#include "read_file.h"
 
 static void resolve(const coons_model_load_options *o, coons_model_load_options *r)
 {
@@ -26,23 +24,6 @@ static void resolve(const coons_model_load_options *o, coons_model_load_options 
     *r = d;
 }
 
-/* An error about the file as a whole: no line, column or path. */
-static coons_status file_error(coons_error *err, coons_status code, const char *file,
-                               const char *fmt, ...) COONS__PRINTF(4, 5);
-static coons_status file_error(coons_error *err, coons_status code, const char *file,
-                               const char *fmt, ...)
-{
-    if (!err) return code;
-    char msg[COONS_ERROR_MESSAGE_MAX];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    coons__error_set(err, code, "%s: %s", file, msg);
-    coons__ld_copy_trunc(err->file, sizeof err->file, file);
-    return code;
-}
-
 coons_status coons_model_load_memory(const char *data, size_t size, const char *name,
                                      const coons_model_load_options *opts,
                                      coons_model **out, coons_error *err)
@@ -50,13 +31,13 @@ coons_status coons_model_load_memory(const char *data, size_t size, const char *
     if (out) *out = NULL;
     const char *file = name ? name : "<buffer>";
     if (!out || (!data && size))
-        return file_error(err, COONS_E_INVALID, file, "no data or no place for the model");
+        return coons__file_error(err, COONS_E_INVALID, file, "no data or no place for the model");
     coons_status vrc = coons__model_load_options_check(opts, err);
     if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
     if (size > o.max_bytes)
-        return file_error(err, COONS_E_LIMIT, file,
+        return coons__file_error(err, COONS_E_LIMIT, file,
                           "the model is %zu bytes, above the limit of %zu bytes (raise "
                           "max_bytes; coons2stl --max-bytes N)",
                           size, o.max_bytes);
@@ -92,92 +73,21 @@ coons_status coons_model_load_memory(const char *data, size_t size, const char *
     return rc;
 }
 
-static coons_status io_error(coons_error *err, const char *path, const char *what, int errnum)
-{
-    char buf[256] = "unknown error";
-    if (errnum) (void)strerror_r(errnum, buf, sizeof buf);
-    return file_error(err, COONS_E_IO, path, "cannot %s: %s", what, buf);
-}
-
-static coons_status too_big(coons_error *err, const char *path, size_t max_bytes)
-{
-    /* not a regular file: reading stopped past the limit */
-    return file_error(err, COONS_E_LIMIT, path,
-                      "the model is more than %zu bytes, the limit (raise max_bytes; "
-                      "coons2stl --max-bytes N)",
-                      max_bytes);
-}
-
-/* Reads all of f, at most max_bytes + 1 bytes (one more shows the file is
- * too big); cap: the first guess of the size. */
-static coons_status read_all(FILE *f, const char *path, size_t cap, size_t max_bytes,
-                             char **out, size_t *len_out, coons_error *err)
-{
-    size_t len = 0, most = max_bytes < SIZE_MAX ? max_bytes + 1 : SIZE_MAX;
-    char *buf = coons__malloc(cap);
-    if (!buf) return coons__error_nomem(err);
-    for (;;) {
-        if (len == cap) {
-            if (cap > max_bytes || cap == SIZE_MAX) break;
-            size_t nc = cap > SIZE_MAX / 2 ? SIZE_MAX : cap * 2;
-            if (nc > most) nc = most;
-            char *nb = coons__realloc(buf, nc);
-            if (!nb) {
-                coons__free(buf);
-                return coons__error_nomem(err);
-            }
-            buf = nb;
-            cap = nc;
-        }
-        errno = 0;
-        size_t got = fread(buf + len, 1, cap - len, f);
-        len += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f), errnum = errno;
-    coons_status rc = COONS_OK;
-    if (bad)
-        rc = io_error(err, path, "read the model", errnum);
-    else if (len > max_bytes)
-        rc = too_big(err, path, max_bytes);
-    if (rc) {
-        coons__free(buf);
-        return rc;
-    }
-    *out = buf;
-    *len_out = len;
-    return COONS_OK;
-}
-
 coons_status coons_model_load_file(const char *path, const coons_model_load_options *opts,
                                    coons_model **out, coons_error *err)
 {
     if (out) *out = NULL;
-    if (!path || !out) return file_error(err, COONS_E_INVALID, "?", "no file name");
+    if (!path || !out) return coons__file_error(err, COONS_E_INVALID, "?", "no file name");
     coons_status vrc = coons__model_load_options_check(opts, err);
     if (vrc) return vrc;
     coons_model_load_options o;
     resolve(opts, &o);
-    errno = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return io_error(err, path, "open the model", errno);
-    struct stat st;
-    size_t cap = 1 << 16, len = 0;
-    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)) {
-        if ((uintmax_t)st.st_size > o.max_bytes) {
-            fclose(f);
-            return file_error(err, COONS_E_LIMIT, path,
-                              "the model is %jd bytes, above the limit of %zu bytes (raise "
-                              "max_bytes; coons2stl --max-bytes N)",
-                              (intmax_t)st.st_size, o.max_bytes);
-        }
-        cap = (size_t)st.st_size + 1; /* +1: notices a file that grew */
-    }
-    char *buf = NULL;
-    coons_status rc = read_all(f, path, cap, o.max_bytes, &buf, &len, err);
-    fclose(f);
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    coons_status rc = coons__read_file(path, "model", "raise max_bytes; coons2stl --max-bytes N",
+                                       o.max_bytes, &buf, &len, err);
     if (rc) return rc;
-    rc = coons_model_load_memory(buf, len, path, &o, out, err);
+    rc = coons_model_load_memory((const char *)buf, len, path, &o, out, err);
     coons__free(buf);
     return rc;
 }

@@ -12,10 +12,6 @@ void coons_model_load_options_init(coons_model_load_options *o)
 
 coons_status coons__model_load_options_check(const coons_model_load_options *o, coons_error *err)
 {
-    if (o && o->version != COONS_MODEL_LOAD_OPTIONS_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "model load options version %u, expected %u (use "
-                                "COONS_MODEL_LOAD_OPTIONS_INIT)",
-                                o->version, (unsigned)COONS_MODEL_LOAD_OPTIONS_VERSION);
-    return COONS_OK;
+    if (!o) return COONS_OK;
+    return COONS__RECORD_CHECK(err, "model load options", o->version, COONS_MODEL_LOAD_OPTIONS);
 }

@@ -23,16 +23,15 @@
  */
 #define _POSIX_C_SOURCE 200809L /* newlocale, uselocale */
 
-#include <errno.h>
 #include <locale.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "coons_internal.h"
 #include "mesh_impl.h"
+#include "read_file.h"
 
 typedef struct reader {
     const unsigned char *p;
@@ -585,12 +584,8 @@ static void part_name(const char *path, char *out, size_t cap)
 
 static coons_status check_options(const coons_mesh_read_options *o, coons_error *err)
 {
-    if (o && o->version != COONS_MESH_READ_OPTIONS_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "mesh read options version %u, expected %u (use "
-                                "COONS_MESH_READ_OPTIONS_INIT)",
-                                o->version, (unsigned)COONS_MESH_READ_OPTIONS_VERSION);
-    return COONS_OK;
+    if (!o) return COONS_OK;
+    return COONS__RECORD_CHECK(err, "mesh read options", o->version, COONS_MESH_READ_OPTIONS);
 }
 
 coons_status coons_mesh_read_memory(const void *data, size_t size, const char *name,
@@ -645,14 +640,6 @@ coons_status coons_mesh_read_memory(const void *data, size_t size, const char *n
     return st;
 }
 
-static coons_status file_error(coons_error *err, coons_status code, const char *path,
-                               const char *what, int errnum)
-{
-    coons__error_set(err, code, "%s: cannot %s: %s", path, what, strerror(errnum));
-    if (err) snprintf(err->file, sizeof err->file, "%s", path);
-    return code;
-}
-
 coons_status coons_mesh_read_file(const char *path, const coons_mesh_read_options *opts,
                                   coons_mesh **out, coons_error *err)
 {
@@ -661,60 +648,10 @@ coons_status coons_mesh_read_file(const char *path, const coons_mesh_read_option
     coons_status st = check_options(opts, err);
     if (st) return st;
     size_t max_bytes = opts && opts->max_bytes ? opts->max_bytes : COONS_MESH_READ_MAX_BYTES;
-    errno = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return file_error(err, COONS_E_IO, path, "open the mesh", errno);
-    struct stat sb;
-    size_t cap = 1 << 16, len = 0;
-    if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode)) {
-        if ((uintmax_t)sb.st_size > max_bytes) {
-            fclose(f);
-            coons__error_set(err, COONS_E_LIMIT,
-                             "%s: the mesh is %jd bytes, above the limit of %zu bytes "
-                             "(max_bytes)",
-                             path, (intmax_t)sb.st_size, max_bytes);
-            if (err) snprintf(err->file, sizeof err->file, "%s", path);
-            return COONS_E_LIMIT;
-        }
-        cap = (size_t)sb.st_size + 1; /* +1: notices a file that grew */
-    }
-    unsigned char *buf = coons__malloc(cap);
-    if (!buf) {
-        fclose(f);
-        return coons__error_nomem(err);
-    }
-    for (;;) {
-        if (len == cap) {
-            if (cap > max_bytes) break;
-            size_t nc = cap > max_bytes / 2 ? max_bytes + 1 : 2 * cap;
-            unsigned char *nb = coons__realloc(buf, nc);
-            if (!nb) {
-                coons__free(buf);
-                fclose(f);
-                return coons__error_nomem(err);
-            }
-            buf = nb;
-            cap = nc;
-        }
-        errno = 0;
-        size_t got = fread(buf + len, 1, cap - len, f);
-        len += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f), errnum = errno;
-    fclose(f);
-    if (bad) {
-        coons__free(buf);
-        return file_error(err, COONS_E_IO, path, "read the mesh", errnum);
-    }
-    if (len > max_bytes) {
-        coons__free(buf);
-        coons__error_set(err, COONS_E_LIMIT,
-                         "%s: the mesh is more than %zu bytes, the limit (max_bytes)", path,
-                         max_bytes);
-        if (err) snprintf(err->file, sizeof err->file, "%s", path);
-        return COONS_E_LIMIT;
-    }
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    st = coons__read_file(path, "mesh", "max_bytes", max_bytes, &buf, &len, err);
+    if (st) return st;
     st = coons_mesh_read_memory(buf, len, path, opts, out, err);
     coons__free(buf);
     return st;

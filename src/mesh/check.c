@@ -178,10 +178,7 @@ static void count_shells(const coons_mesh *m, const size_t *first, uint32_t *uf,
 
 coons_status coons__mesh_check_c(const coons_mesh *m, coons_mesh_report *r, coons_error *err)
 {
-    if (r->version != COONS_MESH_REPORT_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "mesh report version %u, expected %u (use COONS_MESH_REPORT_INIT)",
-                                r->version, (unsigned)COONS_MESH_REPORT_VERSION);
+    if (COONS__RECORD_CHECK(err, "mesh report", r->version, COONS_MESH_REPORT)) return COONS_E_INVALID;
     coons_mesh_report z = COONS_MESH_REPORT_INIT;
     *r = z;
     size_t nv = m->nv, nt = m->nt;

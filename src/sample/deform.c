@@ -274,11 +274,8 @@ coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh
 {
     if (!out) return coons__error_set(err, COONS_E_INVALID, "deform: out is NULL");
     *out = NULL;
-    if (report && report->version != COONS_DEFORM_REPORT_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "deform: report version %u, expected %u (use "
-                                "COONS_DEFORM_REPORT_INIT)",
-                                report->version, (unsigned)COONS_DEFORM_REPORT_VERSION);
+    if (report && COONS__RECORD_CHECK(err, "deform report", report->version, COONS_DEFORM_REPORT))
+        return COONS_E_INVALID;
     if (!b || !in) return coons__error_set(err, COONS_E_INVALID, "deform: NULL body or mesh");
     if (!(tolerance > 0) || !isfinite(tolerance))
         return coons__error_set(err, COONS_E_INVALID, "deform: the tolerance must be > 0");

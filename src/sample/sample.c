@@ -1017,11 +1017,8 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
 {
     coons_sample_options def = COONS_SAMPLE_OPTIONS_INIT;
     if (!in) in = &def;
-    if (in->version != COONS_SAMPLE_OPTIONS_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "sample options version %u, expected %u (use "
-                                "COONS_SAMPLE_OPTIONS_INIT)",
-                                in->version, (unsigned)COONS_SAMPLE_OPTIONS_VERSION);
+    if (COONS__RECORD_CHECK(err, "sample options", in->version, COONS_SAMPLE_OPTIONS))
+        return COONS_E_INVALID;
     if (isnan(in->tolerance) || isinf(in->tolerance))
         return coons__error_set(err, COONS_E_INVALID, "tolerance must be a finite number");
     if (isnan(in->max_aspect) || (in->max_aspect != 0.0 && in->max_aspect < 1.0))

@@ -32,6 +32,17 @@ coons_status coons__error_set(coons_error *err, coons_status code, const char *f
 /* Shorthand for the common out-of-memory case. */
 coons_status coons__error_nomem(coons_error *err);
 
+/* COONS_E_INVALID, with the one wording of records.c, unless `version` (of
+ * the record named `record`, e.g. "sample options") lies in [oldest,
+ * current]; `init` names the record's INIT macro. COONS__RECORD_CHECK(err,
+ * "sample options", o->version, COONS_SAMPLE_OPTIONS) is the usual call, for
+ * a record that knows one version. */
+coons_status coons__record_version_check(const char *record, unsigned version, unsigned oldest,
+                                         unsigned current, const char *init, coons_error *err);
+#define COONS__RECORD_CHECK(err, record, version, PREFIX)                                         \
+    coons__record_version_check(record, version, PREFIX##_VERSION, PREFIX##_VERSION,               \
+                                #PREFIX "_INIT", err)
+
 #include "geom.h"
 
 /* All values of an array finite? */

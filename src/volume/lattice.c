@@ -97,11 +97,8 @@ static coons_status opts_resolve(const coons_volume_options *in, coons_volume_op
 {
     coons_volume_options def = COONS_VOLUME_OPTIONS_INIT;
     if (!in) in = &def;
-    if (in->version != COONS_VOLUME_OPTIONS_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "volume options version %u, expected %u (use "
-                                "COONS_VOLUME_OPTIONS_INIT)",
-                                in->version, (unsigned)COONS_VOLUME_OPTIONS_VERSION);
+    if (COONS__RECORD_CHECK(err, "volume options", in->version, COONS_VOLUME_OPTIONS))
+        return COONS_E_INVALID;
     *out = *in;
     if (out->element == 0) out->element = COONS_ELEMENT_HEX8;
     if (out->element != COONS_ELEMENT_HEX8 && out->element != COONS_ELEMENT_HEX20 &&

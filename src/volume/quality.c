@@ -90,11 +90,8 @@ coons_status coons_volume_mesh_quality(const coons_volume_mesh *vm, size_t part,
                                        coons_volume_quality *q, coons_error *err)
 {
     if (!vm || !q) return coons__error_set(err, COONS_E_INVALID, "no mesh or report given");
-    if (q->version != COONS_VOLUME_QUALITY_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "volume quality report version %u, expected %u (use "
-                                "COONS_VOLUME_QUALITY_INIT)",
-                                q->version, (unsigned)COONS_VOLUME_QUALITY_VERSION);
+    if (COONS__RECORD_CHECK(err, "volume quality report", q->version, COONS_VOLUME_QUALITY))
+        return COONS_E_INVALID;
     if (part >= vm->parts.count)
         return coons__error_set(err, COONS_E_INVALID, "no part %zu (the mesh has %zu)", part,
                                 vm->parts.count);

@@ -33,10 +33,8 @@ coons_status coons__write_prepare(coons__write_job *job, int mesh_given, coons_f
                                   coons_error *err)
 {
     if (!mesh_given) return coons__error_set(err, COONS_E_INVALID, "no mesh given");
-    if (opts && opts->version != COONS_WRITE_OPTIONS_VERSION)
-        return coons__error_set(err, COONS_E_INVALID,
-                                "write options version %u, this library knows %d", opts->version,
-                                COONS_WRITE_OPTIONS_VERSION);
+    if (opts && COONS__RECORD_CHECK(err, "write options", opts->version, COONS_WRITE_OPTIONS))
+        return COONS_E_INVALID;
     job->row = coons__format_row_of(format);
     if (!job->row)
         return coons__error_set(err, COONS_E_INVALID, "invalid output format %d", (int)format);

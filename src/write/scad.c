@@ -147,14 +147,8 @@ coons_status coons__check_scad(const coons_mesh *m, coons_error *err)
     return COONS_OK;
 }
 
-coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons__sink *s)
+void coons__scad_header(coons__sink *s, const coons__wopts *o)
 {
-    size_t np = coons_mesh_part_count(m);
-    int whole = np == 0; /* a mesh without parts is written as one part */
-    if (whole) np = 1;
-    char (*names)[IDENT_MAX] = NULL;
-    coons_status st = module_names(m, o, np, whole, &names, s->err);
-    if (st != COONS_OK) return s->status = st;
     char line[COONS__SINK_MAXREC];
     coons__clean_text(line, sizeof line - 16, o->header);
     coons__sink_puts(s, "// ");
@@ -166,6 +160,18 @@ coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons
         coons__sink_puts(s, line);
         coons__sink_puts(s, "\n");
     }
+}
+
+coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons__sink *s)
+{
+    size_t np = coons_mesh_part_count(m);
+    int whole = np == 0; /* a mesh without parts is written as one part */
+    if (whole) np = 1;
+    char (*names)[IDENT_MAX] = NULL;
+    coons_status st = module_names(m, o, np, whole, &names, s->err);
+    if (st != COONS_OK) return s->status = st;
+    char line[COONS__SINK_MAXREC];
+    coons__scad_header(s, o);
     coons__sink_puts(s, "// use <this file> imports the modules; include <this file> also renders ");
     coons__sink_puts(s, names[np]);
     coons__sink_puts(s, "().\n// Faces are clockwise seen from outside, as polyhedron() expects.\n");

@@ -571,17 +571,7 @@ static coons_status write_anim(const coons_mesh *unused, const coons__wopts *o, 
 {
     /* The job's mesh pointer carries the animation (see write_scad_anim). */
     const anim *a = (const anim *)(const void *)unused;
-    char line[COONS__SINK_MAXREC];
-    coons__clean_text(line, sizeof line - 16, o->header);
-    coons__sink_puts(s, "// ");
-    coons__sink_puts(s, line);
-    coons__sink_puts(s, "\n");
-    if (o->units[0]) {
-        coons__clean_text(line, sizeof line - 16, o->units);
-        coons__sink_puts(s, "// units: ");
-        coons__sink_puts(s, line);
-        coons__sink_puts(s, "\n");
-    }
+    coons__scad_header(s, o);
     coons__sink_puts(s, "// A metamorphosis: ");
     coons__sink_puts(s, a->model);
     coons__sink_puts(s, "(t) draws the model at time t in [0, 1]; the call at the end passes\n"

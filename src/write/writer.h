@@ -135,6 +135,9 @@ void coons__scad_identifier(char *out, size_t cap, const char *name);
 /* The identifier of "MODEL_PART": a part's module name, carrying the
  * model's name so that modules of different models do not clash. */
 void coons__scad_part_identifier(char *out, size_t cap, const char *model, const char *part);
+/* The first lines of every .scad file: "// " and the header option's text,
+ * then "// units: " and the units when the options name them. */
+void coons__scad_header(coons__sink *s, const coons__wopts *o);
 
 /* ---- cells at collapsed edges and faces (cellshape.c) ------------------ */
 
