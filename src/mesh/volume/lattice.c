@@ -36,10 +36,8 @@
 #include <string.h>
 
 #include "body_impl.h"
-#include "coons_internal.h"
+#include "lattice_impl.h"
 #include "mesh_glue.h"
-#include "union_find.h"
-#include "volume_impl.h"
 
 /* Doubled reference position of each Gmsh node of a hex27 (coons/volume.h);
  * hex8 and hex20 are its first 8 and 20 rows. */
@@ -53,31 +51,8 @@ static const unsigned char REF[27][3] = {
 static const unsigned char FACE_CORNERS[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
                                                  {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
 
-typedef struct vbody {
-    const coons_body *b;
-    const char *name;
-    double *t[3];  /* cell lattice values, n[d] + 1 of them */
-    double *L[3];  /* node lattice values, m[d] of them */
-    size_t n[3];   /* cell intervals */
-    size_t m[3];   /* node lattice points: step * n + 1 */
-    size_t base;   /* first raw id */
-    int left;      /* left-handed: cells mirrored in r */
-    double lo[3], hi[3]; /* box of its points */
-} vbody;
-
-typedef struct vbuild {
-    coons_element el;
-    int step;        /* 1 (hex8) or 2: node lattice index per cell interval */
-    size_t npc;
-    vbody *vb;
-    size_t nb;
-    size_t nraw;
-    double *pos;     /* 3 * nraw */
-    uint32_t *uf;    /* nraw */
-    uint32_t *id;    /* nraw: final node of a representative, UINT32_MAX if unused */
-    size_t nn;       /* final nodes */
-    coons_error *err;
-} vbuild;
+typedef coons__vbody vbody;
+typedef coons__vbuild vbuild;
 
 static void vbuild_free(vbuild *v)
 {
@@ -174,66 +149,6 @@ static coons_status node_lattice(vbuild *v, vbody *B)
     return st;
 }
 
-/* ---- one lattice along directions that shared faces connect ----------- */
-
-/* Union-find with parity over the 3 nb directions (body i, axis d) = 3i+d:
- * par[x] = 1 when x runs opposite to its parent (t <-> 1 - t). */
-/* Gives every set of directions that shared faces connect (in either
- * sense) one lattice (lattice_share.c), so each body's lattice is refined,
- * never coarsened (each still meets its tolerance). */
-static coons_status share_lattices(vbuild *v)
-{
-    if (v->nb < 2) return COONS_OK;
-    double lo[3], hi[3];
-    bbox_empty(lo, hi);
-    const coons_body **bodies = coons__malloc_array(v->nb, sizeof *bodies);
-    if (!bodies) return coons__error_nomem(v->err);
-    for (size_t i = 0; i < v->nb; i++) {
-        double a[3], b[3];
-        coons_body_control_bbox(v->vb[i].b, a, b);
-        bbox_add(lo, hi, a);
-        bbox_add(lo, hi, b);
-        bodies[i] = v->vb[i].b;
-    }
-    coons__shared_face *sf = NULL;
-    size_t nsf = 0;
-    coons_status st =
-        coons__find_shared_faces(bodies, v->nb, 1e-9 * bbox_diag(lo, hi), &sf, &nsf, v->err);
-    coons__free(bodies);
-    if (st || !nsf) {
-        coons__free(sf);
-        return st;
-    }
-    double **t = coons__malloc_array(3 * v->nb, sizeof *t);
-    size_t *n = coons__malloc_array(3 * v->nb, sizeof *n);
-    if (!t || !n) {
-        st = coons__error_nomem(v->err);
-    } else {
-        for (size_t x = 0; x < 3 * v->nb; x++) t[x] = v->vb[x / 3].t[x % 3], n[x] = v->vb[x / 3].n[x % 3];
-        st = coons__share_lattices(v->nb, t, n, sf, nsf, NULL, v->err);
-        /* The arrays were replaced in t (also on failure, up to it). */
-        for (size_t x = 0; x < 3 * v->nb; x++) v->vb[x / 3].t[x % 3] = t[x], v->vb[x / 3].n[x % 3] = n[x];
-    }
-    coons__free(t);
-    coons__free(n);
-    coons__free(sf);
-    return st;
-}
-
-/* Raw id of node lattice point (a, b, c) of body B (coons_body_eval_grid's
- * order: u slowest). */
-static inline size_t raw_id(const vbody *B, size_t a, size_t b, size_t c)
-{
-    return B->base + (a * B->m[1] + b) * B->m[2] + c;
-}
-
-/* Whether a node lattice point is a node of some cell: hex20 uses corners
- * and edge midpoints (at most one odd index), the others every point. */
-static inline int needed(const vbuild *v, size_t a, size_t b, size_t c)
-{
-    return v->el != COONS_ELEMENT_HEX20 || (a & 1) + (b & 1) + (c & 1) <= 1;
-}
-
 static coons_status evaluate(vbuild *v)
 {
     for (size_t i = 0; i < v->nb; i++) {
@@ -245,7 +160,7 @@ static coons_status evaluate(vbuild *v)
         for (size_t a = 0; a < B->m[0]; a++)
             for (size_t b = 0; b < B->m[1]; b++)
                 for (size_t c = 0; c < B->m[2]; c++) {
-                    const double *p = v->pos + 3 * raw_id(B, a, b, c);
+                    const double *p = v->pos + 3 * coons__vraw(B, a, b, c);
                     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
                         return coons__error_set(v->err, COONS_E_INVALID,
                                                 "body '%s' evaluates to a point that is not "
@@ -320,8 +235,8 @@ static coons_status merge(vbuild *v)
         for (size_t a = 0; a < B->m[0]; a++)
             for (size_t b = 0; b < B->m[1]; b++)
                 for (size_t c = 0; c < B->m[2]; c++) {
-                    if (!is_boundary(B, a, b, c) || !needed(v, a, b, c)) continue;
-                    size_t r = raw_id(B, a, b, c);
+                    if (!is_boundary(B, a, b, c) || !coons__vneeded(v, a, b, c)) continue;
+                    size_t r = coons__vraw(B, a, b, c);
                     const double *p = v->pos + 3 * r;
                     int64_t k[3];
                     for (int d = 0; d < 3; d++) k[d] = (int64_t)floor((p[d] - lo[d]) * inv);
@@ -351,12 +266,6 @@ static coons_status merge(vbuild *v)
 
 /* ---- nodes, cells, fields and sets ------------------------------------- */
 
-/* Node of lattice point (a, b, c): its representative's final id. */
-static inline uint32_t node_at(const vbuild *v, const vbody *B, size_t a, size_t b, size_t c)
-{
-    return v->id[coons__uf_find(v->uf, (uint32_t)raw_id(B, a, b, c))];
-}
-
 /* The nodes of cell (i, j, k) of body B in Gmsh order (mirrored in r for a
  * left-handed body). */
 static void cell_nodes(const vbuild *v, const vbody *B, size_t i, size_t j, size_t k,
@@ -366,7 +275,7 @@ static void cell_nodes(const vbuild *v, const vbody *B, size_t i, size_t j, size
     for (size_t q = 0; q < v->npc; q++) {
         size_t r = REF[q][0], t1 = REF[q][1], t2 = REF[q][2];
         if (B->left) r = 2 - r;
-        out[q] = node_at(v, B, s * i + r * s / 2, s * j + t1 * s / 2, s * k + t2 * s / 2);
+        out[q] = coons__vnode(v, B, s * i + r * s / 2, s * j + t1 * s / 2, s * k + t2 * s / 2);
     }
 }
 
@@ -393,8 +302,8 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
         for (size_t a = 0; a < B->m[0]; a++)
             for (size_t b = 0; b < B->m[1]; b++)
                 for (size_t c = 0; c < B->m[2]; c++)
-                    if (needed(v, a, b, c))
-                        v->id[coons__uf_find(v->uf, (uint32_t)raw_id(B, a, b, c))] = 0;
+                    if (coons__vneeded(v, a, b, c))
+                        v->id[coons__uf_find(v->uf, (uint32_t)coons__vraw(B, a, b, c))] = 0;
     }
     size_t nn = 0;
     for (size_t r = 0; r < v->nraw; r++)
@@ -428,8 +337,8 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
             for (size_t a = a0; a < a0 + na && !st; a++)
                 for (size_t b = 0; b < B->m[1]; b++)
                     for (size_t c = 0; c < B->m[2]; c++) {
-                        size_t r = raw_id(B, a, b, c);
-                        if (!needed(v, a, b, c) || v->uf[r] != r) continue;
+                        size_t r = coons__vraw(B, a, b, c);
+                        if (!coons__vneeded(v, a, b, c) || v->uf[r] != r) continue;
                         uint32_t n = v->id[r];
                         double d = dg[((a - a0) * B->m[1] + b) * B->m[2] + c];
                         v3_copy(xyz + 3 * (size_t)n, v->pos + 3 * r);
@@ -575,8 +484,8 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
                     q[ax] = B->m[ax] - 1;
                     p[(ax + 1) % 3] = q[(ax + 1) % 3] = x;
                     p[(ax + 2) % 3] = q[(ax + 2) % 3] = y;
-                    if (!needed(v, p[0], p[1], p[2])) continue;
-                    glued[ax] = node_at(v, B, p[0], p[1], p[2]) == node_at(v, B, q[0], q[1], q[2]);
+                    if (!coons__vneeded(v, p[0], p[1], p[2])) continue;
+                    glued[ax] = coons__vnode(v, B, p[0], p[1], p[2]) == coons__vnode(v, B, q[0], q[1], q[2]);
                 }
         }
         for (int f = 0; f < 6 && !st; f++) {
@@ -620,8 +529,8 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
                     p[ax] = hi ? B->m[ax] - 1 : 0;
                     p[(ax + 1) % 3] = x;
                     p[(ax + 2) % 3] = y;
-                    if (!needed(v, p[0], p[1], p[2])) continue;
-                    uint32_t n = node_at(v, B, p[0], p[1], p[2]);
+                    if (!coons__vneeded(v, p[0], p[1], p[2])) continue;
+                    uint32_t n = coons__vnode(v, B, p[0], p[1], p[2]);
                     if (n == UINT32_MAX || stamp[n] == tag) continue;
                     stamp[n] = tag;
                     items[nn++] = n;
@@ -636,52 +545,6 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
     return st;
 }
 
-/* ---- conformity between bodies ----------------------------------------- */
-
-/* Whether face f of body A (its node set) lies entirely on nodes of body
- * B's boundary (marked in `mark`). */
-static coons_status check_conformal(vbuild *v, const coons_volume_mesh *vm)
-{
-    if (v->nb < 2) return COONS_OK;
-    unsigned char *mark = coons__calloc(v->nn ? v->nn : 1, 1);
-    if (!mark) return coons__error_nomem(v->err);
-    coons_status st = COONS_OK;
-    for (size_t i = 0; i < v->nb && !st; i++)
-        for (size_t j = i + 1; j < v->nb && !st; j++) {
-            const vbody *A = &v->vb[i], *B = &v->vb[j];
-            double g = 1e-9 * fmax(bbox_diag(A->lo, A->hi), bbox_diag(B->lo, B->hi));
-            int apart = 0;
-            for (int d = 0; d < 3; d++)
-                apart |= A->lo[d] > B->hi[d] + g || B->lo[d] > A->hi[d] + g;
-            if (apart) continue;
-            /* Mark B's face nodes; look for a face of A wholly on them. */
-            memset(mark, 0, v->nn ? v->nn : 1);
-            for (int f = 0; f < 6; f++) {
-                const uint32_t *items;
-                size_t cnt;
-                coons_volume_mesh_node_set(vm, 6 * j + (size_t)f, &items, &cnt);
-                for (size_t z = 0; z < cnt; z++) mark[items[z]] = 1;
-            }
-            int shared = 0;
-            for (int f = 0; f < 6 && !shared; f++) {
-                const uint32_t *items;
-                size_t cnt;
-                coons_volume_mesh_node_set(vm, 6 * i + (size_t)f, &items, &cnt);
-                size_t on = 0;
-                for (size_t z = 0; z < cnt; z++) on += mark[items[z]];
-                shared = cnt >= 3 && on == cnt;
-            }
-            if (!shared)
-                st = coons__error_set(v->err, COONS_E_UNSUPPORTED,
-                                      "bodies '%s' and '%s' overlap or touch without sharing "
-                                      "a whole face: a conformal volume mesh needs bodies that "
-                                      "meet only along whole shared faces",
-                                      A->name, B->name);
-        }
-    coons__free(mark);
-    return st;
-}
-
 /* ---- entry points -------------------------------------------------------- */
 
 static coons_status build(vbuild *v, const coons_volume_options *o, double tolerance,
@@ -690,7 +553,7 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     coons_status st = COONS_OK;
     size_t cells = 0;
     for (size_t i = 0; i < v->nb && !st; i++) st = body_lattice(v, &v->vb[i], o, tolerance);
-    if (!st) st = share_lattices(v);
+    if (!st) st = coons__vlattice_share(v);
     for (size_t i = 0; i < v->nb && !st; i++) {
         vbody *B = &v->vb[i];
         if ((st = node_lattice(v, B))) break;
@@ -723,7 +586,7 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     if (!st) st = add_cells(v, vm, &keep);
     if (!st) st = add_fields(v, vm, par, det);
     if (!st) st = add_sets(v, vm, keep);
-    if (!st) st = check_conformal(v, vm);
+    if (!st) st = coons__vlattice_check(v, vm);
     coons__free(par);
     coons__free(det);
     coons__free(keep);
