@@ -365,19 +365,61 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
     return COONS_OK;
 }
 
-static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, unsigned char **kept)
+/* Corner pairs of the 12 edges of a hexahedron (Gmsh corners), with the
+ * axis each runs along, and each Gmsh corner's reference bits (r, s, t). */
+static const unsigned char HEX_EDGE[12][3] = {{0, 1, 0}, {3, 2, 0}, {4, 5, 0}, {7, 6, 0},
+                                              {0, 3, 1}, {1, 2, 1}, {4, 7, 1}, {5, 6, 1},
+                                              {0, 4, 2}, {1, 5, 2}, {2, 6, 2}, {3, 7, 2}};
+static const unsigned char HEX_BITS[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+
+/* The block a hex8 cell goes to within its body: 1 wedges (two parallel
+ * edges of one face collapsed, 6 distinct corners), 2 pyramids (one face
+ * collapsed to a node, 5 distinct corners), 0 the rest (hexahedra, and the
+ * cells that stay hexahedra with repeated nodes). The writers' own
+ * classification (src/io/write/cellshape.c) decides the same way from the
+ * same corners, so each body's cells of one written type are consecutive.
+ * Hex20 and hex27 cells are always written as hexahedra: block 0. */
+static int cell_block(const vbuild *v, const uint32_t *h)
+{
+    if (v->npc != 8) return 0;
+    int e[12], n = 0;
+    for (int i = 0; i < 12; i++)
+        if (h[HEX_EDGE[i][0]] == h[HEX_EDGE[i][1]]) e[n++] = i;
+    size_t d = distinct_corners(h);
+    if (n == 2 && d == 6 && HEX_EDGE[e[0]][2] == HEX_EDGE[e[1]][2]) {
+        int b = HEX_EDGE[e[0]][2];
+        unsigned x = HEX_BITS[HEX_EDGE[e[0]][0]] ^ HEX_BITS[HEX_EDGE[e[1]][0]];
+        /* The two edges differ in exactly one of the other two axes. */
+        return (x & ~(1u << b)) == (1u << (b + 1) % 3) || (x & ~(1u << b)) == (1u << (b + 2) % 3);
+    }
+    if (n == 4 && d == 5)
+        for (int f = 0; f < 6; f++) {
+            const unsigned char *c = FACE_CORNERS[f];
+            if (h[c[0]] == h[c[1]] && h[c[0]] == h[c[2]] && h[c[0]] == h[c[3]]) return 2;
+        }
+    return 0;
+}
+
+/* Adds each body's cells as one part, grouped by block (cell_block()) and
+ * in lattice order within a block. cellno[] (lattice order over all
+ * bodies) receives each lattice cell's number in the mesh, UINT32_MAX for
+ * a cell with fewer than 4 distinct corners (no volume at all: dropped). */
+static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, uint32_t **cellno)
 {
     size_t total = 0;
     for (size_t i = 0; i < v->nb; i++) total += v->vb[i].n[0] * v->vb[i].n[1] * v->vb[i].n[2];
-    unsigned char *keep = coons__malloc_array(total ? total : 1, 1);
-    if (!keep) return coons__error_nomem(v->err);
-    size_t base = 0;
+    uint32_t *no = coons__malloc_array(total ? total : 1, sizeof *no);
+    if (!no) return coons__error_nomem(v->err);
+    size_t base = 0, cell0 = 0;
     coons_status st = COONS_OK;
     for (size_t i = 0; i < v->nb && !st; i++) {
         const vbody *B = &v->vb[i];
-        size_t nc = B->n[0] * B->n[1] * B->n[2], nk = 0;
+        size_t nc = B->n[0] * B->n[1] * B->n[2], start[4] = {0, 0, 0, 0};
         uint32_t *rows = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
-        if (!rows) {
+        uint32_t *out = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
+        if (!rows || !out) {
+            coons__free(rows);
+            coons__free(out);
             st = coons__error_nomem(v->err);
             break;
         }
@@ -385,22 +427,38 @@ static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, unsigned char **
         for (size_t a = 0; a < B->n[0]; a++)
             for (size_t b = 0; b < B->n[1]; b++)
                 for (size_t c = 0; c < B->n[2]; c++, q++) {
-                    uint32_t *row = rows + v->npc * nk;
+                    uint32_t *row = rows + v->npc * q;
                     cell_nodes(v, B, a, b, c, row);
                     /* Fewer than 4 distinct corners: no volume at all. */
-                    keep[base + q] = distinct_corners(row) >= 4;
-                    nk += keep[base + q];
+                    int k = distinct_corners(row) >= 4 ? cell_block(v, row) : 3;
+                    no[base + q] = (uint32_t)k;
+                    if (k < 3) start[k + 1]++;
                 }
+        start[2] += start[1];
+        start[3] += start[2];
+        for (q = 0; q < nc; q++) {
+            uint32_t k = no[base + q];
+            if (k == 3) {
+                no[base + q] = UINT32_MAX;
+                continue;
+            }
+            size_t at = start[k]++;
+            memcpy(out + v->npc * at, rows + v->npc * q, v->npc * sizeof(uint32_t));
+            no[base + q] = (uint32_t)(cell0 + at);
+        }
+        size_t nk = start[2]; /* after the fill: the end of block 2 */
         if (!(st = coons_volume_mesh_add_part(vm, B->name, NULL, v->err)))
-            st = coons_volume_mesh_add_cells(vm, rows, nk, i, NULL, v->err);
+            st = coons_volume_mesh_add_cells(vm, out, nk, i, NULL, v->err);
         coons__free(rows);
+        coons__free(out);
         base += nc;
+        cell0 += nk;
     }
     if (st) {
-        coons__free(keep);
+        coons__free(no);
         return st;
     }
-    *kept = keep;
+    *cellno = no;
     return COONS_OK;
 }
 
@@ -441,9 +499,9 @@ static coons_status add_fields(vbuild *v, coons_volume_mesh *vm, const double *p
     return st;
 }
 
-/* Cell set per body; node and face set per body face. `keep` says which
- * lattice cells were kept (in lattice order over all bodies). */
-static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned char *keep)
+/* Cell set per body; node and face set per body face. `cellno` is each
+ * lattice cell's number in the mesh (add_cells()). */
+static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const uint32_t *cellno)
 {
     size_t maxc = 0, maxf = 0;
     for (size_t i = 0; i < v->nb; i++) {
@@ -468,7 +526,7 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
         size_t nc = B->n[0] * B->n[1] * B->n[2];
         /* Kept cell number of each lattice cell of this body. */
         size_t kept = 0;
-        for (size_t q = 0; q < nc; q++) kept += keep[base + q];
+        for (size_t q = 0; q < nc; q++) kept += cellno[base + q] != UINT32_MAX;
         for (size_t q = 0; q < kept; q++) items[q] = (uint32_t)(cell0 + q);
         st = coons_volume_mesh_add_cell_set(vm, B->name, items, kept, v->err);
         /* A closed body's two faces along a direction that coincide point
@@ -493,30 +551,38 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
             int lf = (B->left && ax == 0) ? 1 - hi : f; /* local face of the cell */
             char name[COONS_VOLUME_NAME_MAX + 1];
             snprintf(name, sizeof name, "%s.%s", B->name, coons_body_face_name(f));
-            /* Face set: cells on the face whose local face keeps 3 corners. */
-            size_t np = 0, q = 0, k = 0;
+            /* Face set: cells on the face whose local face keeps 3 corners;
+             * the quadrangles first, then the triangles (a local face with
+             * two neighbouring corners merged), so that a writer's elements
+             * of one type are consecutive. */
+            size_t np = 0;
             uint32_t row[27];
-            for (size_t a = 0; a < B->n[0]; a++)
-                for (size_t b = 0; b < B->n[1]; b++)
-                    for (size_t c = 0; c < B->n[2]; c++, q++) {
-                        if (!keep[base + q]) continue;
-                        size_t idx[3] = {a, b, c};
-                        size_t cell = cell0 + k++;
-                        if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
-                        cell_nodes(v, B, a, b, c, row);
-                        uint32_t fc[4];
-                        for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
-                        size_t nd = 0;
-                        for (int z = 0; z < 4; z++) {
-                            int dup = 0;
-                            for (int y = 0; y < z; y++) dup |= fc[y] == fc[z];
-                            nd += !dup;
+            for (int tri = 0; tri < 2; tri++) {
+                size_t q = 0;
+                for (size_t a = 0; a < B->n[0]; a++)
+                    for (size_t b = 0; b < B->n[1]; b++)
+                        for (size_t c = 0; c < B->n[2]; c++, q++) {
+                            uint32_t cell = cellno[base + q];
+                            if (cell == UINT32_MAX) continue;
+                            size_t idx[3] = {a, b, c};
+                            if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
+                            cell_nodes(v, B, a, b, c, row);
+                            uint32_t fc[4];
+                            for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
+                            size_t nd = 0;
+                            int next = 0; /* neighbouring corners merged */
+                            for (int z = 0; z < 4; z++) {
+                                int dup = 0;
+                                for (int y = 0; y < z; y++) dup |= fc[y] == fc[z];
+                                nd += !dup;
+                                next |= fc[z] == fc[(z + 1) % 4];
+                            }
+                            if (nd < 3 || (nd == 3 && next) != tri) continue;
+                            items[2 * np] = cell;
+                            items[2 * np + 1] = (uint32_t)lf;
+                            np++;
                         }
-                        if (nd < 3) continue;
-                        items[2 * np] = (uint32_t)cell;
-                        items[2 * np + 1] = (uint32_t)lf;
-                        np++;
-                    }
+            }
             st = coons_volume_mesh_add_face_set(vm, name, items, np, v->err);
             if (st) break;
             /* Node set: every node on the face, once. */
@@ -581,15 +647,15 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     coons_volume_mesh *vm;
     if ((st = coons_volume_mesh_new(v->el, &vm, v->err))) return st;
     double *par = NULL, *det = NULL;
-    unsigned char *keep = NULL;
+    uint32_t *cellno = NULL;
     st = number_nodes(v, vm, &par, &det);
-    if (!st) st = add_cells(v, vm, &keep);
+    if (!st) st = add_cells(v, vm, &cellno);
     if (!st) st = add_fields(v, vm, par, det);
-    if (!st) st = add_sets(v, vm, keep);
+    if (!st) st = add_sets(v, vm, cellno);
     if (!st) st = coons__vlattice_check(v, vm);
     coons__free(par);
     coons__free(det);
-    coons__free(keep);
+    coons__free(cellno);
     if (st) {
         coons_volume_mesh_free(vm);
         return st;
