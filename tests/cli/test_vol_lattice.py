@@ -264,10 +264,10 @@ def examples(tmp):
         vol = volume_blocks(m)
         surf = [b for b in m.cells if b.type not in VOLUME_TYPES]
         T.check(f"nail .{ext}: meshio reads {len(vol)} volume blocks "
-                f"({', '.join(b.type for b in vol)}) and {len(surf)} surface blocks, at most "
+                f"({', '.join(b.type for b in vol[:4])}) and {len(surf)} surface blocks, at most "
                 "3 volume blocks for its one body and 2 per face set",
                 1 <= len(vol) <= 3 and len({b.type for b in vol}) == len(vol) and
-                len(surf) <= 2 * 6, str([b.type for b in m.cells][:20]))
+                len(surf) <= 2 * 6, str([b.type for b in m.cells][:8]))
 
 
 def main():
