@@ -13,9 +13,10 @@
  * the body: a cell's node k is F at the parameters of its reference
  * position (Gmsh order, coons/volume.h).
  *
- * Bodies that share a face (shared_faces.c) get one lattice along the
- * directions that face connects (share_lattices()), so the face's points
- * are evaluated at the same parameters from both sides.
+ * Bodies that share a face (shared_faces.c) or a whole edge get one
+ * lattice along the directions they connect (lattice_conform.c), so the
+ * shared points are evaluated at the same parameters from both sides; the
+ * same file refuses bodies that meet otherwise.
  *
  * Coincident nodes are one node: only boundary points of a body can
  * coincide with another point (the map of a valid body is injective inside),
@@ -30,7 +31,12 @@
  * Orientation: a body whose det J is negative at most nodes is
  * left-handed; its cells take their nodes mirrored in r (node k at the
  * reference position (1 - r, s, t) of node k), which makes them positive.
- * The `det_j` field keeps the body's own sign. */
+ * The `det_j` field keeps the body's own sign.
+ *
+ * Each body's cells are added grouped by what the writers make of them
+ * (cell_block(): hexahedra, wedges, pyramids), each group in lattice
+ * order, so that readers that split a mesh into blocks of one cell type
+ * (meshio, ParaView) see at most three per body. */
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
