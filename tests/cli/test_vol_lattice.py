@@ -19,6 +19,10 @@ coons2stl's own numbers:
 - two bodies that meet along one whole edge only (a box and a Bezier
   volume curved along z, so their sampled lattices along the shared edge
   differ): the edge's nodes are the same nodes seen from both bodies;
+- two boxes touching along half a face, along a shifted face, with a
+  corner on the middle of a face, or overlapping: refused (exit 3) naming
+  both, nothing written; sharing a whole face, a whole edge or a corner:
+  meshed;
 - every lattice example (lattice-ffd, chair-lattice, lattice-l-bracket,
   lattice-ring, lattice-instanced) as .vtu: no two nodes coincide and no
   face is used by more than two cells;
@@ -239,6 +243,44 @@ def edge_only(tmp):
             f"{sorted(on[0])} {sorted(on[1])}")
 
 
+def box(lo, hi, name):
+    return {"type": "body0", "name": name,
+            "corners": [[hi[d] if i >> (2 - d) & 1 else lo[d] for d in range(3)]
+                        for i in range(8)]}
+
+
+def refusals(tmp):
+    """Bodies that meet other than along whole faces, whole edges or at
+    corners of both: exit 3 naming both, nothing written; and the accepted
+    kinds of contact for comparison."""
+    a = box([0, 0, 0], [1, 1, 1], "a")
+    cases = (("touching along half a face", box([1, 0, 0], [2, 0.5, 1], "b"), False),
+             ("touching along a shifted face", box([1, 0.5, 0], [2, 1.5, 1], "b"), False),
+             ("a corner on the middle of a face",
+              box([1, 0.5, 0.5], [2, 1.5, 1.5], "b"), False),
+             ("overlapping", box([0.5, 0.5, 0.5], [1.7, 1.7, 1.7], "b"), False),
+             ("sharing a whole face", box([1, 0, 0], [2, 1, 1], "b"), True),
+             ("sharing a whole edge", box([1, 1, 0], [2, 2, 1], "b"), True),
+             ("sharing a corner", box([1, 1, 1], [2, 2, 2], "b"), True))
+    for what, b, ok in cases:
+        path = os.path.join(tmp, "pair.json")
+        with open(path, "w") as f:
+            json.dump({"coons": 1, "units": "mm", "bodies": [a, b]}, f)
+        out = os.path.join(tmp, "pair.vtu")
+        if os.path.exists(out):
+            os.unlink(out)
+        rc, _, err = T.run([path, "-o", out, "--resolution", "2"])
+        if ok:
+            good = rc == 0 and os.path.exists(out)
+            if good:
+                m = meshio.read(out)
+                good = coincident_nodes(m) == 0 and max(face_counts(m).values()) <= 2
+            T.check(f"two boxes {what}: meshed, no coincident nodes", good, err)
+        else:
+            T.check(f"two boxes {what}: refused (exit 3) naming both, nothing written",
+                    rc == 3 and "'a' and 'b'" in err and not os.path.exists(out), err)
+
+
 def examples(tmp):
     ex = os.path.join(T.src, "examples")
     for name in ("lattice-ffd.json", "chair-lattice.json", "lattice-l-bracket.json",
@@ -274,6 +316,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         curved_checks(tmp)
         edge_only(tmp)
+        refusals(tmp)
         examples(tmp)
     T.finish()
 
