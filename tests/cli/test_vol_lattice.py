@@ -20,7 +20,8 @@ coons2stl's own numbers:
   volume curved along z, so their sampled lattices along the shared edge
   differ): the edge's nodes are the same nodes seen from both bodies;
 - two boxes touching along half a face, along a shifted face, with a
-  corner on the middle of a face, or overlapping: refused (exit 3) naming
+  corner on the middle of a face, or overlapping, and a box and a Bezier
+  volume whose faces coincide but are parametrised differently: refused (exit 3) naming
   both, nothing written; sharing a whole face, a whole edge or a corner:
   meshed;
 - every lattice example (lattice-ffd, chair-lattice, lattice-l-bracket,
@@ -259,6 +260,12 @@ def refusals(tmp):
              ("a corner on the middle of a face",
               box([1, 0.5, 0.5], [2, 1.5, 1.5], "b"), False),
              ("overlapping", box([0.5, 0.5, 0.5], [1.7, 1.7, 1.7], "b"), False),
+             # b's face x = 1 is a's face u1, but with y = (0, 0.1, 1)-Bezier
+             # in its parameter: only the edges along z coincide node for node
+             ("touching along a face parametrised differently",
+              {"type": "bezier-volume", "name": "b",
+               "points": [[[[1 + i, y, z] for z in (0, 1)] for y in (0, 0.1, 1)]
+                          for i in (0, 1)]}, False),
              ("sharing a whole face", box([1, 0, 0], [2, 1, 1], "b"), True),
              ("sharing a whole edge", box([1, 1, 0], [2, 2, 1], "b"), True),
              ("sharing a corner", box([1, 1, 1], [2, 2, 2], "b"), True))

@@ -19,7 +19,10 @@
  * a set S of nodes. Each node of S must lie on a feature of each body (one
  * of its 6 faces, 12 edges or 8 corners in its node lattice) all of whose
  * nodes are in S: then the bodies meet along whole faces, whole edges or at
- * corners, and S is conformal. A body pair sharing no node whose cells'
+ * corners, and S is conformal, unless at a corner of both the two leave
+ * along lattice edges in the same direction to different nodes (their
+ * boundaries run together there: faces or edges that coincide but are
+ * parametrised differently). A body pair sharing no node whose cells'
  * boxes meet within 1e-9 of the larger box diagonal touches or overlaps
  * without sharing: refused, naming both, as is a pair whose shared nodes
  * cover only part of a face or edge. */
@@ -246,6 +249,53 @@ static int covered(const coons__vbuild *v, const coons__vbody *B, const uint32_t
     return 1;
 }
 
+/* The first lattice segment from corner k (bits: u, v, w at their high
+ * end) of B along axis d: *next gets the node at its other end, dir its
+ * direction (not normalised). */
+static void corner_segment(const coons__vbuild *v, const coons__vbody *B, int k, int d,
+                           uint32_t *next, double dir[3])
+{
+    size_t p[3], q[3];
+    for (int e = 0; e < 3; e++) p[e] = q[e] = (k >> e & 1) ? B->m[e] - 1 : 0;
+    q[d] = (k >> d & 1) ? p[d] - 1 : p[d] + 1;
+    *next = coons__vnode(v, B, q[0], q[1], q[2]);
+    const double *a = v->pos + 3 * coons__vraw(B, p[0], p[1], p[2]);
+    const double *b = v->pos + 3 * coons__vraw(B, q[0], q[1], q[2]);
+    for (int e = 0; e < 3; e++) dir[e] = b[e] - a[e];
+}
+
+/* Whether A and B, at a corner node of both, leave it along lattice edges
+ * in the same direction (within 1/100 radian) without sharing the edge's
+ * next node: their boundaries then run together beyond the corner (faces
+ * or edges that coincide but are parametrised differently), which the
+ * shared nodes alone do not show. */
+static int corner_overlap(const coons__vbuild *v, const coons__vbody *A, const coons__vbody *B,
+                          const uint32_t *inS, uint32_t tag)
+{
+    for (int ka = 0; ka < 8; ka++) {
+        size_t pa[3];
+        for (int e = 0; e < 3; e++) pa[e] = (ka >> e & 1) ? A->m[e] - 1 : 0;
+        uint32_t n = coons__vnode(v, A, pa[0], pa[1], pa[2]);
+        if (n == UINT32_MAX || inS[n] != tag) continue;
+        for (int kb = 0; kb < 8; kb++) {
+            size_t pb[3];
+            for (int e = 0; e < 3; e++) pb[e] = (kb >> e & 1) ? B->m[e] - 1 : 0;
+            if (coons__vnode(v, B, pb[0], pb[1], pb[2]) != n) continue;
+            for (int da = 0; da < 3; da++)
+                for (int db = 0; db < 3; db++) {
+                    uint32_t na, nb;
+                    double x[3], y[3];
+                    corner_segment(v, A, ka, da, &na, x);
+                    corner_segment(v, B, kb, db, &nb, y);
+                    double lx = v3_norm(x), ly = v3_norm(y);
+                    if (na == nb || na == n || nb == n || !(lx > 0) || !(ly > 0)) continue;
+                    if (v3_dot(x, y) > (1 - 5e-5) * lx * ly) return 1;
+                }
+        }
+    }
+    return 0;
+}
+
 /* First and one-past-last cell of each part (cells are added part by
  * part). */
 static void part_ranges(const coons_volume_mesh *vm, size_t np, size_t *first)
@@ -353,7 +403,7 @@ coons_status coons__vlattice_check(coons__vbuild *v, const coons_volume_mesh *vm
             } else {
                 cover(v, A, inS, covA, tag);
                 cover(v, B, inS, covB, tag);
-                ok = covered(v, B, inS, covA, covB, tag);
+                ok = covered(v, B, inS, covA, covB, tag) && !corner_overlap(v, A, B, inS, tag);
             }
             if (!ok)
                 st = coons__error_set(v->err, COONS_E_UNSUPPORTED,
