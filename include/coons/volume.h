@@ -337,8 +337,17 @@ COONS_EXPORT coons_status coons_body_volume_mesh(const coons_body *b,
  * geometry) share its nodes: the directions shared faces connect get one
  * lattice, the union of the bodies' lattices (each still meets its
  * tolerance); the face sets of both sides remain.
- * Bodies whose boxes overlap without sharing a face cannot be meshed
- * conformally: ::COONS_E_UNSUPPORTED naming both bodies.
+ * Bodies that meet only along a whole edge (the same curve in either
+ * sense) or at a corner, as diagonal cells of a control lattice do, share
+ * those nodes too: a shared edge ties its direction in both bodies.
+ * Bodies that overlap or touch otherwise (their shared nodes are not whole
+ * faces, whole edges or corners of both, or cells of both meet without
+ * sharing nodes) cannot be meshed conformally: ::COONS_E_UNSUPPORTED
+ * naming both bodies.
+ * Each part's cells are grouped by what the writers make of them
+ * (hexahedra, then wedges, then pyramids, each group in lattice order), so
+ * that a reader sees at most three blocks per part; face sets list
+ * quadrangles, then triangles.
  * @return as coons_body_volume_mesh(), plus ::COONS_E_UNSUPPORTED.
  */
 COONS_EXPORT coons_status coons_model_volume_mesh(const coons_model *m,

@@ -11,7 +11,9 @@
  * lattice points seen from both sides, like Gmsh's transfinite constraints
  * propagating through shared surfaces. A class tied to itself in the
  * opposite sense (a ring of cells closed with a flip) gets a lattice
- * symmetric about 1/2. Work is linear in the bodies' lattice sizes (plus a
+ * symmetric about 1/2. Further ties of single directions (bodies that meet
+ * only along a whole edge, coons__share_lattices_tied()) join classes the
+ * same way. Work is linear in the bodies' lattice sizes (plus a
  * sort per class), never in the number of pairs of bodies. */
 #include <stdlib.h>
 
@@ -55,12 +57,42 @@ static int same_values(const double *a, size_t na, const double *b, size_t nb)
     return 1;
 }
 
+/* Ties directions x and y (y in the opposite sense when flip). */
+static void tie(size_t *up, unsigned char *par, size_t *size, unsigned char *sym, size_t x,
+                size_t y, int flip)
+{
+    int pa, pb;
+    size_t ra = pfind(up, par, x, &pa), rb = pfind(up, par, y, &pb);
+    int rel = pa ^ pb ^ flip;
+    if (ra == rb) {
+        if (rel) sym[ra] = 1; /* tied both ways: the lattice is symmetric */
+        return;
+    }
+    if (size[ra] < size[rb]) { /* union by size keeps the paths short */
+        size_t tmp = ra;
+        ra = rb;
+        rb = tmp;
+    }
+    up[rb] = ra;
+    par[rb] = (unsigned char)rel;
+    size[ra] += size[rb];
+    sym[ra] |= sym[rb];
+}
+
 coons_status coons__share_lattices(size_t nb, double **t, size_t *n,
                                    const coons__shared_face *sf, size_t nsf, int *changed,
                                    coons_error *err)
 {
+    return coons__share_lattices_tied(nb, t, n, sf, nsf, NULL, 0, changed, err);
+}
+
+coons_status coons__share_lattices_tied(size_t nb, double **t, size_t *n,
+                                        const coons__shared_face *sf, size_t nsf,
+                                        const coons__lattice_tie *ties, size_t nties,
+                                        int *changed, coons_error *err)
+{
     if (changed) *changed = 0;
-    if (nb < 2 || !nsf) return COONS_OK;
+    if (nb < 2 || (!nsf && !nties)) return COONS_OK;
     size_t nd = 3 * nb;
     size_t *up = coons__malloc_array(nd, sizeof *up);
     size_t *size = coons__malloc_array(nd, sizeof *size);
@@ -86,25 +118,9 @@ coons_status coons__share_lattices(size_t nb, double **t, size_t *n,
                         3 * sf[k].body[1] + (size_t)(swap ? a1 : b1)};
         int flip[2] = {(s & (swap ? COONS__SYM_FLIP_B : COONS__SYM_FLIP_A)) != 0,
                        (s & (swap ? COONS__SYM_FLIP_A : COONS__SYM_FLIP_B)) != 0};
-        for (int e = 0; e < 2; e++) {
-            int pa, pb;
-            size_t ra = pfind(up, par, from[e], &pa), rb = pfind(up, par, to[e], &pb);
-            int rel = pa ^ pb ^ flip[e];
-            if (ra == rb) {
-                if (rel) sym[ra] = 1; /* tied both ways: the lattice is symmetric */
-                continue;
-            }
-            if (size[ra] < size[rb]) { /* union by size keeps the paths short */
-                size_t tmp = ra;
-                ra = rb;
-                rb = tmp;
-            }
-            up[rb] = ra;
-            par[rb] = (unsigned char)rel;
-            size[ra] += size[rb];
-            sym[ra] |= sym[rb];
-        }
+        for (int e = 0; e < 2; e++) tie(up, par, size, sym, from[e], to[e], flip[e]);
     }
+    for (size_t k = 0; k < nties; k++) tie(up, par, size, sym, ties[k].x, ties[k].y, ties[k].flip);
     /* Members grouped by root (a counting sort), each with its parity. */
     for (size_t x = 0; x <= nd; x++) first[x] = 0;
     for (size_t x = 0; x < nd; x++) {

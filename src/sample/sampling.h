@@ -66,6 +66,19 @@ coons_status coons__share_lattices(size_t nb, double **t, size_t *n,
                                    const coons__shared_face *sf, size_t nsf, int *changed,
                                    coons_error *err);
 
+/* A tie of two lattice directions x = 3 i + d (body i, axis d) and y: the
+ * same lattice, y's running in the opposite sense (t <-> 1 - t) when flip. */
+typedef struct coons__lattice_tie {
+    size_t x, y;
+    int flip;
+} coons__lattice_tie;
+
+/* coons__share_lattices() with further ties of single directions. */
+coons_status coons__share_lattices_tied(size_t nb, double **t, size_t *n,
+                                        const coons__shared_face *sf, size_t nsf,
+                                        const coons__lattice_tie *ties, size_t nties,
+                                        int *changed, coons_error *err);
+
 /* The lattice the boundary sampler settles on for body b with options o
  * (adaptive or fixed, as coons__body_sample_into() would use): t[d] gets
  * n[d] + 1 increasing values from 0 to 1 per direction d = u, v, w,

@@ -13,9 +13,10 @@
  * the body: a cell's node k is F at the parameters of its reference
  * position (Gmsh order, coons/volume.h).
  *
- * Bodies that share a face (shared_faces.c) get one lattice along the
- * directions that face connects (share_lattices()), so the face's points
- * are evaluated at the same parameters from both sides.
+ * Bodies that share a face (shared_faces.c) or a whole edge get one
+ * lattice along the directions they connect (lattice_conform.c), so the
+ * shared points are evaluated at the same parameters from both sides; the
+ * same file refuses bodies that meet otherwise.
  *
  * Coincident nodes are one node: only boundary points of a body can
  * coincide with another point (the map of a valid body is injective inside),
@@ -30,16 +31,18 @@
  * Orientation: a body whose det J is negative at most nodes is
  * left-handed; its cells take their nodes mirrored in r (node k at the
  * reference position (1 - r, s, t) of node k), which makes them positive.
- * The `det_j` field keeps the body's own sign. */
+ * The `det_j` field keeps the body's own sign.
+ *
+ * Each body's cells are added grouped by what the writers make of them
+ * (cell_block(): hexahedra, wedges, pyramids), each group in lattice
+ * order, so that readers that split a mesh into blocks of one cell type
+ * (meshio, ParaView) see at most three per body. */
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "body_impl.h"
-#include "coons_internal.h"
-#include "sampling.h"
-#include "union_find.h"
-#include "volume_impl.h"
+#include "lattice_impl.h"
 
 /* Doubled reference position of each Gmsh node of a hex27 (coons/volume.h);
  * hex8 and hex20 are its first 8 and 20 rows. */
@@ -53,31 +56,8 @@ static const unsigned char REF[27][3] = {
 static const unsigned char FACE_CORNERS[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
                                                  {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
 
-typedef struct vbody {
-    const coons_body *b;
-    const char *name;
-    double *t[3];  /* cell lattice values, n[d] + 1 of them */
-    double *L[3];  /* node lattice values, m[d] of them */
-    size_t n[3];   /* cell intervals */
-    size_t m[3];   /* node lattice points: step * n + 1 */
-    size_t base;   /* first raw id */
-    int left;      /* left-handed: cells mirrored in r */
-    double lo[3], hi[3]; /* box of its points */
-} vbody;
-
-typedef struct vbuild {
-    coons_element el;
-    int step;        /* 1 (hex8) or 2: node lattice index per cell interval */
-    size_t npc;
-    vbody *vb;
-    size_t nb;
-    size_t nraw;
-    double *pos;     /* 3 * nraw */
-    uint32_t *uf;    /* nraw */
-    uint32_t *id;    /* nraw: final node of a representative, UINT32_MAX if unused */
-    size_t nn;       /* final nodes */
-    coons_error *err;
-} vbuild;
+typedef coons__vbody vbody;
+typedef coons__vbuild vbuild;
 
 static void vbuild_free(vbuild *v)
 {
@@ -171,66 +151,6 @@ static coons_status node_lattice(vbuild *v, vbody *B)
     return st;
 }
 
-/* ---- one lattice along directions that shared faces connect ----------- */
-
-/* Union-find with parity over the 3 nb directions (body i, axis d) = 3i+d:
- * par[x] = 1 when x runs opposite to its parent (t <-> 1 - t). */
-/* Gives every set of directions that shared faces connect (in either
- * sense) one lattice (lattice_share.c), so each body's lattice is refined,
- * never coarsened (each still meets its tolerance). */
-static coons_status share_lattices(vbuild *v)
-{
-    if (v->nb < 2) return COONS_OK;
-    double lo[3], hi[3];
-    bbox_empty(lo, hi);
-    const coons_body **bodies = coons__malloc_array(v->nb, sizeof *bodies);
-    if (!bodies) return coons__error_nomem(v->err);
-    for (size_t i = 0; i < v->nb; i++) {
-        double a[3], b[3];
-        coons_body_control_bbox(v->vb[i].b, a, b);
-        bbox_add(lo, hi, a);
-        bbox_add(lo, hi, b);
-        bodies[i] = v->vb[i].b;
-    }
-    coons__shared_face *sf = NULL;
-    size_t nsf = 0;
-    coons_status st =
-        coons__find_shared_faces(bodies, v->nb, 1e-9 * bbox_diag(lo, hi), &sf, &nsf, v->err);
-    coons__free(bodies);
-    if (st || !nsf) {
-        coons__free(sf);
-        return st;
-    }
-    double **t = coons__malloc_array(3 * v->nb, sizeof *t);
-    size_t *n = coons__malloc_array(3 * v->nb, sizeof *n);
-    if (!t || !n) {
-        st = coons__error_nomem(v->err);
-    } else {
-        for (size_t x = 0; x < 3 * v->nb; x++) t[x] = v->vb[x / 3].t[x % 3], n[x] = v->vb[x / 3].n[x % 3];
-        st = coons__share_lattices(v->nb, t, n, sf, nsf, NULL, v->err);
-        /* The arrays were replaced in t (also on failure, up to it). */
-        for (size_t x = 0; x < 3 * v->nb; x++) v->vb[x / 3].t[x % 3] = t[x], v->vb[x / 3].n[x % 3] = n[x];
-    }
-    coons__free(t);
-    coons__free(n);
-    coons__free(sf);
-    return st;
-}
-
-/* Raw id of node lattice point (a, b, c) of body B (coons_body_eval_grid's
- * order: u slowest). */
-static inline size_t raw_id(const vbody *B, size_t a, size_t b, size_t c)
-{
-    return B->base + (a * B->m[1] + b) * B->m[2] + c;
-}
-
-/* Whether a node lattice point is a node of some cell: hex20 uses corners
- * and edge midpoints (at most one odd index), the others every point. */
-static inline int needed(const vbuild *v, size_t a, size_t b, size_t c)
-{
-    return v->el != COONS_ELEMENT_HEX20 || (a & 1) + (b & 1) + (c & 1) <= 1;
-}
-
 static coons_status evaluate(vbuild *v)
 {
     for (size_t i = 0; i < v->nb; i++) {
@@ -242,7 +162,7 @@ static coons_status evaluate(vbuild *v)
         for (size_t a = 0; a < B->m[0]; a++)
             for (size_t b = 0; b < B->m[1]; b++)
                 for (size_t c = 0; c < B->m[2]; c++) {
-                    const double *p = v->pos + 3 * raw_id(B, a, b, c);
+                    const double *p = v->pos + 3 * coons__vraw(B, a, b, c);
                     if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
                         return coons__error_set(v->err, COONS_E_INVALID,
                                                 "body '%s' evaluates to a point that is not "
@@ -317,8 +237,8 @@ static coons_status merge(vbuild *v)
         for (size_t a = 0; a < B->m[0]; a++)
             for (size_t b = 0; b < B->m[1]; b++)
                 for (size_t c = 0; c < B->m[2]; c++) {
-                    if (!is_boundary(B, a, b, c) || !needed(v, a, b, c)) continue;
-                    size_t r = raw_id(B, a, b, c);
+                    if (!is_boundary(B, a, b, c) || !coons__vneeded(v, a, b, c)) continue;
+                    size_t r = coons__vraw(B, a, b, c);
                     const double *p = v->pos + 3 * r;
                     int64_t k[3];
                     for (int d = 0; d < 3; d++) k[d] = (int64_t)floor((p[d] - lo[d]) * inv);
@@ -348,12 +268,6 @@ static coons_status merge(vbuild *v)
 
 /* ---- nodes, cells, fields and sets ------------------------------------- */
 
-/* Node of lattice point (a, b, c): its representative's final id. */
-static inline uint32_t node_at(const vbuild *v, const vbody *B, size_t a, size_t b, size_t c)
-{
-    return v->id[coons__uf_find(v->uf, (uint32_t)raw_id(B, a, b, c))];
-}
-
 /* The nodes of cell (i, j, k) of body B in Gmsh order (mirrored in r for a
  * left-handed body). */
 static void cell_nodes(const vbuild *v, const vbody *B, size_t i, size_t j, size_t k,
@@ -363,7 +277,7 @@ static void cell_nodes(const vbuild *v, const vbody *B, size_t i, size_t j, size
     for (size_t q = 0; q < v->npc; q++) {
         size_t r = REF[q][0], t1 = REF[q][1], t2 = REF[q][2];
         if (B->left) r = 2 - r;
-        out[q] = node_at(v, B, s * i + r * s / 2, s * j + t1 * s / 2, s * k + t2 * s / 2);
+        out[q] = coons__vnode(v, B, s * i + r * s / 2, s * j + t1 * s / 2, s * k + t2 * s / 2);
     }
 }
 
@@ -390,8 +304,8 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
         for (size_t a = 0; a < B->m[0]; a++)
             for (size_t b = 0; b < B->m[1]; b++)
                 for (size_t c = 0; c < B->m[2]; c++)
-                    if (needed(v, a, b, c))
-                        v->id[coons__uf_find(v->uf, (uint32_t)raw_id(B, a, b, c))] = 0;
+                    if (coons__vneeded(v, a, b, c))
+                        v->id[coons__uf_find(v->uf, (uint32_t)coons__vraw(B, a, b, c))] = 0;
     }
     size_t nn = 0;
     for (size_t r = 0; r < v->nraw; r++)
@@ -425,8 +339,8 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
             for (size_t a = a0; a < a0 + na && !st; a++)
                 for (size_t b = 0; b < B->m[1]; b++)
                     for (size_t c = 0; c < B->m[2]; c++) {
-                        size_t r = raw_id(B, a, b, c);
-                        if (!needed(v, a, b, c) || v->uf[r] != r) continue;
+                        size_t r = coons__vraw(B, a, b, c);
+                        if (!coons__vneeded(v, a, b, c) || v->uf[r] != r) continue;
                         uint32_t n = v->id[r];
                         double d = dg[((a - a0) * B->m[1] + b) * B->m[2] + c];
                         v3_copy(xyz + 3 * (size_t)n, v->pos + 3 * r);
@@ -453,19 +367,61 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
     return COONS_OK;
 }
 
-static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, unsigned char **kept)
+/* Corner pairs of the 12 edges of a hexahedron (Gmsh corners), with the
+ * axis each runs along, and each Gmsh corner's reference bits (r, s, t). */
+static const unsigned char HEX_EDGE[12][3] = {{0, 1, 0}, {3, 2, 0}, {4, 5, 0}, {7, 6, 0},
+                                              {0, 3, 1}, {1, 2, 1}, {4, 7, 1}, {5, 6, 1},
+                                              {0, 4, 2}, {1, 5, 2}, {2, 6, 2}, {3, 7, 2}};
+static const unsigned char HEX_BITS[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+
+/* The block a hex8 cell goes to within its body: 1 wedges (two parallel
+ * edges of one face collapsed, 6 distinct corners), 2 pyramids (one face
+ * collapsed to a node, 5 distinct corners), 0 the rest (hexahedra, and the
+ * cells that stay hexahedra with repeated nodes). The writers' own
+ * classification (src/io/write/cellshape.c) decides the same way from the
+ * same corners, so each body's cells of one written type are consecutive.
+ * Hex20 and hex27 cells are always written as hexahedra: block 0. */
+static int cell_block(const vbuild *v, const uint32_t *h)
+{
+    if (v->npc != 8) return 0;
+    int e[12], n = 0;
+    for (int i = 0; i < 12; i++)
+        if (h[HEX_EDGE[i][0]] == h[HEX_EDGE[i][1]]) e[n++] = i;
+    size_t d = distinct_corners(h);
+    if (n == 2 && d == 6 && HEX_EDGE[e[0]][2] == HEX_EDGE[e[1]][2]) {
+        int b = HEX_EDGE[e[0]][2];
+        unsigned x = HEX_BITS[HEX_EDGE[e[0]][0]] ^ HEX_BITS[HEX_EDGE[e[1]][0]];
+        /* The two edges differ in exactly one of the other two axes. */
+        return (x & ~(1u << b)) == (1u << (b + 1) % 3) || (x & ~(1u << b)) == (1u << (b + 2) % 3);
+    }
+    if (n == 4 && d == 5)
+        for (int f = 0; f < 6; f++) {
+            const unsigned char *c = FACE_CORNERS[f];
+            if (h[c[0]] == h[c[1]] && h[c[0]] == h[c[2]] && h[c[0]] == h[c[3]]) return 2;
+        }
+    return 0;
+}
+
+/* Adds each body's cells as one part, grouped by block (cell_block()) and
+ * in lattice order within a block. cellno[] (lattice order over all
+ * bodies) receives each lattice cell's number in the mesh, UINT32_MAX for
+ * a cell with fewer than 4 distinct corners (no volume at all: dropped). */
+static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, uint32_t **cellno)
 {
     size_t total = 0;
     for (size_t i = 0; i < v->nb; i++) total += v->vb[i].n[0] * v->vb[i].n[1] * v->vb[i].n[2];
-    unsigned char *keep = coons__malloc_array(total ? total : 1, 1);
-    if (!keep) return coons__error_nomem(v->err);
-    size_t base = 0;
+    uint32_t *no = coons__malloc_array(total ? total : 1, sizeof *no);
+    if (!no) return coons__error_nomem(v->err);
+    size_t base = 0, cell0 = 0;
     coons_status st = COONS_OK;
     for (size_t i = 0; i < v->nb && !st; i++) {
         const vbody *B = &v->vb[i];
-        size_t nc = B->n[0] * B->n[1] * B->n[2], nk = 0;
+        size_t nc = B->n[0] * B->n[1] * B->n[2], start[4] = {0, 0, 0, 0};
         uint32_t *rows = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
-        if (!rows) {
+        uint32_t *out = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
+        if (!rows || !out) {
+            coons__free(rows);
+            coons__free(out);
             st = coons__error_nomem(v->err);
             break;
         }
@@ -473,22 +429,38 @@ static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, unsigned char **
         for (size_t a = 0; a < B->n[0]; a++)
             for (size_t b = 0; b < B->n[1]; b++)
                 for (size_t c = 0; c < B->n[2]; c++, q++) {
-                    uint32_t *row = rows + v->npc * nk;
+                    uint32_t *row = rows + v->npc * q;
                     cell_nodes(v, B, a, b, c, row);
                     /* Fewer than 4 distinct corners: no volume at all. */
-                    keep[base + q] = distinct_corners(row) >= 4;
-                    nk += keep[base + q];
+                    int k = distinct_corners(row) >= 4 ? cell_block(v, row) : 3;
+                    no[base + q] = (uint32_t)k;
+                    if (k < 3) start[k + 1]++;
                 }
+        start[2] += start[1];
+        start[3] += start[2];
+        for (q = 0; q < nc; q++) {
+            uint32_t k = no[base + q];
+            if (k == 3) {
+                no[base + q] = UINT32_MAX;
+                continue;
+            }
+            size_t at = start[k]++;
+            memcpy(out + v->npc * at, rows + v->npc * q, v->npc * sizeof(uint32_t));
+            no[base + q] = (uint32_t)(cell0 + at);
+        }
+        size_t nk = start[2]; /* after the fill: the end of block 2 */
         if (!(st = coons_volume_mesh_add_part(vm, B->name, NULL, v->err)))
-            st = coons_volume_mesh_add_cells(vm, rows, nk, i, NULL, v->err);
+            st = coons_volume_mesh_add_cells(vm, out, nk, i, NULL, v->err);
         coons__free(rows);
+        coons__free(out);
         base += nc;
+        cell0 += nk;
     }
     if (st) {
-        coons__free(keep);
+        coons__free(no);
         return st;
     }
-    *kept = keep;
+    *cellno = no;
     return COONS_OK;
 }
 
@@ -529,9 +501,9 @@ static coons_status add_fields(vbuild *v, coons_volume_mesh *vm, const double *p
     return st;
 }
 
-/* Cell set per body; node and face set per body face. `keep` says which
- * lattice cells were kept (in lattice order over all bodies). */
-static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned char *keep)
+/* Cell set per body; node and face set per body face. `cellno` is each
+ * lattice cell's number in the mesh (add_cells()). */
+static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const uint32_t *cellno)
 {
     size_t maxc = 0, maxf = 0;
     for (size_t i = 0; i < v->nb; i++) {
@@ -556,7 +528,7 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
         size_t nc = B->n[0] * B->n[1] * B->n[2];
         /* Kept cell number of each lattice cell of this body. */
         size_t kept = 0;
-        for (size_t q = 0; q < nc; q++) kept += keep[base + q];
+        for (size_t q = 0; q < nc; q++) kept += cellno[base + q] != UINT32_MAX;
         for (size_t q = 0; q < kept; q++) items[q] = (uint32_t)(cell0 + q);
         st = coons_volume_mesh_add_cell_set(vm, B->name, items, kept, v->err);
         /* A closed body's two faces along a direction that coincide point
@@ -572,8 +544,8 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
                     q[ax] = B->m[ax] - 1;
                     p[(ax + 1) % 3] = q[(ax + 1) % 3] = x;
                     p[(ax + 2) % 3] = q[(ax + 2) % 3] = y;
-                    if (!needed(v, p[0], p[1], p[2])) continue;
-                    glued[ax] = node_at(v, B, p[0], p[1], p[2]) == node_at(v, B, q[0], q[1], q[2]);
+                    if (!coons__vneeded(v, p[0], p[1], p[2])) continue;
+                    glued[ax] = coons__vnode(v, B, p[0], p[1], p[2]) == coons__vnode(v, B, q[0], q[1], q[2]);
                 }
         }
         for (int f = 0; f < 6 && !st; f++) {
@@ -581,30 +553,38 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
             int lf = (B->left && ax == 0) ? 1 - hi : f; /* local face of the cell */
             char name[COONS_VOLUME_NAME_MAX + 1];
             snprintf(name, sizeof name, "%s.%s", B->name, coons_body_face_name(f));
-            /* Face set: cells on the face whose local face keeps 3 corners. */
-            size_t np = 0, q = 0, k = 0;
+            /* Face set: cells on the face whose local face keeps 3 corners;
+             * the quadrangles first, then the triangles (a local face with
+             * two neighbouring corners merged), so that a writer's elements
+             * of one type are consecutive. */
+            size_t np = 0;
             uint32_t row[27];
-            for (size_t a = 0; a < B->n[0]; a++)
-                for (size_t b = 0; b < B->n[1]; b++)
-                    for (size_t c = 0; c < B->n[2]; c++, q++) {
-                        if (!keep[base + q]) continue;
-                        size_t idx[3] = {a, b, c};
-                        size_t cell = cell0 + k++;
-                        if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
-                        cell_nodes(v, B, a, b, c, row);
-                        uint32_t fc[4];
-                        for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
-                        size_t nd = 0;
-                        for (int z = 0; z < 4; z++) {
-                            int dup = 0;
-                            for (int y = 0; y < z; y++) dup |= fc[y] == fc[z];
-                            nd += !dup;
+            for (int tri = 0; tri < 2; tri++) {
+                size_t q = 0;
+                for (size_t a = 0; a < B->n[0]; a++)
+                    for (size_t b = 0; b < B->n[1]; b++)
+                        for (size_t c = 0; c < B->n[2]; c++, q++) {
+                            uint32_t cell = cellno[base + q];
+                            if (cell == UINT32_MAX) continue;
+                            size_t idx[3] = {a, b, c};
+                            if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
+                            cell_nodes(v, B, a, b, c, row);
+                            uint32_t fc[4];
+                            for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
+                            size_t nd = 0;
+                            int next = 0; /* neighbouring corners merged */
+                            for (int z = 0; z < 4; z++) {
+                                int dup = 0;
+                                for (int y = 0; y < z; y++) dup |= fc[y] == fc[z];
+                                nd += !dup;
+                                next |= fc[z] == fc[(z + 1) % 4];
+                            }
+                            if (nd < 3 || (nd == 3 && next) != tri) continue;
+                            items[2 * np] = cell;
+                            items[2 * np + 1] = (uint32_t)lf;
+                            np++;
                         }
-                        if (nd < 3) continue;
-                        items[2 * np] = (uint32_t)cell;
-                        items[2 * np + 1] = (uint32_t)lf;
-                        np++;
-                    }
+            }
             st = coons_volume_mesh_add_face_set(vm, name, items, np, v->err);
             if (st) break;
             /* Node set: every node on the face, once. */
@@ -617,8 +597,8 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
                     p[ax] = hi ? B->m[ax] - 1 : 0;
                     p[(ax + 1) % 3] = x;
                     p[(ax + 2) % 3] = y;
-                    if (!needed(v, p[0], p[1], p[2])) continue;
-                    uint32_t n = node_at(v, B, p[0], p[1], p[2]);
+                    if (!coons__vneeded(v, p[0], p[1], p[2])) continue;
+                    uint32_t n = coons__vnode(v, B, p[0], p[1], p[2]);
                     if (n == UINT32_MAX || stamp[n] == tag) continue;
                     stamp[n] = tag;
                     items[nn++] = n;
@@ -633,52 +613,6 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const unsigned ch
     return st;
 }
 
-/* ---- conformity between bodies ----------------------------------------- */
-
-/* Whether face f of body A (its node set) lies entirely on nodes of body
- * B's boundary (marked in `mark`). */
-static coons_status check_conformal(vbuild *v, const coons_volume_mesh *vm)
-{
-    if (v->nb < 2) return COONS_OK;
-    unsigned char *mark = coons__calloc(v->nn ? v->nn : 1, 1);
-    if (!mark) return coons__error_nomem(v->err);
-    coons_status st = COONS_OK;
-    for (size_t i = 0; i < v->nb && !st; i++)
-        for (size_t j = i + 1; j < v->nb && !st; j++) {
-            const vbody *A = &v->vb[i], *B = &v->vb[j];
-            double g = 1e-9 * fmax(bbox_diag(A->lo, A->hi), bbox_diag(B->lo, B->hi));
-            int apart = 0;
-            for (int d = 0; d < 3; d++)
-                apart |= A->lo[d] > B->hi[d] + g || B->lo[d] > A->hi[d] + g;
-            if (apart) continue;
-            /* Mark B's face nodes; look for a face of A wholly on them. */
-            memset(mark, 0, v->nn ? v->nn : 1);
-            for (int f = 0; f < 6; f++) {
-                const uint32_t *items;
-                size_t cnt;
-                coons_volume_mesh_node_set(vm, 6 * j + (size_t)f, &items, &cnt);
-                for (size_t z = 0; z < cnt; z++) mark[items[z]] = 1;
-            }
-            int shared = 0;
-            for (int f = 0; f < 6 && !shared; f++) {
-                const uint32_t *items;
-                size_t cnt;
-                coons_volume_mesh_node_set(vm, 6 * i + (size_t)f, &items, &cnt);
-                size_t on = 0;
-                for (size_t z = 0; z < cnt; z++) on += mark[items[z]];
-                shared = cnt >= 3 && on == cnt;
-            }
-            if (!shared)
-                st = coons__error_set(v->err, COONS_E_UNSUPPORTED,
-                                      "bodies '%s' and '%s' overlap or touch without sharing "
-                                      "a whole face: a conformal volume mesh needs bodies that "
-                                      "meet only along whole shared faces",
-                                      A->name, B->name);
-        }
-    coons__free(mark);
-    return st;
-}
-
 /* ---- entry points -------------------------------------------------------- */
 
 static coons_status build(vbuild *v, const coons_volume_options *o, double tolerance,
@@ -687,7 +621,7 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     coons_status st = COONS_OK;
     size_t cells = 0;
     for (size_t i = 0; i < v->nb && !st; i++) st = body_lattice(v, &v->vb[i], o, tolerance);
-    if (!st) st = share_lattices(v);
+    if (!st) st = coons__vlattice_share(v);
     for (size_t i = 0; i < v->nb && !st; i++) {
         vbody *B = &v->vb[i];
         if ((st = node_lattice(v, B))) break;
@@ -715,15 +649,15 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     coons_volume_mesh *vm;
     if ((st = coons_volume_mesh_new(v->el, &vm, v->err))) return st;
     double *par = NULL, *det = NULL;
-    unsigned char *keep = NULL;
+    uint32_t *cellno = NULL;
     st = number_nodes(v, vm, &par, &det);
-    if (!st) st = add_cells(v, vm, &keep);
+    if (!st) st = add_cells(v, vm, &cellno);
     if (!st) st = add_fields(v, vm, par, det);
-    if (!st) st = add_sets(v, vm, keep);
-    if (!st) st = check_conformal(v, vm);
+    if (!st) st = add_sets(v, vm, cellno);
+    if (!st) st = coons__vlattice_check(v, vm);
     coons__free(par);
     coons__free(det);
-    coons__free(keep);
+    coons__free(cellno);
     if (st) {
         coons_volume_mesh_free(vm);
         return st;

@@ -17,7 +17,12 @@ reproduce it at every node and every integration point:
 - a wrong face label puts the pressure on another face (an interior one
   or the opposite side), so that the field is no longer constant;
 - wedges (C3D6, at the apex) and pyramids (degenerate C3D8) must be
-  accepted by ccx and be exact too.
+  accepted by ccx and be exact too;
+- every example but the two whose bodies overlap (chair, union-three-
+  bodies, refused), hex8 at --resolution 4 and the control lattices also
+  hex20 at 2: every node held at the exact displacement, ccx accepts every
+  element and gives the stress -p I at every integration point, and the
+  element volumes add up to the bodies' (--info) within 40%.
 
 The maps are vm_sample's (tests/tools/vm_sample.c). Its face sets of the
 cells at a collapsed face (the "lo" part of the apex and pyramid samples)
@@ -26,6 +31,7 @@ the true boundary there: the exact displacement is prescribed on that
 part's lateral boundary instead (found from the coordinates), and the
 pressure goes on the other surfaces.
 """
+import json
 import math
 import os
 import re
@@ -239,6 +245,61 @@ def patch_test(r, tmp, element, which):
     return elems
 
 
+OVERLAPPING = ("chair.json", "union-three-bodies.json")
+LATTICES = ("lattice-ffd.json", "chair-lattice.json", "lattice-l-bracket.json",
+            "lattice-ring.json", "lattice-instanced.json")
+
+
+def examples(r, tmp):
+    """Every example but the two whose bodies overlap, as coons2stl's .inp
+    (hex8 at --resolution 4; the control lattices also hex20 at 2), read by
+    ccx: every node held at the exact displacement of the uniform strain
+    -p(1-2nu)/E, ccx must accept every element (no nonpositive Jacobian at
+    its integration points) and give the stress -p I at all of them; the
+    element volumes add up to the bodies' (--info) within 40% (a coarse
+    lattice: no body lost or counted twice)."""
+    exdir = os.path.join(r.src, "examples")
+    for name in sorted(os.listdir(exdir)):
+        if not name.endswith(".json"):
+            continue
+        model = os.path.join(exdir, name)
+        runs = [("hex8", "4")] + ([("hex20", "2")] if name in LATTICES else [])
+        for element, res in runs:
+            d = os.path.join(tmp, f"ex-{name}-{element}")
+            os.makedirs(d)
+            mesh = os.path.join(d, "mesh.inp")
+            st, _, err = r.run([model, "-o", mesh, "--element", element, "--resolution", res])
+            label = f"{name} {element} --resolution {res}"
+            if name in OVERLAPPING:
+                r.check(f"{label}: refused as not conformal (its bodies overlap)",
+                        st == 3 and "conformal" in err, err)
+                break
+            if not r.check(f"{label}: coons2stl writes the deck", st == 0, err):
+                continue
+            nodes, elems = read_inp(mesh)[:2]
+            with open(os.path.join(d, "job.inp"), "w") as f:
+                f.write(analysis("mesh.inp", set(nodes), [], nodes))
+            p = subprocess.run(["ccx", "-i", "job"], cwd=d, capture_output=True, text=True,
+                               timeout=300)
+            if not r.check(f"{label}: ccx accepts all {len(elems)} elements",
+                           p.returncode == 0 and "*ERROR" not in p.stdout,
+                           (p.stdout + p.stderr)[-1500:]):
+                continue
+            dat = read_dat(os.path.join(d, "job.dat"))
+            st_ = dat.get("stresses", [])
+            serr = max((max(max(abs(row[2 + k] + P) for k in range(3)),
+                            max(abs(row[5 + k]) for k in range(3))) for row in st_),
+                       default=math.inf)
+            vol = sum(row[1] for row in dat.get("volume", []))
+            rc, out, e2 = r.run(["--info", "--no-solid", model])
+            want = sum(abs(b["volume"]) for b in json.loads(out)["bodies"]) if rc == 0 \
+                else math.nan
+            r.check(f"{label}: stress -p I at every integration point (max error "
+                    f"{serr / P:.1e} p), volume {vol:.6g} vs the bodies' {want:.6g}",
+                    serr <= 1e-6 * P and abs(vol - want) <= 0.4 * want, e2)
+            shutil.rmtree(d, ignore_errors=True)
+
+
 def main():
     r = Runner(__doc__)
     if not r.check("ccx is installed", shutil.which("ccx") is not None):
@@ -253,6 +314,7 @@ def main():
                 if elems and element == "hex20":
                     r.check(f"hex20 {which}: every element is C3D20 with 20 nodes",
                             all(t == "C3D20" and len(v) == 20 for t, v in elems.values()))
+        examples(r, tmp)
     r.finish()
 
 

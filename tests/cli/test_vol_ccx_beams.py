@@ -21,9 +21,18 @@ two closed forms of linear elasticity (issue 10):
     u(r) = (1 + nu) a^2 p / (E (b^2 - a^2)) ((1 - 2 nu) r + b^2 / r),
     within 0.5%.
 
+(c) the same cantilever as a control lattice of 4 x 1 x 2 body 0 cells
+    sharing faces, each at --resolution 5,2,1 (the same 20 x 2 x 2 mesh):
+    the tip deflection equals the single body's to 1e-6 relative;
+(d) examples/lattice-l-bracket.json (two arms meeting only along an edge),
+    hex20: one arm's end clamped, a force on the other's end: ccx solves
+    it, the reaction balances the force, the element volumes add up to the
+    bodies' (--info) within 1e-3.
+
 The decks are coons2stl's output, *INCLUDEd unchanged; only the sets it
 writes carry the boundary conditions and loads.
 """
+import json
 import math
 import os
 import shutil
@@ -46,7 +55,7 @@ def mesh(r, d, model, out, resolution):
     path = os.path.join(d, out)
     st, _, err = r.run([os.path.join(r.src, "examples", model), "-o", path,
                         "--element", "hex20", "--resolution", resolution])
-    ok = r.check(f"{model}: coons2stl writes {out} (hex20, --resolution {resolution})",
+    ok = r.check(f"{os.path.basename(model)}: coons2stl writes {out} (hex20, --resolution {resolution})",
                  st == 0 and os.path.exists(path), err)
     return read_inp(path) if ok else None
 
@@ -62,19 +71,20 @@ def ccx(r, d, what, lines):
     return read_dat(os.path.join(d, "job.dat"))
 
 
-def cantilever(r, tmp, results):
-    L, h, b, P = 100.0, 10.0, 10.0, 100.0
-    d = os.path.join(tmp, "cantilever")
-    os.makedirs(d)
-    deck = mesh(r, d, "cantilever.json", "box.inp", "20,2,2")
+def tip_deflection(r, d, label, model, resolution, clamp, tips, L, h, b, P):
+    """Meshes `model` (hex20), clamps the node sets `clamp`, puts a shear
+    load P on the surfaces `tips` (the consistent nodal loads of a uniform
+    traction on their C3D20 S4 faces) and returns ccx's y displacement of
+    the tip's centre (L, h/2, b/2)."""
+    deck = mesh(r, d, model, "box.inp", resolution)
     if not deck:
-        return
+        return None
     nodes, elems, nsets, elsets, surfs = deck
     # consistent loads of a uniform traction P / (h b) along y on the S4
-    # faces of the surface BEAM_U1_S: -1/12 of a face's force at each
-    # corner, 1/3 at each edge node
+    # faces of the tip surfaces: -1/12 of a face's force at each corner,
+    # 1/3 at each edge node
     load = {}
-    faces = [(e, lab) for s, lab in surfs["BEAM_U1_S"] for e in elsets[s]]
+    faces = [(e, lab) for t in tips for s, lab in surfs[t] for e in elsets[s]]
     area = 0.0
     for e, lab in faces:
         conn = elems[e][1]
@@ -89,23 +99,33 @@ def cantilever(r, tmp, results):
             load[conn[i - 1]] = load.get(conn[i - 1], 0.0) - a / 12
         for i in S4_EDGES:
             load[conn[i - 1]] = load.get(conn[i - 1], 0.0) + a / 3
-    r.check(f"the tip surface BEAM_U1_S is the whole end face ({len(faces)} faces, "
-            f"area {area:.12g})", all(lab == "S4" for _, lab in faces) and
+    r.check(f"{label}: the tip surfaces {' '.join(tips)} are the whole end face "
+            f"({len(faces)} faces, area {area:.12g})", all(lab == "S4" for _, lab in faces) and
             abs(area - h * b) < 1e-9 * h * b)
-    lines = ["*INCLUDE, INPUT=box.inp"] + HEADER + ["*BOUNDARY", "BEAM_U0, 1, 3",
-                                                      "*STEP", "*STATIC", "*CLOAD"]
+    lines = ["*INCLUDE, INPUT=box.inp"] + HEADER + ["*BOUNDARY"] + \
+        [f"{c}, 1, 3" for c in clamp] + ["*STEP", "*STATIC", "*CLOAD"]
     for n, w in sorted(load.items()):
         lines.append(f"{n}, 2, {P * w / area:.12e}")
     lines += ["*NODE PRINT, NSET=NALL", "U", "*END STEP"]
-    dat = ccx(r, d, "cantilever", lines)
+    dat = ccx(r, d, label, lines)
     if dat is None:
-        return
+        return None
     tip = [n for n, x in nodes.items()
            if abs(x[0] - L) < 1e-9 and abs(x[1] - h / 2) < 1e-9 and abs(x[2] - b / 2) < 1e-9]
     uy = {int(row[0]): row[2] for row in dat.get("displacements", [])}
-    if not r.check("the tip's centre is a node", len(tip) == 1 and tip[0] in uy):
+    if not r.check(f"{label}: the tip's centre is a node", len(tip) == 1 and tip[0] in uy):
+        return None
+    return uy[tip[0]]
+
+
+def cantilever(r, tmp, results):
+    L, h, b, P = 100.0, 10.0, 10.0, 100.0
+    d = os.path.join(tmp, "cantilever")
+    os.makedirs(d)
+    got = tip_deflection(r, d, "cantilever", "cantilever.json", "20,2,2", ["BEAM_U0"],
+                         ["BEAM_U1_S"], L, h, b, P)
+    if got is None:
         return
-    got = uy[tip[0]]
     I, A, G = b * h ** 3 / 12, b * h, E / (2 * (1 + NU))
     k = 10 * (1 + NU) / (12 + 11 * NU)
     want = P * L ** 3 / (3 * E * I) + P * L / (k * G * A)
@@ -113,6 +133,94 @@ def cantilever(r, tmp, results):
     results.append(("cantilever 100x10x10, hex20 20x2x2, tip deflection", got, want, rel))
     r.check(f"cantilever: tip deflection {got:.6g} vs Timoshenko {want:.6g} "
             f"({100 * rel:+.2f}%)", abs(rel) <= 0.02)
+    lattice_cantilever(r, tmp, results, got, L, h, b, P)
+
+
+def lattice_cantilever(r, tmp, results, single, L, h, b, P):
+    """The same beam as a control lattice of 4 x 1 x 2 body 0 cells (cells
+    c<i><k>, 25 x 10 x 5, sharing faces), each meshed at 5,2,1: the same
+    20 x 2 x 2 hex20 mesh in total, so ccx must give the same tip
+    deflection as the single body's, to 1e-6 relative."""
+    d = os.path.join(tmp, "lattice-cantilever")
+    os.makedirs(d)
+    bodies = []
+    for i in range(4):
+        for k in range(2):
+            x0, x1, z0, z1 = 25.0 * i, 25.0 * (i + 1), 5.0 * k, 5.0 * (k + 1)
+            c = [[x1 if n & 4 else x0, h if n & 2 else 0.0, z1 if n & 1 else z0]
+                 for n in range(8)]
+            bodies.append({"type": "body0", "name": f"c{i}{k}", "corners": c})
+    with open(os.path.join(r.src, "examples", "cantilever.json")) as f:
+        units = json.load(f).get("units", "mm")
+    model = os.path.join(d, "lattice-cantilever.json")
+    with open(model, "w") as f:
+        json.dump({"coons": 1, "units": units, "bodies": bodies}, f)
+    got = tip_deflection(r, d, "4 x 1 x 2 lattice cantilever", model, "5,2,1",
+                         ["C00_U0", "C01_U0"], ["C30_U1_S", "C31_U1_S"], L, h, b, P)
+    if got is None:
+        return
+    rel = (got - single) / single
+    results.append(("cantilever as 4x1x2 cells, hex20 5x2x1 each, tip deflection", got, single,
+                    rel))
+    r.check(f"4 x 1 x 2 lattice cantilever: tip deflection {got:.9g} = the single body's "
+            f"{single:.9g} (relative {rel:+.1e})", abs(rel) <= 1e-6)
+
+
+def l_bracket(r, tmp):
+    """examples/lattice-l-bracket.json (a corner cell and two arms; the arms
+    meet along one edge only) as hex20 on its sampled lattice: arm-x's end
+    face (node set ARM_X_U1, at the largest x) clamped, a force F along -z
+    spread evenly over the nodes of arm-y's end face (ARM_Y_V1, at the
+    largest y): ccx solves it, the reactions add up to F (equilibrium),
+    and ccx's element volumes add up to the three bodies' volumes
+    (--info) within 1e-3."""
+    d = os.path.join(tmp, "l-bracket")
+    os.makedirs(d)
+    model = os.path.join(r.src, "examples", "lattice-l-bracket.json")
+    path = os.path.join(d, "lb.inp")
+    st, _, err = r.run([model, "-o", path, "--element", "hex20"])
+    if not r.check("lattice-l-bracket.json: coons2stl writes lb.inp (hex20)",
+                   st == 0 and os.path.exists(path), err):
+        return
+    nodes, elems, nsets, elsets, surfs = read_inp(path)
+    xmax = max(x[0] for x in nodes.values())
+    ymax = max(x[1] for x in nodes.values())
+    clamp, tip = nsets.get("ARM_X_U1", []), nsets.get("ARM_Y_V1", [])
+    # (the arms' ends are rounded: from x = 40 to 41.275)
+    r.check("ARM_X_U1 is the end face at the largest x, ARM_Y_V1 the one at the largest y",
+            clamp and tip and all(nodes[n][0] >= 40 - 1e-9 for n in clamp) and
+            all(nodes[n][1] >= 40 - 1e-9 for n in tip) and
+            any(abs(nodes[n][0] - xmax) < 1e-9 for n in clamp) and
+            any(abs(nodes[n][1] - ymax) < 1e-9 for n in tip))
+    F = 1000.0
+    lines = ["*INCLUDE, INPUT=lb.inp"] + HEADER + ["*BOUNDARY", "ARM_X_U1, 1, 3", "*STEP",
+                                                     "*STATIC", "*CLOAD"]
+    lines += [f"{n}, 3, {-F / len(tip):.12e}" for n in sorted(tip)]
+    lines += ["*NODE PRINT, NSET=ARM_X_U1, TOTALS=ONLY", "RF", "*EL PRINT, ELSET=EALL", "EVOL",
+              "*NODE PRINT, NSET=NALL", "U", "*END STEP"]
+    dat = ccx(r, d, "lattice-l-bracket", lines)
+    if dat is None:
+        return
+    with open(os.path.join(d, "job.dat")) as f:
+        text = f.read()
+    # " total force (fx,fy,fz) for set ARM_X_U1 ...", a blank line, the values
+    lines = text.splitlines()
+    at = [i for i, line in enumerate(lines) if line.strip().startswith("total force")]
+    try:
+        rz = float(lines[at[-1] + 2].split()[2])
+    except (IndexError, ValueError):
+        rz = math.nan
+    r.check(f"lattice-l-bracket: the clamp's reaction {rz:.9g} balances the load {F:g}",
+            abs(rz - F) <= 1e-6 * F, text[-800:])
+    st, out, err = r.run(["--info", "--no-solid", model])
+    want = sum(abs(bd["volume"]) for bd in json.loads(out)["bodies"]) if st == 0 else math.nan
+    vol = sum(row[1] for row in dat.get("volume", []))
+    r.check(f"lattice-l-bracket: ccx's element volumes {vol:.8g} = the bodies' {want:.8g} "
+            "within 1e-3", abs(vol - want) <= 1e-3 * want)
+    uz = [row[3] for row in dat.get("displacements", [])]
+    r.check(f"lattice-l-bracket: every node has a displacement ({len(uz)} of {len(nodes)}), "
+            f"the tip moves down ({min(uz) if uz else math.nan:.4g})",
+            len(uz) == len(nodes) and min(uz) < 0)
 
 
 def tube(r, tmp, model, results, radii):
@@ -164,6 +272,7 @@ def main():
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         cantilever(r, tmp, results)
+        l_bracket(r, tmp)
         radii = {}
         for model in ("thick-cylinder.json", "thick-cylinder-distorted.json"):
             tube(r, tmp, model, results, radii)
