@@ -43,6 +43,7 @@
 
 #include "body_impl.h"
 #include "lattice_impl.h"
+#include "sampling.h"
 
 /* Doubled reference position of each Gmsh node of a hex27 (coons/volume.h);
  * hex8 and hex20 are its first 8 and 20 rows. */
