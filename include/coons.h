@@ -29,8 +29,5 @@
 #include "coons/volume.h"
 #include "coons/csg.h"
 #include "coons/io.h"
-#ifndef COONS_NO_DEPRECATED
-#include "coons/deprecated.h" /* the 0.1 names, for the 0.2 release only */
-#endif
 
 #endif

@@ -104,7 +104,7 @@ COONS_EXPORT void coons_set_allocator(void *(*malloc_fn)(size_t),
 
 /** Runtime version number (major*10000 + minor*100 + patch). */
 COONS_EXPORT int coons_version(void);
-/** Runtime version string, e.g. "0.2.0". */
+/** Runtime version string, e.g. "0.3.0". */
 COONS_EXPORT const char *coons_version_string(void);
 
 #ifdef __cplusplus
