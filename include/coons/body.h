@@ -153,7 +153,7 @@ COONS_EXPORT coons_status coons_body_network_seams(const coons_body *b,
  * (J_G = M J_F, det J_G = det M det J_F), exact for every type. With
  * det M < 0 the body is mirrored: left-handed, and still meshed outward.
  * The control box is the box of the 8 mapped corners of b's. The result's
- * type (coons_body_get_type()) is b's. Copies b: the caller keeps b and
+ * type (coons_body_kind()) is b's. Copies b: the caller keeps b and
  * frees the result with coons_body_free().
  * @param[in]  b   the body
  * @param[in]  m   12 doubles, the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],
@@ -176,7 +176,7 @@ COONS_EXPORT void coons_body_free(coons_body *b);
 
 /** The type the body was built as (of a transformed body: the type of the
  * body it was made from). */
-COONS_EXPORT coons_body_type coons_body_get_type(const coons_body *b);
+COONS_EXPORT coons_body_type coons_body_kind(const coons_body *b);
 
 /** Point F(u,v,w), parameters clamped to [0,1]. */
 COONS_EXPORT void coons_body_eval(const coons_body *b, double u, double v, double w,

@@ -116,7 +116,7 @@ COONS_EXPORT coons_status coons_curve_copy(const coons_curve *c, coons_curve **o
  * "Definitions and references", "transform"). Exact for every type, NURBS
  * included (affine maps commute with rational evaluation): points map by
  * M x + t, derivatives by M alone. The control box is that of c's control
- * points mapped. coons_curve_get_type() of the result is c's type.
+ * points mapped. coons_curve_kind() of the result is c's type.
  *
  * Copies c (coons_curve_copy()): the caller keeps c and frees the result
  * with coons_curve_free().
@@ -147,7 +147,7 @@ COONS_EXPORT void coons_curve_free(coons_curve *c);
 
 /** The type the curve was built as (of a transformed or reversed curve: the
  * type of the curve it was made from). */
-COONS_EXPORT coons_curve_type coons_curve_get_type(const coons_curve *c);
+COONS_EXPORT coons_curve_type coons_curve_kind(const coons_curve *c);
 
 /** Point at t (t is clamped to [0,1]; a NaN t counts as 0). */
 COONS_EXPORT void coons_curve_eval(const coons_curve *c, double t, double out[3]);

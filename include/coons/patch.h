@@ -171,7 +171,7 @@ COONS_EXPORT coons_status coons_patch_new_bspline(int ps, int pt, const double *
  * The affine image y(s,t) = M x(s,t) + t of a patch (coons-model(5),
  * "Definitions and references", "transform"): points map by M x + t, every
  * partial by M alone, exact for every type. The control box is the box of
- * the 8 mapped corners of p's control box. coons_patch_get_type() of the
+ * the 8 mapped corners of p's control box. coons_patch_kind() of the
  * result is p's type. Copies p: the caller keeps p and frees the result
  * with coons_patch_free().
  * @param[in]  p   the patch
@@ -263,7 +263,7 @@ typedef struct coons_network_seam {
 
 /**
  * Measures a network patch (also one transformed or reparametrised, as
- * coons_patch_get_type() sees it) across each inner column and row, from
+ * coons_patch_kind() sees it) across each inner column and row, from
  * the one-sided derivatives of the cells on both sides, at 65 points along
  * the seam. Columns come first, in order, then rows; the seams are given
  * in the patch's own (s,t) after any reparametrisation.
@@ -285,7 +285,7 @@ COONS_EXPORT void coons_patch_free(coons_patch *p);
 
 /** The type the patch was built as (of a transformed or reparametrised
  * patch: the type of the patch it was made from). */
-COONS_EXPORT coons_patch_type coons_patch_get_type(const coons_patch *p);
+COONS_EXPORT coons_patch_type coons_patch_kind(const coons_patch *p);
 
 /** Point at (s,t), parameters clamped to [0,1] (NaN counts as 0). */
 COONS_EXPORT void coons_patch_eval(const coons_patch *p, double s, double t, double out[3]);
