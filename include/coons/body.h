@@ -20,6 +20,7 @@
 #define COONS_BODY_H
 
 #include "coons/types.h"
+#include "coons/patch.h" /* coons_network_seam */
 
 #ifdef __cplusplus
 extern "C" {

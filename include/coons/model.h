@@ -48,7 +48,11 @@ typedef struct coons_model_load_options {
 } coons_model_load_options;
 
 #define COONS_MODEL_LOAD_OPTIONS_VERSION 1
-#define COONS_MODEL_LOAD_OPTIONS_INIT {COONS_MODEL_LOAD_OPTIONS_VERSION, 0, 0, 0u, 0}
+#ifndef __cplusplus
+#define COONS_MODEL_LOAD_OPTIONS_INIT {.version = COONS_MODEL_LOAD_OPTIONS_VERSION}
+#else
+#define COONS_MODEL_LOAD_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_model_load_options, r_.version = COONS_MODEL_LOAD_OPTIONS_VERSION)
+#endif
 
 /**
  * Sets `*o` to ::COONS_MODEL_LOAD_OPTIONS_INIT (for language bindings that

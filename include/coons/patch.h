@@ -104,8 +104,11 @@ typedef struct coons_hermite_options {
 } coons_hermite_options;
 
 #define COONS_HERMITE_OPTIONS_VERSION 1
-#define COONS_HERMITE_OPTIONS_INIT \
-    {COONS_HERMITE_OPTIONS_VERSION, {0, 0, 0, 0}, COONS_TWIST_ZERO, {{0}}, COONS_TOL_DEFAULT}
+#ifndef __cplusplus
+#define COONS_HERMITE_OPTIONS_INIT {.version = COONS_HERMITE_OPTIONS_VERSION, .twist = COONS_TWIST_ZERO, .tol = COONS_TOL_DEFAULT}
+#else
+#define COONS_HERMITE_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_hermite_options, r_.version = COONS_HERMITE_OPTIONS_VERSION, r_.twist = COONS_TWIST_ZERO, r_.tol = COONS_TOL_DEFAULT)
+#endif
 
 /**
  * Sets `*o` to ::COONS_HERMITE_OPTIONS_INIT (for language bindings that
@@ -208,9 +211,11 @@ typedef struct coons_network_options {
 } coons_network_options;
 
 #define COONS_NETWORK_OPTIONS_VERSION 1
-#define COONS_NETWORK_OPTIONS_INIT \
-    {COONS_NETWORK_OPTIONS_VERSION, NULL, NULL, COONS_TWIST_BESSEL, COONS_BLEND_CUBIC, \
-     COONS_TOL_DEFAULT}
+#ifndef __cplusplus
+#define COONS_NETWORK_OPTIONS_INIT {.version = COONS_NETWORK_OPTIONS_VERSION, .twist = COONS_TWIST_BESSEL, .blend = COONS_BLEND_CUBIC, .tol = COONS_TOL_DEFAULT}
+#else
+#define COONS_NETWORK_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_network_options, r_.version = COONS_NETWORK_OPTIONS_VERSION, r_.twist = COONS_TWIST_BESSEL, r_.blend = COONS_BLEND_CUBIC, r_.tol = COONS_TOL_DEFAULT)
+#endif
 
 /**
  * Sets `*o` to ::COONS_NETWORK_OPTIONS_INIT; NULL is a harmless no-op.

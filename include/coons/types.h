@@ -71,7 +71,20 @@ typedef struct coons_error {
     char path[COONS_ERROR_PATH_MAX];        /**< JSON pointer, or "" */
 } coons_error;
 
-#define COONS_ERROR_INIT {0, {0}, {0}, 0, 0, {0}}
+/*
+ * The *_INIT macros of the records name the fields they set: in C a
+ * designated initialiser (every other field zero); C++17 has none, so there
+ * the record is value-initialised (all zero) and the same fields are set.
+ */
+#ifdef __cplusplus
+#define COONS_RECORD_INIT_CXX_(type, ...) ([] { type r_{}; __VA_ARGS__; return r_; }())
+#endif
+
+#ifndef __cplusplus
+#define COONS_ERROR_INIT {.code = COONS_OK}
+#else
+#define COONS_ERROR_INIT COONS_RECORD_INIT_CXX_(coons_error, r_.code = COONS_OK)
+#endif
 
 /** Blending functions of Coons patches and bodies (seed 001 section 1.2). */
 typedef enum coons_blend {
