@@ -4,8 +4,8 @@
  * @brief Isoparametric surfaces of bodies (u, v or w = const).
  *
  * Each surface is a mesh part whose vertices carry their body parameters
- * (coons_mesh_vertex_parameters()); parts are named by
- * coons_iso_surface_name().
+ * (coons_mesh_vertex_parameters(), declared here with the surfaces that
+ * make them); parts are named by coons_iso_surface_name().
  */
 #ifndef COONS_ISO_H
 #define COONS_ISO_H
@@ -17,6 +17,19 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/**
+ * The body parameters of every vertex, 3 doubles (u, v, w) per vertex in
+ * vertex order (borrowed view, valid until the mesh is modified or freed),
+ * or NULL when the mesh has no part or a part without them. Parts made by
+ * coons_body_iso_surface() and coons_model_iso_surfaces() carry them
+ * (boundary parts included); parts added with coons_mesh_add_part() or
+ * sampled by coons_body_sample() / coons_model_sample() do not.
+ */
+COONS_EXPORT const double *coons_mesh_vertex_parameters(const coons_mesh *m);
+
+/** 1 if part i carries vertex parameters (see coons_mesh_vertex_parameters()). */
+COONS_EXPORT int coons_mesh_part_has_parameters(const coons_mesh *m, size_t i);
 
 /** One isoparametric surface: direction 0 (u), 1 (v) or 2 (w) = value. */
 typedef struct coons_iso_request {

@@ -65,19 +65,6 @@ COONS_EXPORT double coons_mesh_volume(const coons_mesh *m);
 /** Total triangle area. */
 COONS_EXPORT double coons_mesh_area(const coons_mesh *m);
 
-/**
- * The body parameters of every vertex, 3 doubles (u, v, w) per vertex in
- * vertex order (borrowed view, valid until the mesh is modified or freed),
- * or NULL when the mesh has no part or a part without them. Parts made by
- * coons_body_iso_surface() and coons_model_iso_surfaces() carry them
- * (boundary parts included); parts added with coons_mesh_add_part() or
- * sampled by coons_body_sample() / coons_model_sample() do not.
- */
-COONS_EXPORT const double *coons_mesh_vertex_parameters(const coons_mesh *m);
-
-/** 1 if part i carries vertex parameters (see coons_mesh_vertex_parameters()). */
-COONS_EXPORT int coons_mesh_part_has_parameters(const coons_mesh *m, size_t i);
-
 #ifdef __cplusplus
 }
 #endif
