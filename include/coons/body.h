@@ -59,6 +59,8 @@ typedef enum coons_body_face {
  * replaced by f(x), 1-f(x).
  * @param[in] corners 24 doubles: P_ijk (x y z) at index 4i + 2j + k (a
  *                    `double c[24]`, or `c[0]` of a `double c[8][3]`)
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL or non-finite corners, an
+ *         unknown blend), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_new_body0(const double *corners, coons_blend blend,
                                                coons_body **out, coons_error *err);
@@ -91,7 +93,13 @@ COONS_EXPORT coons_status coons_body_new_body1(coons_curve *const *edges, coons_
 COONS_EXPORT coons_status coons_body_new_body2(coons_patch *const *faces, coons_blend blend,
                                                double tol, coons_body **out, coons_error *err);
 
-/** Tensor-product Bezier volume; n[0..2] >= 2 points along u, v, w. */
+/**
+ * Tensor-product Bezier volume; n[0..2] >= 2 points along u, v, w.
+ * @return ::COONS_OK, ::COONS_E_INVALID (fewer than 2 points along a
+ *         direction, non-finite points), ::COONS_E_LIMIT (more than
+ *         ::COONS_BODY_MAX_POINTS, or a degree above
+ *         ::COONS_SPLINE_MAX_DEGREE), ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_body_new_bezier(const double *points, const size_t n[3],
                                                 coons_body **out, coons_error *err);
 
@@ -100,6 +108,10 @@ COONS_EXPORT coons_status coons_body_new_bezier(const double *points, const size
  * @param[in] knots_u,knots_v,knots_w each NULL (clamped uniform) or
  *                    n[d]+degree[d]+1 values
  * @param[in] weights NULL or n[0]*n[1]*n[2] values > 0, indexed like the points
+ * @return ::COONS_OK, ::COONS_E_INVALID (a degree outside
+ *         1..::COONS_SPLINE_MAX_DEGREE, too few points, bad knots or
+ *         weights, non-finite points), ::COONS_E_LIMIT (more than
+ *         ::COONS_BODY_MAX_POINTS), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_new_bspline(const int degree[3], const double *points,
                                                  const size_t n[3], const double *knots_u,
@@ -168,7 +180,7 @@ COONS_EXPORT coons_status coons_body_network_seams(const coons_body *b,
 COONS_EXPORT coons_status coons_body_new_transformed(const coons_body *b, const double *m,
                                                      coons_body **out, coons_error *err);
 
-/** Deep copy. */
+/** Deep copy. @return ::COONS_OK or ::COONS_E_NOMEM. */
 COONS_EXPORT coons_status coons_body_copy(const coons_body *b, coons_body **out,
                                           coons_error *err);
 

@@ -153,6 +153,7 @@ COONS_EXPORT coons_status coons_mesh_count_self_intersections(const coons_mesh *
 /**
  * As coons_mesh_count_self_intersections(), after rounding every coordinate to
  * float32 as binary STL stores it.
+ * @return ::COONS_OK, ::COONS_E_UNSUPPORTED without CGAL, ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
                                                                     coons_error *err);

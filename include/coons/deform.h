@@ -73,6 +73,9 @@ typedef struct coons_deform_report {
 /**
  * coons_body_deform_mesh() that also fills `report` (NULL: none; its
  * version must be ::COONS_DEFORM_REPORT_VERSION, else ::COONS_E_INVALID).
+ * @return as coons_body_deform_mesh(): ::COONS_OK, ::COONS_E_INVALID (also
+ *         a report of another version), ::COONS_E_DOMAIN, ::COONS_E_LIMIT,
+ *         ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh *in,
                                                         const double *lo, const double *hi,

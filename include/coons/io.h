@@ -391,7 +391,12 @@ COONS_EXPORT coons_status coons_model_write_scad_animation(const coons_model *m,
                                                            const coons_write_options *wo,
                                                            coons_error *err);
 
-/** coons_model_write_scad_animation() to an open stream (flushed, not closed). */
+/**
+ * coons_model_write_scad_animation() to an open stream (flushed, not closed).
+ * @return as coons_model_write_scad_animation(): ::COONS_OK,
+ *         ::COONS_E_INVALID, ::COONS_E_LIMIT, ::COONS_E_UNSUPPORTED,
+ *         ::COONS_E_IO (a write or the flush failed), ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_model_write_scad_animation_stream(const coons_model *m,
                                                                   long body,
                                                                   const coons_sample_options *so,

@@ -66,6 +66,9 @@ COONS_EXPORT coons_status coons_mesh_read_file(const char *path,
 /**
  * coons_mesh_read_file() of `size` bytes at `data`; `name` (NULL:
  * "<memory>") names the input in messages and the part.
+ * @return ::COONS_OK; ::COONS_E_INVALID (`data` NULL with size > 0);
+ *         ::COONS_E_PARSE (malformed); ::COONS_E_LIMIT (more than
+ *         `max_bytes` or `max_triangles`); ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_mesh_read_memory(const void *data, size_t size, const char *name,
                                                  const coons_mesh_read_options *opts,

@@ -100,6 +100,10 @@ COONS_EXPORT coons_status coons_model_load_file(const char *path,
  * Loads a model from memory, like coons_model_load_file(). `name` is used as
  * the file name in messages (NULL: "<buffer>"). The buffer need not be
  * NUL-terminated and is not kept.
+ * @return as coons_model_load_file() without ::COONS_E_IO: ::COONS_OK,
+ *         ::COONS_E_PARSE, ::COONS_E_INVALID (also `data` NULL),
+ *         ::COONS_E_UNSUPPORTED, ::COONS_E_INCOMPATIBLE, ::COONS_E_LIMIT,
+ *         ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_model_load_memory(const char *data, size_t size,
                                                   const char *name,

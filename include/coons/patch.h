@@ -281,7 +281,7 @@ COONS_EXPORT coons_status coons_patch_network_seams(const coons_patch *p,
                                                     coons_network_seam *seams, size_t cap,
                                                     size_t *n, coons_error *err);
 
-/** Deep copy. */
+/** Deep copy. @return ::COONS_OK, ::COONS_E_INVALID (NULL), ::COONS_E_NOMEM. */
 COONS_EXPORT coons_status coons_patch_copy(const coons_patch *p, coons_patch **out,
                                            coons_error *err);
 

@@ -185,14 +185,20 @@ COONS_EXPORT coons_status coons_volume_mesh_add_field(coons_volume_mesh *vm,
  * are kept too). Set names follow the rules of part names and are unique
  * among node sets.
  * @return ::COONS_OK; ::COONS_E_INVALID: bad or repeated name, an index
- *         out of range, `nodes` NULL with n > 0; ::COONS_E_NOMEM.
+ *         out of range, `nodes` NULL with n > 0; ::COONS_E_LIMIT (a set
+ *         too large to hold); ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_volume_mesh_add_node_set(coons_volume_mesh *vm,
                                                          const char *name,
                                                          const uint32_t *nodes, size_t n,
                                                          coons_error *err);
 
-/** Adds a named set of `n` cell indices; as coons_volume_mesh_add_node_set(). */
+/**
+ * Adds a named set of `n` cell indices; as coons_volume_mesh_add_node_set().
+ * @return ::COONS_OK; ::COONS_E_INVALID: bad or repeated name (among cell
+ *         sets), an index out of range, `cells` NULL with n > 0;
+ *         ::COONS_E_LIMIT (a set too large to hold); ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_volume_mesh_add_cell_set(coons_volume_mesh *vm,
                                                          const char *name,
                                                          const uint32_t *cells, size_t n,
