@@ -8,9 +8,11 @@
  * The library never prints, never exits and never aborts: the status and the
  * message in the error record are the whole report.
  *
- * Names: every function is `coons_<object>_<verb>`; constructors are
+ * Names (the rule in full: coons.h): constructors are
  * `coons_<object>_new_<type>` (coons_curve_new_line(), coons_body_new_body2(),
- * coons_mesh_new()) and each object is released by its own `coons_<object>_free()`.
+ * coons_mesh_new()), each object is released by its own `coons_<object>_free()`,
+ * accessors are `coons_<object>_<attribute>` with no `get_` (coons_body_kind()),
+ * every other function `coons_<object>_<verb>`.
  *
  * Arrays: every public function is called from C (C11 and later) with
  * ordinary arrays and no cast.
