@@ -14,13 +14,16 @@
   under the same flags, while the public coons_patch_new_coons() call does
   not;
 - the 0.1 names are gone in 0.3 (0.2 announced it): 0.1 code no longer
-  compiles, and none of the 0.1 names is exported.
+  compiles, and none of the 0.1 names is exported;
+- libcoons.so exports exactly the functions the public headers declare
+  COONS_EXPORT (the count is printed: 169 in 0.3).
 
 In a sanitizer build the programs are compiled only, and linked and run with
 gcc and the same sanitizers.
 
 Usage: test_api_calls.py --bin <ignored> --src <source dir> --build <build dir>
 """
+import glob
 import os
 import re
 import shutil
@@ -145,6 +148,15 @@ def main():
                 p.stdout[-500:])
         left = sorted(set(NAMES_01) & exported)
         r.check("no 0.1 name is exported", not left, " ".join(left))
+        declared = set()
+        for h in glob.glob(os.path.join(inc, "coons", "*.h")):
+            with open(h) as f:
+                declared |= set(re.findall(r"COONS_EXPORT\b[^;{(]*?\b(coons_\w+)\s*\(", f.read()))
+        fns = {n for n in exported if n.startswith("coons_")}
+        r.check(f"the exported functions are exactly those the headers declare "
+                f"({len(fns)} exported)", fns == declared,
+                "exported, not declared: " + " ".join(sorted(fns - declared)) +
+                "\ndeclared, not exported: " + " ".join(sorted(declared - fns)))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     r.finish()
