@@ -47,7 +47,7 @@ static void test_body0_affine(void **state)
     affine_corners(AFF_O, AFF_A, c);
     coons_body *b = NULL;
     assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err), &err);
-    assert_int_equal(coons_body_get_type(b), COONS_BODY_BODY0);
+    assert_int_equal(coons_body_kind(b), COONS_BODY_BODY0);
     tb_rng rng = {12345};
     for (int n = 0; n < 200; n++) {
         double q[3] = {tb_rand(&rng), tb_rand(&rng), tb_rand(&rng)}, x[3], y[3], jac[3][3];
@@ -308,7 +308,7 @@ static void test_body1_boundary(void **state)
         assert_coons_ok(coons_body_new_body1(e, (coons_blend)kind,
                                              COONS_TOL_DEFAULT, &b, &err),
                         &err);
-        assert_int_equal(coons_body_get_type(b), COONS_BODY_BODY1);
+        assert_int_equal(coons_body_kind(b), COONS_BODY_BODY1);
         tb_rng rng = {5};
         for (int n = 0; n < 40; n++) {
             double p = tb_rand(&rng), q = tb_rand(&rng), x[3], y[3];
@@ -408,7 +408,7 @@ static void test_bezier_volume(void **state)
     for (size_t m = 0; m < sizeof P / sizeof P[0]; m++) P[m] = tb_rand(&rng) * 4.0 - 2.0;
     coons_body *b;
     assert_coons_ok(coons_body_new_bezier(P, n, &b, &err), &err);
-    assert_int_equal(coons_body_get_type(b), COONS_BODY_BEZIER);
+    assert_int_equal(coons_body_kind(b), COONS_BODY_BEZIER);
     for (int t = 0; t < 50; t++) {
         double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng), x[3] = {0, 0, 0}, y[3];
         for (int i = 0; i < 3; i++)
@@ -466,7 +466,7 @@ static void test_bspline_volume(void **state)
     for (int rational = 0; rational < 2; rational++) {
         coons_body *b;
         assert_coons_ok(coons_body_new_bspline(deg, P, n, kn[0], kn[1], kn[2], rational ? W : NULL, &b, &err), &err);
-        assert_int_equal(coons_body_get_type(b), COONS_BODY_BSPLINE);
+        assert_int_equal(coons_body_kind(b), COONS_BODY_BSPLINE);
         for (int t = 0; t < 60; t++) {
             double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng);
             double x = 2.0 * u, yv = -1.0 + 2.0 * v, z = w, ref[3] = {0, 0, 0}, den = 0.0, y[3];
@@ -730,7 +730,7 @@ static void test_copy(void **state)
     for (int m = 0; m < nb; m++) {
         coons_body *c;
         assert_coons_ok(coons_body_copy(bodies[m], &c, &err), &err);
-        assert_int_equal(coons_body_get_type(c), coons_body_get_type(bodies[m]));
+        assert_int_equal(coons_body_kind(c), coons_body_kind(bodies[m]));
         double lo[3], hi[3], lo2[3], hi2[3];
         coons_body_control_bbox(bodies[m], lo, hi);
         coons_body_control_bbox(c, lo2, hi2);

@@ -88,7 +88,7 @@ static void test_body2_formula_and_boundary(void **state)
         assert_coons_ok(coons_body_new_body2(f, (coons_blend)kind,
                                              COONS_TOL_DEFAULT, &b, &err),
                         &err);
-        assert_int_equal(coons_body_get_type(b), COONS_BODY_BODY2);
+        assert_int_equal(coons_body_kind(b), COONS_BODY_BODY2);
         tb_rng rng = {11u + (unsigned)kind};
         for (int t = 0; t < 60; t++) {
             double u = tb_rand(&rng), v = tb_rand(&rng), w = tb_rand(&rng), x[3], y[3];

@@ -115,7 +115,7 @@ static void test_nonuniform_cubic(void **state)
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_curve_new_bspline(3, P, 7, k, NULL, &c, &e), &e);
-    assert_int_equal(coons_curve_get_type(c), COONS_CURVE_BSPLINE);
+    assert_int_equal(coons_curve_kind(c), COONS_CURVE_BSPLINE);
     check_against_naive(c, 3, P, 7, k, NULL, 1e-13);
     double a[3], b[3];
     coons_curve_eval(c, 0.0, a);

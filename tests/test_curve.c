@@ -142,7 +142,7 @@ static void test_line(void **state)
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_curve_new_line(a, b, &c, &e), &e);
-    assert_int_equal(coons_curve_get_type(c), COONS_CURVE_LINE);
+    assert_int_equal(coons_curve_kind(c), COONS_CURVE_LINE);
     for (int i = 0; i <= 16; i++) {
         double t = i / 16.0, d[3][3], want[3];
         coons_curve_eval_derivs(c, t, 2, d);
@@ -173,7 +173,7 @@ static void test_polyline(void **state)
     const int n = 4;
     coons_curve *c = NULL;
     assert_int_equal(coons_curve_new_polyline(P, 5, &c, NULL), COONS_OK);
-    assert_int_equal(coons_curve_get_type(c), COONS_CURVE_POLYLINE);
+    assert_int_equal(coons_curve_kind(c), COONS_CURVE_POLYLINE);
     for (int i = 0; i <= n; i++) {
         double d[2][3], want[3];
         coons_curve_eval_derivs(c, (double)i / n, 1, d);
@@ -212,7 +212,7 @@ static void test_bezier(void **state)
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_curve_new_bezier(P, 6, &c, &e), &e);
-    assert_int_equal(coons_curve_get_type(c), COONS_CURVE_BEZIER);
+    assert_int_equal(coons_curve_kind(c), COONS_CURVE_BEZIER);
     for (int i = 0; i <= 50; i++) {
         double t = i / 50.0, got[3], want[3];
         coons_curve_eval(c, t, got);
@@ -259,7 +259,7 @@ static void test_hermite(void **state)
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_curve_new_hermite(p0, t0, p1, t1, &c, &e), &e);
-    assert_int_equal(coons_curve_get_type(c), COONS_CURVE_HERMITE);
+    assert_int_equal(coons_curve_kind(c), COONS_CURVE_HERMITE);
     const double *V[4] = {p0, t0, t1, p1};
     for (int i = 0; i <= 40; i++) {
         double t = i / 40.0, s = 1 - t, H[4], want[3], got[3];
@@ -318,7 +318,7 @@ static void test_coons_single_segment(void **state)
     coons_curve *c = NULL;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_curve_new_coons_cubic(P, 4, 0, &c, &e), &e);
-    assert_int_equal(coons_curve_get_type(c), COONS_CURVE_COONS_CUBIC);
+    assert_int_equal(coons_curve_kind(c), COONS_CURVE_COONS_CUBIC);
     double d[3][3], want[3];
     coons_curve_eval_derivs(c, 0.0, 2, d);
     comb(want, 3, (const double[]){1.0 / 6, 4.0 / 6, 1.0 / 6}, Q);
@@ -647,7 +647,7 @@ static void test_clamped_ends(void **state)
         coons_curve *c = NULL;
         coons_error e = COONS_ERROR_INIT;
         assert_coons_ok(coons_curve_new_clamped_cubic(P, cnt, &c, &e), &e);
-        assert_int_equal(coons_curve_get_type(c), COONS_CURVE_CLAMPED_CUBIC);
+        assert_int_equal(coons_curve_kind(c), COONS_CURVE_CLAMPED_CUBIC);
         double d[2][3], want[3];
         coons_curve_eval_derivs(c, 0.0, 1, d);
         assert_vec3_near(d[0], P, 1e-15);
@@ -984,7 +984,7 @@ static void test_copy(void **state)
         assert_coons_ok(ctors[i](&c, &e), &e);
         assert_coons_ok(coons_curve_copy(c, &d, &e), &e);
         assert_ptr_not_equal(c, d);
-        assert_int_equal(coons_curve_get_type(c), coons_curve_get_type(d));
+        assert_int_equal(coons_curve_kind(c), coons_curve_kind(d));
         double lo1[3], hi1[3], lo2[3], hi2[3];
         coons_curve_control_bbox(c, lo1, hi1);
         coons_curve_control_bbox(d, lo2, hi2);

@@ -628,9 +628,9 @@ static void test_format_table(void **state)
         assert_non_null(strstr(e.message, w));
     assert_non_null(strstr(e.message, "'a.ply' (use .stl, .off, "));
 
-    /* libcoons(3) lists what the table holds: every extension under
+    /* coons_io(3) lists what the table holds: every extension under
      * coons_format_from_path, every name under coons_format_from_name. */
-    char *man = io_read_file(COONS_SOURCE_DIR "/man/man3/libcoons.3", NULL);
+    char *man = io_read_file(COONS_SOURCE_DIR "/man/man3/coons_io.3", NULL);
     assert_non_null(man);
     char *by_path = strstr(man, ".It Fn coons_format_from_path");
     char *by_name = by_path ? strstr(by_path, ".It Fn coons_format_from_name") : NULL;
@@ -649,7 +649,7 @@ static void test_format_table(void **state)
         int found = 0;
         for (char *q = strstr(by_name, want); q && !found; q = strstr(q + 1, want))
             found = q[strlen(want)] == ' ' || q[strlen(want)] == '\n';
-        if (!found) fail_msg("libcoons(3) does not list the format name '%s'", want + 5);
+        if (!found) fail_msg("coons_io(3) does not list the format name '%s'", want + 5);
     }
     free(man);
 }

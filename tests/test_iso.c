@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "body_fixtures.h"
+#include "iso_parse.h"
 #include "io_test_util.h"
 #include "test_util.h"
 
@@ -265,8 +266,6 @@ static void test_faces_are_the_boundary(void **state)
     assert_non_null(uvw);
     for (size_t p = 0; p < 6; p++) {
         assert_string_equal(coons_mesh_part_name(m, p), names[p]);
-        assert_int_equal(coons_mesh_part_display(m, p),
-                         p % 3 == 0 ? COONS_PART_BACKGROUND : COONS_PART_NORMAL);
         const coons_body *b = coons_model_body(model, p / 3);
         if (p % 3) {
             check_surface(b, m, p, req[p % 3 - 1].direction, req[p % 3 - 1].value);
@@ -442,18 +441,10 @@ static void test_errors(void **state)
         assert_null(out);
         coons_model_free(model);
     }
-    /* bad options, bad display */
+    /* bad options */
     coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
     o.version = 99;
     assert_int_equal(coons_body_iso_surface(b, 0, 0.5, &o, NULL, m, &err), COONS_E_INVALID);
-    assert_int_equal(coons_mesh_set_part_display(m, 1, COONS_PART_BACKGROUND, &err),
-                     COONS_E_INVALID);
-    assert_int_equal(coons_mesh_set_part_display(m, 0, (coons_part_display)7, &err),
-                     COONS_E_INVALID);
-    assert_int_equal(coons_mesh_part_display(m, 0), COONS_PART_NORMAL);
-    assert_coons_ok(coons_mesh_set_part_display(m, 0, COONS_PART_BACKGROUND, &err), &err);
-    assert_int_equal(coons_mesh_part_display(m, 0), COONS_PART_BACKGROUND);
-    assert_int_equal(coons_mesh_part_display(m, 5), COONS_PART_NORMAL);
     /* a triangle budget too small for the boundary lattice (6 x 100 cells
      * x 2 = 1200 triangles): refused, the mesh unchanged */
     coons_sample_options small = COONS_SAMPLE_OPTIONS_INIT;
@@ -469,15 +460,15 @@ static void test_errors(void **state)
     coons_body_free(b);
 }
 
-/* The option parser: lists of values, the directions, and what it refuses. */
+/* coons2stl's option parser (tools/coons2stl/iso_parse.c): lists of values, the directions, and what it refuses. */
 static void test_parse(void **state)
 {
     (void)state;
     coons_iso_request r[4];
     size_t n = 0;
     coons_error err = COONS_ERROR_INIT;
-    assert_coons_ok(coons_iso_parse("u=0.25,0.5", r, 4, &n, &err), &err);
-    assert_coons_ok(coons_iso_parse("w=1e-1", r, 4, &n, &err), &err);
+    assert_coons_ok(cli_iso_parse("u=0.25,0.5", r, 4, &n, &err), &err);
+    assert_coons_ok(cli_iso_parse("w=1e-1", r, 4, &n, &err), &err);
     assert_int_equal(n, 3);
     assert_int_equal(r[0].direction, 0);
     assert_true(r[0].value == 0.25 && r[1].value == 0.5);
@@ -487,13 +478,13 @@ static void test_parse(void **state)
                                       "u=0.5;0.6", "u=abc", "u=0.5,2", "v=nan", "w=-1"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         coons_error e = COONS_ERROR_INIT;
-        int rc = coons_iso_parse(bad[i], r, 4, &n, &e);
+        int rc = cli_iso_parse(bad[i], r, 4, &n, &e);
         if (rc != COONS_E_INVALID && rc != COONS_E_DOMAIN) fail_msg("'%s' -> %d", bad[i], rc);
         assert_int_equal(n, 3);
         if (!strstr(e.message, bad[i])) fail_msg("'%s' not quoted in '%s'", bad[i], e.message);
     }
-    assert_int_equal(coons_iso_parse("u=0.5,2", r, 4, &n, &err), COONS_E_DOMAIN);
-    assert_int_equal(coons_iso_parse("v=0.1,0.2", r, 4, &n, &err), COONS_E_LIMIT);
+    assert_int_equal(cli_iso_parse("u=0.5,2", r, 4, &n, &err), COONS_E_DOMAIN);
+    assert_int_equal(cli_iso_parse("v=0.1,0.2", r, 4, &n, &err), COONS_E_LIMIT);
     assert_int_equal(n, 3);
     char name[COONS_ISO_NAME_MAX];
     coons_iso_surface_name("seat", 1, 0.1, name, sizeof name);
@@ -539,10 +530,12 @@ static void test_parameters_all_or_nothing(void **state)
     coons_body_free(b);
 }
 
-/* Given a model's surfaces with the boundary, when written as OpenSCAD,
- * then the boundary module is called with `%` and the surface modules are
- * plain calls with valid identifiers; the same mesh with no part marked
- * writes no `%`. */
+/* Given a model's surfaces with the boundary, when written as OpenSCAD with
+ * the boundary (part 0) in coons_write_options.background, then the
+ * boundary module is called with `%` and the surface modules are plain
+ * calls with valid identifiers; the same mesh with no background list
+ * writes no `%`; a part that does not exist, or a count without a list, is
+ * refused and nothing is written. */
 static void test_scad_background(void **state)
 {
     (void)state;
@@ -562,6 +555,17 @@ static void test_scad_background(void **state)
     snprintf(path, sizeof path, "%s/iso.scad", dir);
     coons_write_options wo = COONS_WRITE_OPTIONS_INIT;
     wo.name = "iso";
+    const size_t bad_bg[2] = {0, 3};
+    wo.background = bad_bg;
+    wo.nbackground = 2;
+    assert_int_equal(coons_mesh_write(m, path, COONS_FORMAT_AUTO, &wo, &err), COONS_E_INVALID);
+    assert_non_null(strstr(err.message, "background part 3"));
+    wo.background = NULL;
+    assert_int_equal(coons_mesh_write(m, path, COONS_FORMAT_AUTO, &wo, &err), COONS_E_INVALID);
+    assert_null(io_read_file(path, NULL));
+    const size_t bg[1] = {0};
+    wo.background = bg;
+    wo.nbackground = 1;
     assert_coons_ok(coons_mesh_write(m, path, COONS_FORMAT_AUTO, &wo, &err), &err);
     size_t len;
     char *text = io_read_file(path, &len);
@@ -573,7 +577,8 @@ static void test_scad_background(void **state)
     assert_non_null(strstr(text, "\nmodule iso() {\n  %iso_box();\n  iso_box_u_0_25();\n"
                                  "  iso_box_w_0_5();\n}\n"));
     free(text);
-    assert_coons_ok(coons_mesh_set_part_display(m, 0, COONS_PART_NORMAL, &err), &err);
+    wo.background = NULL;
+    wo.nbackground = 0;
     assert_coons_ok(coons_mesh_write(m, path, COONS_FORMAT_AUTO, &wo, &err), &err);
     text = io_read_file(path, &len);
     assert_null(strchr(text, '%'));

@@ -216,16 +216,16 @@ static void test_records_point_at_their_row(void **state)
     make_patches(p);
     tb_all_bodies(b);
     for (int t = 0; t < NCURVES; t++) {
-        assert_int_equal(coons_curve_get_type(c[t]), t);
+        assert_int_equal(coons_curve_kind(c[t]), t);
         assert_ptr_equal(c[t]->kind, coons__curve_kind_of((coons_curve_type)t));
     }
     for (int t = 0; t < NPATCHES; t++) {
-        assert_int_equal(coons_patch_get_type(p[t]), t);
+        assert_int_equal(coons_patch_kind(p[t]), t);
         assert_ptr_equal(p[t]->kind, coons__patch_kind_of((coons_patch_type)t));
     }
     int seen[5] = {0};
     for (int m = 0; m < TB_MAX_BODIES; m++) {
-        coons_body_type t = coons_body_get_type(b[m]);
+        coons_body_type t = coons_body_kind(b[m]);
         assert_ptr_equal(b[m]->kind, coons__body_kind_of(t));
         seen[t] = 1;
     }

@@ -252,7 +252,7 @@ static void test_faces(void **state)
     coons_error err = COONS_ERROR_INIT;
     coons_model *m = NULL;
     assert_coons_ok(load(FACES, &m, &err), &err);
-    assert_int_equal(coons_body_get_type(coons_model_body(m, 0)), COONS_BODY_BODY2);
+    assert_int_equal(coons_body_kind(coons_model_body(m, 0)), COONS_BODY_BODY2);
     double x[3], ex[3] = {0.25, 0.5, 0.75};
     coons_body_eval(coons_model_body(m, 0), 0.25, 0.5, 0.75, x);
     assert_vec3_near(x, ex, 1e-14);
@@ -266,7 +266,7 @@ static void test_rich(void **state)
     coons_model *m = NULL;
     assert_coons_ok(load(RICH, &m, &err), &err);
     assert_int_equal(coons_model_body_count(m), 4);
-    assert_int_equal(coons_body_get_type(coons_model_body(m, 1)), COONS_BODY_BODY1);
+    assert_int_equal(coons_body_kind(coons_model_body(m, 1)), COONS_BODY_BODY1);
     assert_string_equal(coons_model_body_name(m, 3), "body3");
     /* u10 is a quadratic Bezier: at u = 1/2 the edge point is
      * (P0 + 2 P1 + P2)/4 = (0.5, 1.1, 0). */

@@ -163,7 +163,7 @@ static void test_eval_is_blend_and_jacobian_fd(void **state)
             assert_coons_ok(coons_body_new_morph((const coons_body *const *)k, 3, at, path, t, &m,
                                                  &err),
                             &err);
-            assert_int_equal(coons_body_get_type(m), COONS_BODY_MORPH);
+            assert_int_equal(coons_body_kind(m), COONS_BODY_MORPH);
             assert_coons_ok(coons_morph_weights(3, at, path, t, w, NULL, &err), &err);
             for (int q = 0; q < 10; q++) {
                 double u = tb_rand(&r), v = tb_rand(&r), x = tb_rand(&r), p[3], want[3] = {0};
@@ -411,10 +411,10 @@ static void test_load(void **state)
     assert_coons_ok(coons_model_load_memory(doc, strlen(doc), "m.json", NULL, &m, &err), &err);
     assert_int_equal(coons_model_morph_count(m), 1);
     const coons_body *b = coons_model_body(m, 0);
-    assert_int_equal(coons_body_get_type(b), COONS_BODY_MORPH);
+    assert_int_equal(coons_body_kind(b), COONS_BODY_MORPH);
     assert_int_equal(coons_body_morph_keys(b), 3);
     double at1 = 0;
-    assert_int_equal(coons_body_get_type(coons_body_morph_key(b, 2, &at1)), COONS_BODY_MORPH);
+    assert_int_equal(coons_body_kind(coons_body_morph_key(b, 2, &at1)), COONS_BODY_MORPH);
     assert_near(at1, 1.0, 0);
     /* at t = 0.25 the morph is key 1 (the box scaled by 2) */
     assert_coons_ok(coons_model_set_time(m, 0.25, &err), &err);

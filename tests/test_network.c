@@ -178,7 +178,7 @@ static void test_one_cell(void **state)
         coons_patch *n = NULL, *h = NULL;
         assert_coons_ok(coons_patch_new_network(rows, 2, cols, 2, &o, &n, &err), &err);
         assert_coons_ok(coons_patch_new_hermite_coons(fx_curves(&b), &ho, &h, &err), &err);
-        assert_int_equal(coons_patch_get_type(n), COONS_PATCH_NETWORK);
+        assert_int_equal(coons_patch_kind(n), COONS_PATCH_NETWORK);
         for (int i = 0; i <= 20; i++)
             for (int j = 0; j <= 20; j++) {
                 double d1[6][3], d2[6][3];
@@ -377,7 +377,7 @@ static void test_derivs(void **state)
     assert_coons_ok(coons_patch_new_reparametrized(tp, 1, 1, 0, &rp, &err), &err);
     fx_check_derivs_fd(tp, 1e-6);
     fx_check_derivs_fd(rp, 1e-6);
-    assert_int_equal(coons_patch_get_type(rp), COONS_PATCH_NETWORK);
+    assert_int_equal(coons_patch_kind(rp), COONS_PATCH_NETWORK);
     /* the seams seen through them: the same defects; a swap makes columns rows */
     coons_network_seam a[3], sb[3];
     size_t na = 0, nb = 0;

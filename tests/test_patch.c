@@ -220,7 +220,7 @@ static void test_ruled(void **state)
     coons_error err = COONS_ERROR_INIT;
     coons_patch *p = NULL;
     assert_coons_ok(coons_patch_new_ruled(b.c[COONS_SIDE_T0], b.c[COONS_SIDE_T1], &p, &err), &err);
-    assert_int_equal(coons_patch_get_type(p), COONS_PATCH_RULED);
+    assert_int_equal(coons_patch_kind(p), COONS_PATCH_RULED);
     for (int i = 0; i < 11; i++) {
         double u = par11[i], x[3], c0[3], c1[3];
         coons_curve_eval(b.c[COONS_SIDE_T0], u, c0);
@@ -247,7 +247,7 @@ static void test_bilinear_equals_coons_of_lines(void **state)
     coons_error err = COONS_ERROR_INIT;
     coons_patch *p = NULL, *q = NULL;
     assert_coons_ok(coons_patch_new_bilinear(fx_corner[0], &p, &err), &err);
-    assert_int_equal(coons_patch_get_type(p), COONS_PATCH_BILINEAR);
+    assert_int_equal(coons_patch_kind(p), COONS_PATCH_BILINEAR);
     coons_curve *c[4];
     assert_coons_ok(coons_curve_new_line(fx_corner[0], fx_corner[1], &c[COONS_SIDE_T0], &err), &err);
     assert_coons_ok(coons_curve_new_line(fx_corner[2], fx_corner[3], &c[COONS_SIDE_T1], &err), &err);
@@ -575,7 +575,7 @@ static void test_copy(void **state)
         for (int i = 0; i < 5; i++)
             for (int j = 0; j < 5; j++) coons_patch_eval_derivs(p, fx_par[i], fx_par[j], 2, want[i][j]);
         assert_coons_ok(coons_patch_copy(p, &q, &err), &err);
-        assert_int_equal(coons_patch_get_type(q), coons_patch_get_type(p));
+        assert_int_equal(coons_patch_kind(q), coons_patch_kind(p));
         double lo1[3], hi1[3], lo2[3], hi2[3];
         coons_patch_control_bbox(p, lo1, hi1);
         coons_patch_control_bbox(q, lo2, hi2);

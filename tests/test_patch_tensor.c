@@ -66,7 +66,7 @@ static void test_nurbs_sphere(void **state)
 {
     (void)state;
     coons_patch *p = make_sphere();
-    assert_int_equal(coons_patch_get_type(p), COONS_PATCH_BSPLINE);
+    assert_int_equal(coons_patch_kind(p), COONS_PATCH_BSPLINE);
     for (int i = 0; i <= 40; i++)
         for (int j = 0; j <= 40; j++) {
             double d[6][3];
@@ -168,7 +168,7 @@ static void test_bezier_surface(void **state)
     net(P);
     coons_patch *b = NULL, *s = NULL;
     assert_coons_ok(coons_patch_new_bezier(&P[0][0][0], 4, 5, &b, &err), &err);
-    assert_int_equal(coons_patch_get_type(b), COONS_PATCH_BEZIER);
+    assert_int_equal(coons_patch_kind(b), COONS_PATCH_BEZIER);
     const double ks[8] = {0, 0, 0, 0, 1, 1, 1, 1}, kt[10] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1};
     assert_coons_ok(coons_patch_new_bspline(3, 4, &P[0][0][0], 4, 5, ks, kt, NULL, &s, &err), &err);
     for (int i = 0; i < 11; i++)

@@ -89,7 +89,7 @@ static void test_curve_transform_nurbs(void **state)
         coons_error e = COONS_ERROR_INIT;
         assert_coons_ok(coons_curve_new_transformed(c, ms[q], &x, &e), &e);
         coons_curve_free(c); /* the wrapper holds its own copy */
-        assert_int_equal(coons_curve_get_type(x), COONS_CURVE_BSPLINE);
+        assert_int_equal(coons_curve_kind(x), COONS_CURVE_BSPLINE);
         for (int i = 0; i <= 20; i++) {
             double a[3][3], b[3][3];
             coons_curve_eval_derivs(x, i / 20.0, 2, a);
@@ -155,7 +155,7 @@ static void test_curve_reverse(void **state)
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_curve_new_reversed(c, &r, &e), &e);
     assert_coons_ok(coons_curve_new_reversed(r, &rr, &e), &e);
-    assert_int_equal(coons_curve_get_type(rr), COONS_CURVE_BSPLINE);
+    assert_int_equal(coons_curve_kind(rr), COONS_CURVE_BSPLINE);
     const double h = 1e-6;
     for (int i = 0; i <= 20; i++) {
         double t = i / 20.0, a[3][3], b[3][3], c2[3][3];
@@ -273,7 +273,7 @@ static void test_patch_transform_nurbs(void **state)
     coons_patch *x = NULL;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_patch_new_transformed(p, MIRROR, &x, &e), &e);
-    assert_int_equal(coons_patch_get_type(x), COONS_PATCH_BSPLINE);
+    assert_int_equal(coons_patch_kind(x), COONS_PATCH_BSPLINE);
     double s[7], t[6], ga[7 * 6 * 3], gb[7 * 6 * 3];
     for (int i = 0; i < 7; i++) s[i] = i / 6.0;
     for (int j = 0; j < 6; j++) t[j] = j / 5.0;
@@ -315,7 +315,7 @@ static void test_patch_reparam(void **state)
         int sw = f & 1, fs = f >> 1 & 1, ft = f >> 2 & 1;
         coons_patch *y = NULL;
         assert_coons_ok(coons_patch_new_reparametrized(p, sw, fs, ft, &y, &e), &e);
-        assert_int_equal(coons_patch_get_type(y), COONS_PATCH_BSPLINE);
+        assert_int_equal(coons_patch_kind(y), COONS_PATCH_BSPLINE);
         double s[5] = {0, 0.2, 0.5, 0.77, 1}, t[4] = {0, 0.35, 0.61, 1}, g[20 * 3];
         assert_coons_ok(coons_patch_eval_grid(y, s, 5, t, 4, g, &e), &e);
         for (int i = 0; i < 5; i++)
@@ -404,7 +404,7 @@ static void test_body_transform_nurbs(void **state)
     coons_body *inl = volume((const double (*)[NV][NW][3])tp), *x = NULL;
     coons_error e = COONS_ERROR_INIT;
     assert_coons_ok(coons_body_new_transformed(b, MIRROR, &x, &e), &e);
-    assert_int_equal(coons_body_get_type(x), COONS_BODY_BSPLINE);
+    assert_int_equal(coons_body_kind(x), COONS_BODY_BSPLINE);
     double dm = det3(MIRROR);
     assert_true(dm < 0);
     for (int i = 0; i <= 4; i++)
@@ -451,7 +451,7 @@ static void test_body_transform_nurbs(void **state)
     coons_body *cx = NULL, *xx = NULL;
     assert_coons_ok(coons_body_copy(x, &cx, &e), &e);
     assert_coons_ok(coons_body_new_transformed(cx, ROT, &xx, &e), &e);
-    assert_int_equal(coons_body_get_type(xx), COONS_BODY_BSPLINE);
+    assert_int_equal(coons_body_kind(xx), COONS_BODY_BSPLINE);
     double p1[3], p2[3], p3[3];
     coons_body_eval(xx, 0.2, 0.4, 0.6, p1);
     coons_body_eval(b, 0.2, 0.4, 0.6, p2);
@@ -482,7 +482,7 @@ static void same_models(const coons_model *a, const coons_model *b, int exact)
     for (size_t i = 0; i < coons_model_body_count(a); i++) {
         const coons_body *x = coons_model_body(a, i), *y = coons_model_body(b, i);
         assert_string_equal(coons_model_body_name(a, i), coons_model_body_name(b, i));
-        assert_int_equal(coons_body_get_type(x), coons_body_get_type(y));
+        assert_int_equal(coons_body_kind(x), coons_body_kind(y));
         for (int q = 0; q < 125; q++) {
             double u = (q / 25) / 4.0, v = (q / 5 % 5) / 4.0, w = (q % 5) / 4.0;
             double p[3], r[3], jp[3][3], jr[3][3];

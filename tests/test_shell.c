@@ -26,7 +26,7 @@ static coons_body *shell_of(const coons_patch *p, double h, coons_shell_side sid
     coons_body *b = NULL;
     coons_error err = COONS_ERROR_INIT;
     assert_coons_ok(coons_body_new_shell(p, h, side, &b, &err), &err);
-    assert_int_equal(coons_body_get_type(b), COONS_BODY_SHELL);
+    assert_int_equal(coons_body_kind(b), COONS_BODY_SHELL);
     return b;
 }
 

@@ -6,14 +6,14 @@
     tools/migrate-0.2.py --check FILE...  lists what it would change, exit 1 if any
 
 Only names are rewritten; the calls whose arguments changed in 0.2 are listed
-with their line so that you can adapt them by hand (libcoons(3), DEPRECATED):
+with their line so that you can adapt them by hand (libcoons(3), HISTORY):
   coons_patch_bilinear, coons_body_body0   corners are one flat array of doubles
   coons_patch_coons, coons_patch_hermite_coons, coons_body_body1,
   coons_body_body2                         arrays of handles are coons_X *const *
   coons_body_bspline                       three knot pointers instead of an array
   coons_model_load, coons_model_load_buffer  take an options pointer (NULL: defaults)
-The 0.1 names still compile in 0.2 (deprecated wrappers), so a program can be
-moved over one call at a time. Lines from one that says "migrate-0.2: off" to
+The 0.1 names compiled in 0.2 as deprecated wrappers; 0.3 removed them. For
+0.3, run tools/migrate-0.3.py afterwards (the 0.2 names 0.3 changed). Lines from one that says "migrate-0.2: off" to
 one that says "migrate-0.2: on" are left as they are.
 """
 import re

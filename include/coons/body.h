@@ -20,6 +20,7 @@
 #define COONS_BODY_H
 
 #include "coons/types.h"
+#include "coons/patch.h" /* coons_network_seam */
 
 #ifdef __cplusplus
 extern "C" {
@@ -58,6 +59,8 @@ typedef enum coons_body_face {
  * replaced by f(x), 1-f(x).
  * @param[in] corners 24 doubles: P_ijk (x y z) at index 4i + 2j + k (a
  *                    `double c[24]`, or `c[0]` of a `double c[8][3]`)
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL or non-finite corners, an
+ *         unknown blend), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_new_body0(const double *corners, coons_blend blend,
                                                coons_body **out, coons_error *err);
@@ -90,7 +93,13 @@ COONS_EXPORT coons_status coons_body_new_body1(coons_curve *const *edges, coons_
 COONS_EXPORT coons_status coons_body_new_body2(coons_patch *const *faces, coons_blend blend,
                                                double tol, coons_body **out, coons_error *err);
 
-/** Tensor-product Bezier volume; n[0..2] >= 2 points along u, v, w. */
+/**
+ * Tensor-product Bezier volume; n[0..2] >= 2 points along u, v, w.
+ * @return ::COONS_OK, ::COONS_E_INVALID (fewer than 2 points along a
+ *         direction, non-finite points), ::COONS_E_LIMIT (more than
+ *         ::COONS_BODY_MAX_POINTS, or a degree above
+ *         ::COONS_SPLINE_MAX_DEGREE), ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_body_new_bezier(const double *points, const size_t n[3],
                                                 coons_body **out, coons_error *err);
 
@@ -99,6 +108,10 @@ COONS_EXPORT coons_status coons_body_new_bezier(const double *points, const size
  * @param[in] knots_u,knots_v,knots_w each NULL (clamped uniform) or
  *                    n[d]+degree[d]+1 values
  * @param[in] weights NULL or n[0]*n[1]*n[2] values > 0, indexed like the points
+ * @return ::COONS_OK, ::COONS_E_INVALID (a degree outside
+ *         1..::COONS_SPLINE_MAX_DEGREE, too few points, bad knots or
+ *         weights, non-finite points), ::COONS_E_LIMIT (more than
+ *         ::COONS_BODY_MAX_POINTS), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_new_bspline(const int degree[3], const double *points,
                                                  const size_t n[3], const double *knots_u,
@@ -153,7 +166,7 @@ COONS_EXPORT coons_status coons_body_network_seams(const coons_body *b,
  * (J_G = M J_F, det J_G = det M det J_F), exact for every type. With
  * det M < 0 the body is mirrored: left-handed, and still meshed outward.
  * The control box is the box of the 8 mapped corners of b's. The result's
- * type (coons_body_get_type()) is b's. Copies b: the caller keeps b and
+ * type (coons_body_kind()) is b's. Copies b: the caller keeps b and
  * frees the result with coons_body_free().
  * @param[in]  b   the body
  * @param[in]  m   12 doubles, the row-major 3 x 4 matrix [[a,b,c,tx],[d,e,f,ty],
@@ -167,7 +180,7 @@ COONS_EXPORT coons_status coons_body_network_seams(const coons_body *b,
 COONS_EXPORT coons_status coons_body_new_transformed(const coons_body *b, const double *m,
                                                      coons_body **out, coons_error *err);
 
-/** Deep copy. */
+/** Deep copy. @return ::COONS_OK or ::COONS_E_NOMEM. */
 COONS_EXPORT coons_status coons_body_copy(const coons_body *b, coons_body **out,
                                           coons_error *err);
 
@@ -176,7 +189,7 @@ COONS_EXPORT void coons_body_free(coons_body *b);
 
 /** The type the body was built as (of a transformed body: the type of the
  * body it was made from). */
-COONS_EXPORT coons_body_type coons_body_get_type(const coons_body *b);
+COONS_EXPORT coons_body_type coons_body_kind(const coons_body *b);
 
 /** Point F(u,v,w), parameters clamped to [0,1]. */
 COONS_EXPORT void coons_body_eval(const coons_body *b, double u, double v, double w,

@@ -31,6 +31,7 @@
 
 #include "coons/types.h"
 #include "coons/mesh.h"
+#include "coons/sample.h"
 #include "coons/model.h"
 
 #ifdef __cplusplus
@@ -66,7 +67,11 @@ typedef struct coons_csg_options {
 /** Version 2: the testing field `inject_failure` of version 1 is gone.
  *  Version 3: `threads`; records of version 2 are still accepted (as one thread). */
 #define COONS_CSG_OPTIONS_VERSION 3
-#define COONS_CSG_OPTIONS_INIT {COONS_CSG_OPTIONS_VERSION, 1, 1, 0, 0, 0, 1}
+#ifndef __cplusplus
+#define COONS_CSG_OPTIONS_INIT {.version = COONS_CSG_OPTIONS_VERSION, .unite = 1, .repair = 1, .threads = 1}
+#else
+#define COONS_CSG_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_csg_options, r_.version = COONS_CSG_OPTIONS_VERSION, r_.unite = 1, r_.repair = 1, r_.threads = 1)
+#endif
 
 /**
  * Sets `*o` to ::COONS_CSG_OPTIONS_INIT (for language bindings that cannot
@@ -106,8 +111,11 @@ typedef struct coons_csg_report {
                                       written once per fan (copies moved apart slightly) */
 } coons_csg_report;
 
-#define COONS_CSG_REPORT_INIT {COONS_CSG_REPORT_VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, \
-                               0, 0, 0, 0, 0}
+#ifndef __cplusplus
+#define COONS_CSG_REPORT_INIT {.version = COONS_CSG_REPORT_VERSION}
+#else
+#define COONS_CSG_REPORT_INIT COONS_RECORD_INIT_CXX_(coons_csg_report, r_.version = COONS_CSG_REPORT_VERSION)
+#endif
 
 /**
  * Sets `*r` to ::COONS_CSG_REPORT_INIT; NULL is a harmless no-op.
@@ -145,6 +153,7 @@ COONS_EXPORT coons_status coons_mesh_count_self_intersections(const coons_mesh *
 /**
  * As coons_mesh_count_self_intersections(), after rounding every coordinate to
  * float32 as binary STL stores it.
+ * @return ::COONS_OK, ::COONS_E_UNSUPPORTED without CGAL, ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
                                                                     coons_error *err);

@@ -62,13 +62,19 @@ COONS_EXPORT coons_status coons_curve_new_line(const double p0[3], const double 
 COONS_EXPORT coons_status coons_curve_new_polyline(const double *points, size_t count,
                                                    coons_curve **out, coons_error *err);
 
-/** Bezier curve of degree count-1 (count >= 2), Bernstein basis. */
+/**
+ * Bezier curve of degree count-1 (count >= 2), Bernstein basis.
+ * @return ::COONS_OK, ::COONS_E_INVALID (fewer than 2 points, non-finite
+ *         points), ::COONS_E_LIMIT (a degree above ::COONS_SPLINE_MAX_DEGREE),
+ *         ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_curve_new_bezier(const double *points, size_t count,
                                                  coons_curve **out, coons_error *err);
 
 /**
  * Cubic Hermite curve: value p0 and derivative d/dt t0 at t=0, value p1 and
  * derivative t1 at t=1.
+ * @return ::COONS_OK, ::COONS_E_INVALID (non-finite input), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_curve_new_hermite(const double p0[3], const double t0[3],
                                                   const double p1[3], const double t1[3],
@@ -82,6 +88,9 @@ COONS_EXPORT coons_status coons_curve_new_hermite(const double p0[3], const doub
  * C3 P_s+3 in its local parameter. Closed: the count >= 3 points are cyclic
  * (as if P0, P1, P2 were appended), count segments; a list whose last three
  * points repeat its first three is rejected with ::COONS_E_INVALID.
+ * @return ::COONS_OK, ::COONS_E_INVALID (too few points, non-finite
+ *         points, a repeated closing run), ::COONS_E_LIMIT (more than
+ *         ::COONS_CURVE_MAX_POINTS), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_curve_new_coons_cubic(const double *points, size_t count,
                                                       int closed, coons_curve **out,
@@ -90,6 +99,9 @@ COONS_EXPORT coons_status coons_curve_new_coons_cubic(const double *points, size
 /**
  * Uniform clamped cubic B-spline of seed 002 (knots 0,0,0,0,1,...,n-2 x4,
  * normalised); count = n+1 >= 4. Passes through the first and last point.
+ * @return ::COONS_OK, ::COONS_E_INVALID (fewer than 4 points, non-finite
+ *         points), ::COONS_E_LIMIT (more than ::COONS_CURVE_MAX_POINTS),
+ *         ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_curve_new_clamped_cubic(const double *points, size_t count,
                                                         coons_curve **out, coons_error *err);
@@ -102,6 +114,10 @@ COONS_EXPORT coons_status coons_curve_new_clamped_cubic(const double *points, si
  *                    non-empty domain [knots[p], knots[n+1]].
  * @param[in] weights NULL for a polynomial B-spline, else count values > 0
  *                    (points stay Cartesian, never pre-multiplied).
+ * @return ::COONS_OK, ::COONS_E_INVALID (a degree outside
+ *         1..::COONS_SPLINE_MAX_DEGREE, too few points, bad knots or
+ *         weights, non-finite points), ::COONS_E_LIMIT (more than
+ *         ::COONS_CURVE_MAX_POINTS), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_curve_new_bspline(int degree, const double *points, size_t count,
                                                   const double *knots, const double *weights,
@@ -116,7 +132,7 @@ COONS_EXPORT coons_status coons_curve_copy(const coons_curve *c, coons_curve **o
  * "Definitions and references", "transform"). Exact for every type, NURBS
  * included (affine maps commute with rational evaluation): points map by
  * M x + t, derivatives by M alone. The control box is that of c's control
- * points mapped. coons_curve_get_type() of the result is c's type.
+ * points mapped. coons_curve_kind() of the result is c's type.
  *
  * Copies c (coons_curve_copy()): the caller keeps c and frees the result
  * with coons_curve_free().
@@ -147,7 +163,7 @@ COONS_EXPORT void coons_curve_free(coons_curve *c);
 
 /** The type the curve was built as (of a transformed or reversed curve: the
  * type of the curve it was made from). */
-COONS_EXPORT coons_curve_type coons_curve_get_type(const coons_curve *c);
+COONS_EXPORT coons_curve_type coons_curve_kind(const coons_curve *c);
 
 /** Point at t (t is clamped to [0,1]; a NaN t counts as 0). */
 COONS_EXPORT void coons_curve_eval(const coons_curve *c, double t, double out[3]);

@@ -138,6 +138,7 @@
 #include "coons/types.h"
 #include "coons/volume.h"
 #include "coons/mesh.h"
+#include "coons/sample.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -205,10 +206,24 @@ typedef struct coons_write_options {
     int (*cancel)(void *ctx);
     /** Passed to `cancel`. */
     void *cancel_ctx;
+    /** OpenSCAD: the indices of the parts that are context, not geometry
+     *  (e.g. each body's boundary around its isoparametric surfaces, see
+     *  coons_model_iso_surfaces()): the model's module calls them with the
+     *  background modifier `%` (drawn transparent in the preview, left out
+     *  of renders and exports). Other formats write them as ordinary
+     *  parts. An index that is no part of the mesh is refused with
+     *  ::COONS_E_INVALID before anything is created. NULL: none. */
+    const size_t *background;
+    /** Number of indices in `background`. */
+    size_t nbackground;
 } coons_write_options;
 
 /** Default options. */
-#define COONS_WRITE_OPTIONS_INIT {COONS_WRITE_OPTIONS_VERSION, NULL, NULL, NULL, NULL, NULL, NULL}
+#ifndef __cplusplus
+#define COONS_WRITE_OPTIONS_INIT {.version = COONS_WRITE_OPTIONS_VERSION}
+#else
+#define COONS_WRITE_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_write_options, r_.version = COONS_WRITE_OPTIONS_VERSION)
+#endif
 
 /**
  * Sets `*o` to ::COONS_WRITE_OPTIONS_INIT (for language bindings that
@@ -376,7 +391,12 @@ COONS_EXPORT coons_status coons_model_write_scad_animation(const coons_model *m,
                                                            const coons_write_options *wo,
                                                            coons_error *err);
 
-/** coons_model_write_scad_animation() to an open stream (flushed, not closed). */
+/**
+ * coons_model_write_scad_animation() to an open stream (flushed, not closed).
+ * @return as coons_model_write_scad_animation(): ::COONS_OK,
+ *         ::COONS_E_INVALID, ::COONS_E_LIMIT, ::COONS_E_UNSUPPORTED,
+ *         ::COONS_E_IO (a write or the flush failed), ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_model_write_scad_animation_stream(const coons_model *m,
                                                                   long body,
                                                                   const coons_sample_options *so,

@@ -48,7 +48,11 @@ typedef struct coons_model_load_options {
 } coons_model_load_options;
 
 #define COONS_MODEL_LOAD_OPTIONS_VERSION 1
-#define COONS_MODEL_LOAD_OPTIONS_INIT {COONS_MODEL_LOAD_OPTIONS_VERSION, 0, 0, 0u, 0}
+#ifndef __cplusplus
+#define COONS_MODEL_LOAD_OPTIONS_INIT {.version = COONS_MODEL_LOAD_OPTIONS_VERSION}
+#else
+#define COONS_MODEL_LOAD_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_model_load_options, r_.version = COONS_MODEL_LOAD_OPTIONS_VERSION)
+#endif
 
 /**
  * Sets `*o` to ::COONS_MODEL_LOAD_OPTIONS_INIT (for language bindings that
@@ -96,6 +100,10 @@ COONS_EXPORT coons_status coons_model_load_file(const char *path,
  * Loads a model from memory, like coons_model_load_file(). `name` is used as
  * the file name in messages (NULL: "<buffer>"). The buffer need not be
  * NUL-terminated and is not kept.
+ * @return as coons_model_load_file() without ::COONS_E_IO: ::COONS_OK,
+ *         ::COONS_E_PARSE, ::COONS_E_INVALID (also `data` NULL),
+ *         ::COONS_E_UNSUPPORTED, ::COONS_E_INCOMPATIBLE, ::COONS_E_LIMIT,
+ *         ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_model_load_memory(const char *data, size_t size,
                                                   const char *name,

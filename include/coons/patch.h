@@ -104,8 +104,11 @@ typedef struct coons_hermite_options {
 } coons_hermite_options;
 
 #define COONS_HERMITE_OPTIONS_VERSION 1
-#define COONS_HERMITE_OPTIONS_INIT \
-    {COONS_HERMITE_OPTIONS_VERSION, {0, 0, 0, 0}, COONS_TWIST_ZERO, {{0}}, COONS_TOL_DEFAULT}
+#ifndef __cplusplus
+#define COONS_HERMITE_OPTIONS_INIT {.version = COONS_HERMITE_OPTIONS_VERSION, .twist = COONS_TWIST_ZERO, .tol = COONS_TOL_DEFAULT}
+#else
+#define COONS_HERMITE_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_hermite_options, r_.version = COONS_HERMITE_OPTIONS_VERSION, r_.twist = COONS_TWIST_ZERO, r_.tol = COONS_TOL_DEFAULT)
+#endif
 
 /**
  * Sets `*o` to ::COONS_HERMITE_OPTIONS_INIT (for language bindings that
@@ -171,7 +174,7 @@ COONS_EXPORT coons_status coons_patch_new_bspline(int ps, int pt, const double *
  * The affine image y(s,t) = M x(s,t) + t of a patch (coons-model(5),
  * "Definitions and references", "transform"): points map by M x + t, every
  * partial by M alone, exact for every type. The control box is the box of
- * the 8 mapped corners of p's control box. coons_patch_get_type() of the
+ * the 8 mapped corners of p's control box. coons_patch_kind() of the
  * result is p's type. Copies p: the caller keeps p and frees the result
  * with coons_patch_free().
  * @param[in]  p   the patch
@@ -208,9 +211,11 @@ typedef struct coons_network_options {
 } coons_network_options;
 
 #define COONS_NETWORK_OPTIONS_VERSION 1
-#define COONS_NETWORK_OPTIONS_INIT \
-    {COONS_NETWORK_OPTIONS_VERSION, NULL, NULL, COONS_TWIST_BESSEL, COONS_BLEND_CUBIC, \
-     COONS_TOL_DEFAULT}
+#ifndef __cplusplus
+#define COONS_NETWORK_OPTIONS_INIT {.version = COONS_NETWORK_OPTIONS_VERSION, .twist = COONS_TWIST_BESSEL, .blend = COONS_BLEND_CUBIC, .tol = COONS_TOL_DEFAULT}
+#else
+#define COONS_NETWORK_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_network_options, r_.version = COONS_NETWORK_OPTIONS_VERSION, r_.twist = COONS_TWIST_BESSEL, r_.blend = COONS_BLEND_CUBIC, r_.tol = COONS_TOL_DEFAULT)
+#endif
 
 /**
  * Sets `*o` to ::COONS_NETWORK_OPTIONS_INIT; NULL is a harmless no-op.
@@ -263,7 +268,7 @@ typedef struct coons_network_seam {
 
 /**
  * Measures a network patch (also one transformed or reparametrised, as
- * coons_patch_get_type() sees it) across each inner column and row, from
+ * coons_patch_kind() sees it) across each inner column and row, from
  * the one-sided derivatives of the cells on both sides, at 65 points along
  * the seam. Columns come first, in order, then rows; the seams are given
  * in the patch's own (s,t) after any reparametrisation.
@@ -276,7 +281,7 @@ COONS_EXPORT coons_status coons_patch_network_seams(const coons_patch *p,
                                                     coons_network_seam *seams, size_t cap,
                                                     size_t *n, coons_error *err);
 
-/** Deep copy. */
+/** Deep copy. @return ::COONS_OK, ::COONS_E_INVALID (NULL), ::COONS_E_NOMEM. */
 COONS_EXPORT coons_status coons_patch_copy(const coons_patch *p, coons_patch **out,
                                            coons_error *err);
 
@@ -285,7 +290,7 @@ COONS_EXPORT void coons_patch_free(coons_patch *p);
 
 /** The type the patch was built as (of a transformed or reparametrised
  * patch: the type of the patch it was made from). */
-COONS_EXPORT coons_patch_type coons_patch_get_type(const coons_patch *p);
+COONS_EXPORT coons_patch_type coons_patch_kind(const coons_patch *p);
 
 /** Point at (s,t), parameters clamped to [0,1] (NaN counts as 0). */
 COONS_EXPORT void coons_patch_eval(const coons_patch *p, double s, double t, double out[3]);

@@ -8,9 +8,11 @@
  * The library never prints, never exits and never aborts: the status and the
  * message in the error record are the whole report.
  *
- * Names: every function is `coons_<object>_<verb>`; constructors are
+ * Names (the rule in full: coons.h): constructors are
  * `coons_<object>_new_<type>` (coons_curve_new_line(), coons_body_new_body2(),
- * coons_mesh_new()) and each object is released by its own `coons_<object>_free()`.
+ * coons_mesh_new()), each object is released by its own `coons_<object>_free()`,
+ * accessors are `coons_<object>_<attribute>` with no `get_` (coons_body_kind()),
+ * every other function `coons_<object>_<verb>`.
  *
  * Arrays: every public function is called from C (C11 and later) with
  * ordinary arrays and no cast.
@@ -71,7 +73,20 @@ typedef struct coons_error {
     char path[COONS_ERROR_PATH_MAX];        /**< JSON pointer, or "" */
 } coons_error;
 
-#define COONS_ERROR_INIT {0, {0}, {0}, 0, 0, {0}}
+/*
+ * The *_INIT macros of the records name the fields they set: in C a
+ * designated initialiser (every other field zero); C++17 has none, so there
+ * the record is value-initialised (all zero) and the same fields are set.
+ */
+#ifdef __cplusplus
+#define COONS_RECORD_INIT_CXX_(type, ...) ([] { type r_{}; __VA_ARGS__; return r_; }())
+#endif
+
+#ifndef __cplusplus
+#define COONS_ERROR_INIT {.code = COONS_OK}
+#else
+#define COONS_ERROR_INIT COONS_RECORD_INIT_CXX_(coons_error, r_.code = COONS_OK)
+#endif
 
 /** Blending functions of Coons patches and bodies (seed 001 section 1.2). */
 typedef enum coons_blend {
@@ -104,7 +119,7 @@ COONS_EXPORT void coons_set_allocator(void *(*malloc_fn)(size_t),
 
 /** Runtime version number (major*10000 + minor*100 + patch). */
 COONS_EXPORT int coons_version(void);
-/** Runtime version string, e.g. "0.2.0". */
+/** Runtime version string, e.g. "0.3.0". */
 COONS_EXPORT const char *coons_version_string(void);
 
 #ifdef __cplusplus

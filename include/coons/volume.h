@@ -185,14 +185,20 @@ COONS_EXPORT coons_status coons_volume_mesh_add_field(coons_volume_mesh *vm,
  * are kept too). Set names follow the rules of part names and are unique
  * among node sets.
  * @return ::COONS_OK; ::COONS_E_INVALID: bad or repeated name, an index
- *         out of range, `nodes` NULL with n > 0; ::COONS_E_NOMEM.
+ *         out of range, `nodes` NULL with n > 0; ::COONS_E_LIMIT (a set
+ *         too large to hold); ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_volume_mesh_add_node_set(coons_volume_mesh *vm,
                                                          const char *name,
                                                          const uint32_t *nodes, size_t n,
                                                          coons_error *err);
 
-/** Adds a named set of `n` cell indices; as coons_volume_mesh_add_node_set(). */
+/**
+ * Adds a named set of `n` cell indices; as coons_volume_mesh_add_node_set().
+ * @return ::COONS_OK; ::COONS_E_INVALID: bad or repeated name (among cell
+ *         sets), an index out of range, `cells` NULL with n > 0;
+ *         ::COONS_E_LIMIT (a set too large to hold); ::COONS_E_NOMEM.
+ */
 COONS_EXPORT coons_status coons_volume_mesh_add_cell_set(coons_volume_mesh *vm,
                                                          const char *name,
                                                          const uint32_t *cells, size_t n,
@@ -258,7 +264,7 @@ COONS_EXPORT const char *coons_volume_mesh_face_set(const coons_volume_mesh *vm,
                                                     const uint32_t **pairs, size_t *count);
 
 /* ------------------------------------------------------------------------ */
-/* Meshing bodies into hexahedra on their (u,v,w) lattice (src/mesh/volume) */
+/* Meshing bodies into hexahedra on their (u,v,w) lattice                   */
 /* ------------------------------------------------------------------------ */
 
 /** Default largest number of cells of coons_body_volume_mesh() and
@@ -292,7 +298,11 @@ typedef struct coons_volume_options {
     size_t max_cells;
 } coons_volume_options;
 
-#define COONS_VOLUME_OPTIONS_INIT {COONS_VOLUME_OPTIONS_VERSION, COONS_ELEMENT_HEX8, {0u, 0u, 0u}, 0.0, 0u}
+#ifndef __cplusplus
+#define COONS_VOLUME_OPTIONS_INIT {.version = COONS_VOLUME_OPTIONS_VERSION, .element = COONS_ELEMENT_HEX8}
+#else
+#define COONS_VOLUME_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_volume_options, r_.version = COONS_VOLUME_OPTIONS_VERSION, r_.element = COONS_ELEMENT_HEX8)
+#endif
 
 /** Sets `*o` to ::COONS_VOLUME_OPTIONS_INIT; NULL is a harmless no-op. */
 COONS_EXPORT void coons_volume_options_init(coons_volume_options *o);
@@ -384,7 +394,11 @@ typedef struct coons_volume_quality {
     double worst_uvw[3];
 } coons_volume_quality;
 
-#define COONS_VOLUME_QUALITY_INIT {COONS_VOLUME_QUALITY_VERSION, 0u, 0u, COONS_ELEMENT_HEX8, 0.0, 0.0, 0u, 0u, 0u, 0u, {0.0, 0.0, 0.0}}
+#ifndef __cplusplus
+#define COONS_VOLUME_QUALITY_INIT {.version = COONS_VOLUME_QUALITY_VERSION, .element = COONS_ELEMENT_HEX8}
+#else
+#define COONS_VOLUME_QUALITY_INIT COONS_RECORD_INIT_CXX_(coons_volume_quality, r_.version = COONS_VOLUME_QUALITY_VERSION, r_.element = COONS_ELEMENT_HEX8)
+#endif
 
 /** Sets `*q` to ::COONS_VOLUME_QUALITY_INIT; NULL is a harmless no-op. */
 COONS_EXPORT void coons_volume_quality_init(coons_volume_quality *q);

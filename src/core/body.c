@@ -28,7 +28,7 @@ void coons_body_free(coons_body *b)
 }
 
 /* A wrapper reports the type of the body it wraps (body.h). */
-coons_body_type coons_body_get_type(const coons_body *b)
+coons_body_type coons_body_kind(const coons_body *b)
 {
     while (b->inner) b = b->inner;
     return b->kind->type;

@@ -62,7 +62,7 @@ static coons_status copy(const coons_body *b, coons_body *d, coons_error *err)
 static void release(coons_body *b) { coons_body_free(b->inner); }
 
 const coons__body_kind coons__body_transformed_kind = {
-    COONS_BODY_BODY0, /* unused: coons_body_get_type() reports the inner type */
+    COONS_BODY_BODY0, /* unused: coons_body_kind() reports the inner type */
     eval, grid, det_grid, breaks, copy, release,
 };
 

@@ -25,7 +25,7 @@ void coons_curve_free(coons_curve *c)
 }
 
 /* A wrapper reports the type of the curve it wraps (curve.h). */
-coons_curve_type coons_curve_get_type(const coons_curve *c)
+coons_curve_type coons_curve_kind(const coons_curve *c)
 {
     while (c->inner) c = c->inner;
     return c->kind->type;

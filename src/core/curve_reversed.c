@@ -44,7 +44,7 @@ static void breaks(const coons_curve *c, coons__breaks *B)
 }
 
 const coons__curve_kind coons__curve_reversed_kind = {
-    COONS_CURVE_LINE, /* unused: coons_curve_get_type() reports the inner type */
+    COONS_CURVE_LINE, /* unused: coons_curve_kind() reports the inner type */
     eval, bezier, breaks, coons__curve_wrap_copy, coons__curve_wrap_free,
 };
 

@@ -75,7 +75,7 @@ fail:
 }
 
 const coons__curve_kind coons__curve_transformed_kind = {
-    COONS_CURVE_LINE, /* unused: coons_curve_get_type() reports the inner type */
+    COONS_CURVE_LINE, /* unused: coons_curve_kind() reports the inner type */
     eval, bezier, breaks, coons__curve_wrap_copy, coons__curve_wrap_free,
 };
 

@@ -68,7 +68,7 @@ static void piece_breaks(const coons_curve *c, coons__breaks *B)
 }
 
 static const coons__curve_kind piece_kind = {
-    COONS_CURVE_LINE, /* internal only: never seen by coons_curve_get_type() */
+    COONS_CURVE_LINE, /* internal only: never seen by coons_curve_kind() */
     piece_eval, piece_bezier, piece_breaks, coons__curve_wrap_copy, coons__curve_wrap_free,
 };
 
@@ -568,7 +568,7 @@ coons_status coons_patch_network_seams(const coons_patch *p, coons_network_seam 
     if (!p || !n) return coons__error_set(err, COONS_E_INVALID, "network seams: NULL argument");
     if (!unwrap(p, &V))
         return coons__error_set(err, COONS_E_INVALID, "network seams: the patch is a %s",
-                                coons_patch_type_name(coons_patch_get_type(p)));
+                                coons_patch_type_name(coons_patch_kind(p)));
     const coons_patch *q = V.net;
     size_t count = (q->ncs - 1) + (q->nct - 1), w = 0;
     for (int dir = 0; dir < 2; dir++) {

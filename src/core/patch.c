@@ -27,7 +27,7 @@ void coons_patch_free(coons_patch *p)
 }
 
 /* A wrapper reports the type of the patch it wraps (patch.h). */
-coons_patch_type coons_patch_get_type(const coons_patch *p)
+coons_patch_type coons_patch_kind(const coons_patch *p)
 {
     while (p->inner) p = p->inner;
     return p->kind->type;

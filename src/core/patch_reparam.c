@@ -82,7 +82,7 @@ static void breaks(const coons_patch *p, int dir, coons__breaks *B)
 }
 
 const coons__patch_kind coons__patch_reparam_kind = {
-    COONS_PATCH_BILINEAR, /* unused: coons_patch_get_type() reports the inner type */
+    COONS_PATCH_BILINEAR, /* unused: coons_patch_kind() reports the inner type */
     eval, grid, NULL, NULL, coons__patch_wrap_bbox, breaks,
     coons__patch_wrap_copy, coons__patch_wrap_free,
 };

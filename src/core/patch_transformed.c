@@ -66,7 +66,7 @@ coons_status coons__patch_wrap(const coons__patch_kind *kind, const coons_patch 
 }
 
 const coons__patch_kind coons__patch_transformed_kind = {
-    COONS_PATCH_BILINEAR, /* unused: coons_patch_get_type() reports the inner type */
+    COONS_PATCH_BILINEAR, /* unused: coons_patch_kind() reports the inner type */
     eval, grid, NULL, NULL, coons__patch_wrap_bbox, breaks,
     coons__patch_wrap_copy, coons__patch_wrap_free,
 };

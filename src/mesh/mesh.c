@@ -109,7 +109,6 @@ coons_status coons__mesh_add_part_uvw(coons_mesh *m, const char *name, const dou
     p->lattice[0] = p->lattice[1] = p->lattice[2] = 0;
     p->glued = 0;
     p->has_params = uvw != NULL;
-    p->display = COONS_PART_NORMAL;
     m->nv += nv;
     m->nt += nt;
     return COONS_OK;
@@ -158,23 +157,6 @@ const double *coons_mesh_vertex_parameters(const coons_mesh *m)
 int coons_mesh_part_has_parameters(const coons_mesh *m, size_t i)
 {
     return i < m->nparts && m->parts[i].has_params;
-}
-
-coons_status coons_mesh_set_part_display(coons_mesh *m, size_t i, coons_part_display display,
-                                         coons_error *err)
-{
-    if (i >= m->nparts)
-        return coons__error_set(err, COONS_E_INVALID, "no part %zu (the mesh has %zu)", i,
-                                m->nparts);
-    if (display != COONS_PART_NORMAL && display != COONS_PART_BACKGROUND)
-        return coons__error_set(err, COONS_E_INVALID, "unknown part display %d", (int)display);
-    m->parts[i].display = (int)display;
-    return COONS_OK;
-}
-
-coons_part_display coons_mesh_part_display(const coons_mesh *m, size_t i)
-{
-    return i < m->nparts ? (coons_part_display)m->parts[i].display : COONS_PART_NORMAL;
 }
 
 double coons_mesh_deviation(const coons_mesh *m)

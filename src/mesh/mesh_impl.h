@@ -16,7 +16,6 @@ typedef struct coons__mesh_part {
     size_t lattice[3];
     int glued; /* bit d: the body closes on itself along direction d */
     int has_params; /* m->uvw holds this part's vertex parameters */
-    int display;    /* a coons_part_display value */
 } coons__mesh_part;
 
 struct coons_mesh {

@@ -256,7 +256,6 @@ static coons_status append_parts(coons_mesh *dst, const coons_mesh *src, coons_e
         Q->deviation = P->deviation;
         for (int d = 0; d < 3; d++) Q->lattice[d] = P->lattice[d];
         Q->glued = P->glued;
-        Q->display = P->display;
     }
     return COONS_OK;
 }

@@ -1236,7 +1236,7 @@ coons_status coons__flat_faces(sampler *s)
     s->flat_v0 = s->nv;
     s->flat_faces = s->ruled_faces = 0;
     if (s->o->flags & COONS__SAMPLE_LATTICE_FACES || !s->nt ||
-        coons_body_get_type(s->body) == COONS_BODY_MORPH)
+        coons_body_kind(s->body) == COONS_BODY_MORPH)
         return COONS_OK;
     uint32_t *ftri[6] = {NULL};
     size_t fnt[6] = {0}, ns = 0, scap = 0;

@@ -59,55 +59,6 @@ static coons_status check_request(int direction, double value, coons_error *err)
     return COONS_OK;
 }
 
-coons_status coons_iso_parse(const char *spec, coons_iso_request *out, size_t cap, size_t *count,
-                             coons_error *err)
-{
-    if (!spec || !count || (!out && cap))
-        return coons__error_set(err, COONS_E_INVALID, "no isoparametric surface option given");
-    const char *c = spec;
-    int dir = *c == 'u' ? 0 : *c == 'v' ? 1 : *c == 'w' ? 2 : -1;
-    if (dir < 0 || c[1] != '=' || !c[2])
-        return coons__error_set(err, COONS_E_INVALID,
-                                "isoparametric surfaces '%s': expected u=, v= or w= and "
-                                "values, e.g. u=0.25,0.5",
-                                spec);
-    c += 2;
-    size_t n = *count;
-    coons__fmt_scope fs;
-    if (!coons__fmt_begin(&fs)) return coons__error_nomem(err);
-    coons_status st = COONS_OK;
-    for (;;) {
-        char *end;
-        double v = strtod(c, &end);
-        if (end == c || (*end && *end != ',')) {
-            st = coons__error_set(err, COONS_E_INVALID,
-                                  "isoparametric surfaces '%s': '%.*s' is not a number", spec,
-                                  (int)strcspn(c, ","), c);
-            break;
-        }
-        if (!(v >= 0.0 && v <= 1.0)) {
-            st = coons__error_set(err, COONS_E_DOMAIN,
-                                  "isoparametric surfaces '%s': %c=%.*s lies outside [0,1]", spec,
-                                  DIR_NAME[dir], (int)(end - c), c);
-            break;
-        }
-        if (n >= cap) {
-            st = coons__error_set(err, COONS_E_LIMIT,
-                                  "isoparametric surfaces '%s': more than %zu surfaces", spec,
-                                  cap);
-            break;
-        }
-        out[n].direction = dir;
-        out[n].value = v;
-        n++;
-        if (!*end) break;
-        c = end + 1;
-    }
-    coons__fmt_end(&fs);
-    if (!st) *count = n;
-    return st;
-}
-
 /* One surface on a given lattice. */
 typedef struct iso_job {
     const coons_body *body;
@@ -352,7 +303,7 @@ coons_status coons_body_iso_surface(const coons_body *b, int direction, double v
     return st;
 }
 
-/* One body's boundary (with parameters, shown as background) and surfaces. */
+/* One body's boundary (with parameters) and surfaces. */
 static coons_status model_body(const coons_body *b, const char *bname,
                                const coons_iso_request *req, size_t nreq,
                                const coons__sample_opts *o, unsigned flags, size_t *budget,
@@ -365,7 +316,6 @@ static coons_status model_body(const coons_body *b, const char *bname,
         size_t used = 0;
         oi.flags |= COONS__SAMPLE_PARAMS;
         if ((st = coons__body_sample_into(b, &oi, bname, m, &used, err))) return st;
-        m->parts[m->nparts - 1].display = COONS_PART_BACKGROUND;
         *budget -= used;
         oi.flags = o->flags;
         oi.max_triangles = *budget;

@@ -52,6 +52,12 @@ coons_status coons__write_prepare(coons__write_job *job, int mesh_given, coons_f
     job->o.name = opts && opts->name && opts->name[0] ? opts->name : DEFAULT_NAME;
     job->o.units = opts && opts->units ? opts->units : "";
     job->o.header = opts && opts->header ? opts->header : DEFAULT_HEADER;
+    job->o.background = opts ? opts->background : NULL;
+    job->o.nbackground = opts && opts->background ? opts->nbackground : 0;
+    if (opts && opts->nbackground && !opts->background)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "write options: %zu background parts but no list of them",
+                                opts->nbackground);
     return COONS_OK;
 }
 

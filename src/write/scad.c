@@ -13,9 +13,9 @@
  * name carries the model's name (outputs.md, "Boundary meshes"): the
  * model's module is the name itself, a part's is MODEL_PART, so that two
  * generated files `include`d into one design do not replace each other's
- * modules (OpenSCAD keeps the last definition of a name, silently). Parts marked
- * COONS_PART_BACKGROUND are called with the background modifier `%`
- * (OpenSCAD manual, "Modifier Characters"). */
+ * modules (OpenSCAD keeps the last definition of a name, silently). Parts
+ * listed in coons_write_options.background are called with the background
+ * modifier `%` (OpenSCAD manual, "Modifier Characters"). */
 #include "writer.h"
 
 #include "coons/version.h"
@@ -204,7 +204,8 @@ coons_status coons__write_scad(const coons_mesh *m, const coons__wopts *o, coons
         /* Background parts (context such as a body's boundary around its
          * isoparametric surfaces): OpenSCAD's `%` modifier draws them
          * transparent in the preview and leaves them out of renders. */
-        int bg = !whole && coons_mesh_part_display(m, i) == COONS_PART_BACKGROUND;
+        int bg = 0;
+        for (size_t k = 0; k < o->nbackground && !whole; k++) bg |= o->background[k] == i;
         coons__sink_puts(s, bg ? "  %" : "  ");
         coons__sink_puts(s, names[i]);
         coons__sink_puts(s, "();\n");

@@ -13,6 +13,11 @@ static coons_status prepare(coons__write_job *job, const coons_mesh *m, coons_fo
     job->surface = m;
     job->volume = NULL;
     size_t nv = coons_mesh_vertex_count(m), nt = coons_mesh_triangle_count(m);
+    for (size_t i = 0; i < job->o.nbackground; i++)
+        if (job->o.background[i] >= coons_mesh_part_count(m))
+            return coons__error_set(err, COONS_E_INVALID,
+                                    "write options: background part %zu, the mesh has %zu parts",
+                                    job->o.background[i], coons_mesh_part_count(m));
     if (job->row->max_triangles && nt > job->row->max_triangles)
         return coons__error_set(err, COONS_E_LIMIT, "%s holds at most %llu triangles, the mesh "
                                 "has %zu", job->row->title,

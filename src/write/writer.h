@@ -66,6 +66,8 @@ typedef struct coons__wopts {
     const char *name;   /* model name ("coons_model" by default) */
     const char *units;  /* "" when none */
     const char *header; /* header / first comment text */
+    const size_t *background; /* OpenSCAD: parts called with `%` (checked in range) */
+    size_t nbackground;
 } coons__wopts;
 
 /* ---- the format table (formats.c) ------------------------------------ */

@@ -65,7 +65,7 @@ static void test_curve(void)
         check_point("bezier(1/2)", p, want);
         coons_curve_eval_derivs(c, 0.5, 1, d);
         check_point("bezier'(1/2)", d[1], want_d);
-        check("coons_curve_get_type", coons_curve_get_type(c) == COONS_CURVE_BEZIER);
+        check("coons_curve_kind", coons_curve_kind(c) == COONS_CURVE_BEZIER);
     }
     coons_curve_free(c);
     coons_curve_free(NULL); /* a harmless no-op */
@@ -145,7 +145,7 @@ static void test_body0(void)
     coons_status st = coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &b, &err);
     check("coons_body_new_body0 succeeds", st == COONS_OK && b != NULL);
     if (b) {
-        check("coons_body_get_type", coons_body_get_type(b) == COONS_BODY_BODY0);
+        check("coons_body_kind", coons_body_kind(b) == COONS_BODY_BODY0);
         check_body("body0", b);
     }
     coons_body_free(b);

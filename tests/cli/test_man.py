@@ -7,7 +7,9 @@
   installed; at least one must be);
 - its .Dt names the file and section;
 - every function declared COONS_EXPORT in include/coons/*.h is documented
-  (.Fn or .Fo) in a section 3 page;
+  (.Fn or .Fo) in a section 3 page, and has its prototype in the SYNOPSIS of
+  exactly one of them (libcoons.3, the overview, or its family's page such
+  as coons_curve.3); libcoons.3 names every other man3 page in SEE ALSO;
 - every curve, patch and body `type` of the model format contract
   (the spec, when it is present, else the names in coons-model.5's own
   tables) is described in coons-model.5 with a full example;
@@ -57,6 +59,20 @@ def exported_functions(src):
         # COONS_EXPORT <return type> <name>(   -- the name is the last word before "(".
         for m in re.finditer(r"COONS_EXPORT\b([^;{(]*?)\b(coons_\w+)\s*\(", text):
             names.add(m.group(2))
+    return names
+
+
+def synopsis_functions(page):
+    """The functions whose prototype (.Fo NAME or .Fn NAME "type arg") is in
+    the page's SYNOPSIS, each as often as it is there."""
+    names = []
+    with open(page) as f:
+        text = f.read()
+    m = re.search(r"^\.Sh SYNOPSIS\n(.*?)^\.Sh ", text, re.M | re.S)
+    for line in (m.group(1) if m else "").splitlines():
+        m2 = re.match(r"^\.(?:Fo|Fn)\s+(coons_\w+)", line)
+        if m2:
+            names.append(m2.group(1))
     return names
 
 
@@ -153,8 +169,28 @@ def main():
     check(f"every COONS_EXPORT function has .Fn/.Fo in man3 "
           f"({len(exported_functions(src))} functions)", not missing,
           "undocumented: " + ", ".join(missing) +
-          "\n  -> add each to man/man3/libcoons.3: its prototype (.Ft/.Fo/.Fa/.Fc) in"
-          "\n     SYNOPSIS and a .It Fn entry in its family under DESCRIPTION")
+          "\n  -> add each to its family's page man/man3/coons_<family>.3: its prototype"
+          "\n     (.Ft/.Fo/.Fa/.Fc) in SYNOPSIS and a .It Fn entry under DESCRIPTION")
+    # ... in exactly one page's SYNOPSIS.
+    where = {}
+    for p in man3:
+        for n in synopsis_functions(p):
+            where.setdefault(n, []).append(os.path.basename(p))
+    exported = exported_functions(src)
+    nowhere = sorted(n for n in exported if n not in where)
+    twice = sorted(f"{n} ({', '.join(w)})" for n, w in where.items() if len(w) > 1)
+    check("every COONS_EXPORT function has its prototype in one man3 SYNOPSIS",
+          not nowhere, "in no SYNOPSIS: " + ", ".join(nowhere))
+    check("no function's prototype is in two man3 SYNOPSIS entries", not twice,
+          "twice: " + "; ".join(twice))
+    overview = os.path.join(src, "man", "man3", "libcoons.3")
+    if os.path.isfile(overview):
+        with open(overview) as f:
+            see = f.read().split(".Sh SEE ALSO", 1)[-1]
+        listed = set(re.findall(r"^\.Xr (\S+) 3", see, re.M))
+        others = {os.path.basename(p)[:-2] for p in man3} - {"libcoons"}
+        check("libcoons.3 lists every other man3 page in SEE ALSO", others <= listed,
+              "missing: " + ", ".join(sorted(others - listed)))
     stale = sorted(f for f in documented_functions(man3) - exported_functions(src)
                    if f.startswith("coons_") and "_X_" not in f)
     check("man3 documents no function the headers lack", not stale,

@@ -119,9 +119,10 @@ int cli_is_model_file(const char *output, const char *input);
 int cli_write_iso(const coons_model *m, long body, const options *o,
                   const coons_sample_options *so);
 /* output.c: writes a surface mesh made elsewhere (and frees it) as -o
- * writes the solid; `shown` names the output in messages. */
+ * writes the solid; `shown` names the output in messages; the parts
+ * background[0..nbackground) are OpenSCAD background parts (`%`). */
 int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
-                      const char *shown);
+                      const char *shown, const size_t *background, size_t nbackground);
 
 int cli_write_output(const coons_model *m, long body, coons_format format, const char *output,
                      const coons_sample_options *so, int repair, const char *input);

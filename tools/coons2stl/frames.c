@@ -252,7 +252,7 @@ int cli_print_morph_info(const coons_body *b, double fold_threshold, const char 
     for (size_t k = 0; k < nk; k++) {
         double at = 0;
         const coons_body *key = coons_body_morph_key(b, k, &at);
-        const char *type = coons_body_type_name(coons_body_get_type(key));
+        const char *type = coons_body_type_name(coons_body_kind(key));
         printf("%s{\"type\": \"%s\", \"at\": %.17g}", k ? ", " : "", type ? type : "unknown", at);
         times[FOLD_SAMPLES + 1 + k] = at;
     }

@@ -230,7 +230,7 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
         cli_message(1, "body %zu (%s): det J = %.6g < 0 at (u, v, w) = (%g, %g, %g): the body %s",
                     i, name, mindet, where[0], where[1], where[2],
                     *vol < 0 ? "is left-handed or folds over itself" : "folds over itself there");
-    const char *type = coons_body_type_name(coons_body_get_type(b));
+    const char *type = coons_body_type_name(coons_body_kind(b));
     printf("%s\n    {\"index\": %zu, \"name\": ", first ? "" : ",", i);
     cli_json_string(name);
     printf(", \"type\": \"%s\",\n     \"bbox\": ", type ? type : "unknown");

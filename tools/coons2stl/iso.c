@@ -3,10 +3,11 @@
  * --iso: the isoparametric surfaces u, v or w = const of the bodies (seed
  * 000 section 2.1, Fig. 2-6: the interior "density" of a body), each its own
  * part, with --with-boundary each body's boundary too (in SCAD a
- * transparent % part), written atomically like every output
+ * transparent % part: coons_write_options.background), written atomically like every output
  * (coons_model_iso_surfaces(), coons_body_iso_surface()).
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -21,7 +22,6 @@ static coons_status one_body(const coons_model *m, size_t body, const coons_iso_
     coons_status st = COONS_OK;
     if (with_boundary) {
         st = coons_body_sample(b, so, name, &mesh, err);
-        if (!st) st = coons_mesh_set_part_display(mesh, 0, COONS_PART_BACKGROUND, err);
     } else {
         st = coons_mesh_new(&mesh, err);
     }
@@ -61,5 +61,17 @@ int cli_write_iso(const coons_model *m, long body, const options *o,
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
         return EXIT_GEOMETRY;
     }
-    return cli_write_surface(m, mesh, o, shown);
+    /* The boundaries: part 0 of one body; with every body, each body's
+     * first part (its boundary, then its surfaces: coons_model_iso_surfaces()). */
+    size_t nb = !o->with_boundary ? 0 : body < 0 ? coons_model_body_count(m) : 1;
+    size_t *bg = nb ? malloc(nb * sizeof *bg) : NULL;
+    if (nb && !bg) {
+        coons_mesh_free(mesh);
+        cli_message(0, "%s: out of memory; nothing was written", shown);
+        return EXIT_GEOMETRY;
+    }
+    for (size_t k = 0; k < nb; k++) bg[k] = k * (o->niso_surfaces + 1);
+    int rc2 = cli_write_surface(m, mesh, o, shown, bg, nb);
+    free(bg);
+    return rc2;
 }

@@ -128,7 +128,8 @@ void cli_die_of_caught_signal(coons_status rc, const char *shown)
 }
 
 static int write_named(const coons_model *m, coons_mesh *mesh, coons_format format,
-                       const char *output, const char *input, const char *shown);
+                       const char *output, const char *input, const char *shown,
+                       const size_t *background, size_t nbackground);
 
 /*
  * Whether the STL of `mesh` must be refused (reported): its triangles do
@@ -252,20 +253,22 @@ int cli_write_output(const coons_model *m, long body, coons_format format, const
         return EXIT_GEOMETRY;
     }
     mesh_warnings(&rep);
-    return write_named(m, mesh, format, to_stdout ? NULL : output, input, shown);
+    return write_named(m, mesh, format, to_stdout ? NULL : output, input, shown, NULL, 0);
 }
 
 int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
-                      const char *shown)
+                      const char *shown, const size_t *background, size_t nbackground)
 {
     int to_stdout = !o->output || strcmp(o->output, "-") == 0;
-    return write_named(m, mesh, o->format, to_stdout ? NULL : o->output, o->input, shown);
+    return write_named(m, mesh, o->format, to_stdout ? NULL : o->output, o->input, shown,
+                       background, nbackground);
 }
 
 /* Writes `mesh` (and frees it) to `output` (NULL: standard output), named
  * after the output file or else the model file. */
 static int write_named(const coons_model *m, coons_mesh *mesh, coons_format format,
-                       const char *output, const char *input, const char *shown)
+                       const char *output, const char *input, const char *shown,
+                       const size_t *background, size_t nbackground)
 {
     coons_error err = COONS_ERROR_INIT;
     int to_stdout = output == NULL;
@@ -278,6 +281,8 @@ static int write_named(const coons_model *m, coons_mesh *mesh, coons_format form
     wopts.name = name[0] ? name : NULL;
     wopts.protect_path = from_file ? input : NULL;
     wopts.cancel = write_cancelled;
+    wopts.background = background;
+    wopts.nbackground = nbackground;
     if (stl_rounding_refused(mesh, format, shown)) {
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;

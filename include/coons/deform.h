@@ -1,0 +1,90 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/**
+ * @file coons/deform.h
+ * @brief Free-form deformation of triangle meshes through a body.
+ *
+ * coons_body_deform_mesh() maps a mesh through a Coons body as a
+ * free-form deformation, refining it to a tolerance
+ * (::coons_deform_report says what it did).
+ */
+#ifndef COONS_DEFORM_H
+#define COONS_DEFORM_H
+
+#include "coons/types.h"
+#include "coons/mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * Free-form deformation (seed 000: Coons bodies as FFDs, after Sederberg
+ * and Parry): a new mesh holding `in` mapped through body b, a point p
+ * going to B((p - lo) / (hi - lo)). Triangles are split by edge bisection
+ * until the image of every edge's parametric midpoint lies within 0.9 times
+ * `tolerance` of the chord of its end images and the images of 4 inner
+ * points of every triangle lie within 0.9 times `tolerance` of it (the
+ * margin covers maxima between the samples); an edge is split
+ * the same way in both its triangles, so a closed 2-manifold input stays
+ * closed and 2-manifold, with its winding (reversed when b is left-handed,
+ * so that an outward input stays outward). An affine body splits nothing
+ * and maps every vertex exactly. One part, named "deformed".
+ * @param[in] lo,hi the frame's corners, or both NULL for the bounding box
+ *                  of `in`'s vertices
+ * @param[in] max_triangles the budget; 0: ::COONS_MESH_MAX_TRIANGLES
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL, tolerance not > 0, a flat
+ *         frame), ::COONS_E_DOMAIN (vertices outside the frame: the message
+ *         counts them and gives the first), ::COONS_E_LIMIT, ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_deform_mesh(const coons_body *b, const coons_mesh *in,
+                                                 const double *lo, const double *hi,
+                                                 double tolerance, size_t max_triangles,
+                                                 coons_mesh **out, coons_error *err);
+
+/** Version of ::coons_deform_report this header describes. */
+#define COONS_DEFORM_REPORT_VERSION 1
+
+/** What a deformation did (coons_body_deform_mesh_report()). */
+typedef struct coons_deform_report {
+    /** ::COONS_DEFORM_REPORT_VERSION, set by the caller. */
+    unsigned int version;
+    /** The frame used (given, or the input's bounding box). */
+    double lo[3], hi[3];
+    /**
+     * Largest distance measured from exact image points (every edge's
+     * parametric midpoint and 4 inner points of every output triangle) to
+     * the output triangle they belong to; refinement keeps it within 0.9
+     * times the tolerance, the margin covering maxima between the samples.
+     */
+    double deviation;
+    size_t triangles_in, triangles_out, vertices_in, vertices_out;
+    /** Rounds of edge bisection that split something. */
+    unsigned int rounds;
+    /** 1 when the body is left-handed and the winding was reversed. */
+    int reversed;
+} coons_deform_report;
+
+#ifndef __cplusplus
+#define COONS_DEFORM_REPORT_INIT {.version = COONS_DEFORM_REPORT_VERSION}
+#else
+#define COONS_DEFORM_REPORT_INIT COONS_RECORD_INIT_CXX_(coons_deform_report, r_.version = COONS_DEFORM_REPORT_VERSION)
+#endif
+
+/**
+ * coons_body_deform_mesh() that also fills `report` (NULL: none; its
+ * version must be ::COONS_DEFORM_REPORT_VERSION, else ::COONS_E_INVALID).
+ * @return as coons_body_deform_mesh(): ::COONS_OK, ::COONS_E_INVALID (also
+ *         a report of another version), ::COONS_E_DOMAIN, ::COONS_E_LIMIT,
+ *         ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh *in,
+                                                        const double *lo, const double *hi,
+                                                        double tolerance, size_t max_triangles,
+                                                        coons_mesh **out,
+                                                        coons_deform_report *report,
+                                                        coons_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
