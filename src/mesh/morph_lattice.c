@@ -142,33 +142,112 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
     return v3_dot(q, q);
 }
 
-/* Largest distance of the exact boundary of b from the fixed face list
- * with b's vertices, at 7 points per triangle. */
-static double deviation(const coons_body *b, const coons__morph_lattice *p)
+/* The 7 points of a triangle at which it is measured, as barycentric
+ * weights in sixths: edge midpoints, centroid, halfway from the centroid
+ * to each corner. */
+static const int SIXTHS[7][3] = {{3, 3, 0}, {0, 3, 3}, {3, 0, 3}, {2, 2, 2},
+                                 {4, 1, 1}, {1, 4, 1}, {1, 1, 4}};
+
+/* Largest squared distance of the points x[7] from triangle P. */
+static double tri_worst(double P[3][3], double x[7][3])
 {
-    static const double BARY[7][3] = {{0.5, 0.5, 0},         {0, 0.5, 0.5},
-                                      {0.5, 0, 0.5},         {1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                      {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6},
-                                      {1.0 / 6, 1.0 / 6, 2.0 / 3}};
     double worst = 0;
-    for (size_t t = 0; t < p->nt; t++) {
-        const uint32_t *v = p->tri + 3 * t;
-        double P[3][3];
-        for (int k = 0; k < 3; k++) {
-            const double *q = p->uvw + 3 * (size_t)v[k];
-            coons_body_eval(b, q[0], q[1], q[2], P[k]);
+    for (int s = 0; s < 7; s++) worst = fmax(worst, tri_dist2(x[s], P[0], P[1], P[2]));
+    return worst;
+}
+
+/* The face (u0 u1 v0 v1 w0 w1: 0 .. 5) of the lattice that holds the
+ * corners v of a triangle, with their integer lattice coordinates k; -1
+ * when they are not lattice points of one face. */
+static int lattice_face(const coons__morph_lattice *p, const uint32_t *v, long k[3][3])
+{
+    for (int c = 0; c < 3; c++)
+        for (int d = 0; d < 3; d++) {
+            double x = p->uvw[3 * (size_t)v[c] + (size_t)d] * p->n, r = nearbyint(x);
+            if (!(fabs(x - r) <= 1e-6)) return -1;
+            k[c][d] = (long)r;
         }
-        for (int s = 0; s < 7; s++) {
-            double q[3], x[3];
-            for (int d = 0; d < 3; d++)
-                q[d] = BARY[s][0] * p->uvw[3 * v[0] + d] + BARY[s][1] * p->uvw[3 * v[1] + d] +
-                       BARY[s][2] * p->uvw[3 * v[2] + d];
-            coons_body_eval(b, q[0], q[1], q[2], x);
-            double d2 = tri_dist2(x, P[0], P[1], P[2]);
-            if (d2 > worst) worst = d2;
+    for (int d = 0; d < 3; d++)
+        for (int side = 0; side < 2; side++) {
+            long at = side ? (long)p->n : 0;
+            if (k[0][d] == at && k[1][d] == at && k[2][d] == at) return 2 * d + side;
+        }
+    return -1;
+}
+
+/* Grid points per face beyond which the face grids are not used. */
+#define FACE_GRID_MAX ((size_t)1 << 22)
+
+/* *out: the largest distance of the exact boundary of b from the fixed face
+ * list with b's vertices, at 7 points per triangle. The points of a
+ * triangle on a face of the uniform lattice n lie on the face's grid of 6n
+ * intervals, evaluated at once by the body grid evaluator (a face at a
+ * time); other triangles (vertices merged across faces) point by point. */
+static coons_status deviation(const coons_body *b, const coons__morph_lattice *p, double *out,
+                              coons_error *err)
+{
+    size_t G = 6 * (size_t)p->n, ng = G + 1;
+    int grids = ng * ng <= FACE_GRID_MAX;
+    double *par = grids ? coons__malloc_array(ng, sizeof *par) : NULL;
+    double *pts = grids ? coons__malloc_array(ng * ng, 3 * sizeof *pts) : NULL;
+    if (grids && (!par || !pts)) {
+        coons__free(par);
+        coons__free(pts);
+        return coons__error_nomem(err);
+    }
+    for (size_t i = 0; grids && i < ng; i++) par[i] = (double)i / (double)G;
+    double worst = 0;
+    coons_status st = COONS_OK;
+    for (int f = grids ? 0 : 6; f <= 6 && !st; f++) {
+        int fixed = f / 2, a = fixed ? 0 : 1, bb = fixed == 2 ? 1 : 2;
+        const double side = f % 2 ? 1.0 : 0.0;
+        if (f < 6) {
+            const double *axis[3] = {par, par, par};
+            size_t cnt[3] = {ng, ng, ng};
+            axis[fixed] = &side;
+            cnt[fixed] = 1;
+            st = coons_body_eval_grid(b, axis[0], cnt[0], axis[1], cnt[1], axis[2], cnt[2], pts,
+                                      err);
+        }
+        for (size_t t = 0; t < p->nt && !st; t++) {
+            const uint32_t *v = p->tri + 3 * t;
+            long k[3][3];
+            int on = grids ? lattice_face(p, v, k) : -1;
+            if (on != (f < 6 ? f : -1)) continue;
+            double P[3][3], x[7][3];
+            if (f < 6) {
+                for (int c = 0; c < 3; c++)
+                    v3_copy(P[c], pts + 3 * ((size_t)(6 * k[c][a]) * ng + (size_t)(6 * k[c][bb])));
+                for (int s = 0; s < 7; s++) {
+                    long ia = 0, ib = 0;
+                    for (int c = 0; c < 3; c++) {
+                        ia += SIXTHS[s][c] * k[c][a];
+                        ib += SIXTHS[s][c] * k[c][bb];
+                    }
+                    v3_copy(x[s], pts + 3 * ((size_t)ia * ng + (size_t)ib));
+                }
+            } else {
+                for (int c = 0; c < 3; c++) {
+                    const double *q = p->uvw + 3 * (size_t)v[c];
+                    coons_body_eval(b, q[0], q[1], q[2], P[c]);
+                }
+                for (int s = 0; s < 7; s++) {
+                    double q[3];
+                    for (int d = 0; d < 3; d++) {
+                        q[d] = 0;
+                        for (int c = 0; c < 3; c++)
+                            q[d] += SIXTHS[s][c] / 6.0 * p->uvw[3 * (size_t)v[c] + (size_t)d];
+                    }
+                    coons_body_eval(b, q[0], q[1], q[2], x[s]);
+                }
+            }
+            worst = fmax(worst, tri_worst(P, x));
         }
     }
-    return sqrt(worst);
+    coons__free(par);
+    coons__free(pts);
+    *out = sqrt(worst);
+    return st;
 }
 
 /* Takes the face list and vertex parameters of mesh part 0. */
@@ -220,8 +299,8 @@ static coons_status faces_on_lattice(const coons_body *b, const coons_body *m,
         p->n = n;
         if (2 * p->nt > o->max_triangles)
             return coons__error_set(err, COONS_E_LIMIT,
-                                    "body '%s': the animation's lattice of %u intervals needs "
-                                    "more than %zu triangles (the limit)",
+                                    "body '%s': the lattice of %u intervals of the morph's "
+                                    "whole path needs more than %zu triangles (the limit)",
                                     name, n, o->max_triangles);
         /* vertices merge the same way at every key time */
         for (size_t k = 0; k < m->nkeys && !st; k++) {
@@ -243,7 +322,9 @@ static coons_status faces_on_lattice(const coons_body *b, const coons_body *m,
         for (size_t i = 0; i < nt && !st; i++) {
             coons_body *c = NULL;
             st = coons_body_at_time(b, times[i], &c, err);
-            if (!st) worst = fmax(worst, deviation(c, p));
+            double dev = 0;
+            if (!st) st = deviation(c, p, &dev, err);
+            worst = fmax(worst, dev);
             coons_body_free(c);
         }
         if (st) return st;
@@ -342,6 +423,9 @@ coons_status coons__body_sample_path(const coons_body *b, const coons__sample_op
     if (!coons__body_has_morph(b)) return coons__body_sample_into(b, o, name, mesh, triangles, err);
     coons__morph_lattice L;
     coons_status st = coons__morph_lattice_plan(b, o, name, &L, err);
+    /* a morph whose lattice collapses differently at different times has
+     * no one mesh: each frame is sampled on its own */
+    if (st == COONS_E_UNSUPPORTED) return coons__body_sample_into(b, o, name, mesh, triangles, err);
     if (st) return st;
     double *xyz = coons__malloc_array(L.nv ? L.nv : 1, 3 * sizeof *xyz);
     if (!xyz) st = coons__error_nomem(err);
@@ -360,8 +444,9 @@ coons_status coons__body_sample_path(const coons_body *b, const coons__sample_op
         P->sampled = 1;
         /* the worst over the path's check times; a given lattice is
          * measured at this frame unless the caller asked not to */
-        P->deviation = o->resolution && !(o->flags & COONS_SAMPLE_UNMEASURED) ? deviation(b, &L)
-                                                                               : L.deviation;
+        P->deviation = L.deviation;
+        if (o->resolution && !(o->flags & COONS_SAMPLE_UNMEASURED))
+            st = deviation(b, &L, &P->deviation, err);
         for (int d = 0; d < 3; d++) P->lattice[d] = L.n;
         P->glued = L.glued;
         if (triangles) *triangles = L.nt;

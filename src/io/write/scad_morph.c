@@ -225,8 +225,9 @@ static void put_part(coons__sink *s, const part *p, size_t index)
     }
     snprintf(head, sizeof head,
              "// one lattice of %u intervals along u, v and w and one face list for every\n"
-             "// frame: coons2stl --time T --resolution %u gives these vertices at t = T.\n",
-             p->lat.n, p->lat.n);
+             "// frame: coons2stl --time T with the same -t and --resolution gives these\n"
+             "// vertices and faces at t = T.\n",
+             p->lat.n);
     coons__sink_puts(s, head);
     for (size_t i = 0; i < p->lat.nn && coons__sink_ok(s); i++) {
         const coons__morph_node *nd = &p->lat.nodes[i];
