@@ -423,9 +423,12 @@ coons_status coons__body_sample_path(const coons_body *b, const coons__sample_op
     if (!coons__body_has_morph(b)) return coons__body_sample_into(b, o, name, mesh, triangles, err);
     coons__morph_lattice L;
     coons_status st = coons__morph_lattice_plan(b, o, name, &L, err);
-    /* a morph whose lattice collapses differently at different times has
-     * no one mesh: each frame is sampled on its own */
-    if (st == COONS_E_UNSUPPORTED) return coons__body_sample_into(b, o, name, mesh, triangles, err);
+    /* a morph whose lattice collapses differently at different times, or
+     * whose boundary collapses entirely at a time the plan samples (keys of
+     * opposite handedness at t = 1/2), has no one mesh: each frame is
+     * sampled on its own */
+    if (st == COONS_E_UNSUPPORTED || st == COONS_E_INVALID)
+        return coons__body_sample_into(b, o, name, mesh, triangles, err);
     if (st) return st;
     double *xyz = coons__malloc_array(L.nv ? L.nv : 1, 3 * sizeof *xyz);
     if (!xyz) st = coons__error_nomem(err);

@@ -65,8 +65,10 @@ void coons__morph_lattice_free(coons__morph_lattice *L);
  * and faces of its whole path (coons__morph_lattice_plan()), its vertices
  * those of b at its own time (the body grid evaluator at each vertex:
  * bitwise the points of the uniform lattice n, hence what OpenSCAD's $t
- * gives of the animation to the printed digits); any other body by
- * coons__body_sample_into(). *triangles gets the part's count. */
+ * gives of the animation to the printed digits); any other body, and a
+ * morph whose plan is refused (COONS_E_UNSUPPORTED, or COONS_E_INVALID: a
+ * frame of the plan has no boundary), by coons__body_sample_into().
+ * *triangles gets the part's count. */
 coons_status coons__body_sample_path(const coons_body *b, const coons__sample_opts *o,
                                      const char *name, coons_mesh *mesh, size_t *triangles,
                                      coons_error *err);
