@@ -354,7 +354,8 @@ coons_status coons__morph_lattice_plan(const coons_body *b, const coons__sample_
 
 /* ---- the vertex arrays of the tree ------------------------------------ */
 
-static coons_status add_node(coons__morph_lattice *p, coons__morph_node nd, size_t *index, coons_error *err)
+static coons_status add_node(coons__morph_lattice *p, coons__morph_node nd, size_t *index,
+                             coons_error *err)
 {
     if (p->nn == p->cap) {
         size_t cap = p->cap ? 2 * p->cap : 8;
@@ -373,7 +374,8 @@ static coons_status add_node(coons__morph_lattice *p, coons__morph_node nd, size
 }
 
 /* The node of b (and its subtree); *index receives it. */
-static coons_status build_node(coons__morph_lattice *p, const coons_body *b, size_t *index, coons_error *err)
+static coons_status build_node(coons__morph_lattice *p, const coons_body *b, size_t *index,
+                               coons_error *err)
 {
     coons__morph_node nd = {COONS__MORPH_CONST, b, NULL, 0, NULL};
     coons_status st = COONS_OK;
