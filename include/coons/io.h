@@ -373,12 +373,13 @@ COONS_EXPORT coons_status coons_volume_mesh_write_stream(const coons_volume_mesh
  * for the model (wo->name) that unites them with union(), and a top-level
  * call passing $t, so that View > Animate plays the metamorphosis. Bodies
  * without morphs are plain polyhedra sampled with `so`. `openscad -D
- * '$t=T'` gives, for each morph, the vertices coons_model_set_time(T) and
- * coons_model_sample() with `resolution` N give, to the printed digits, N
- * being the lattice the file names in a comment: `so->resolution` when
- * set, else the smallest uniform lattice whose mesh, with the face list
- * fixed, is within the tolerance at every key time and at 4 times inside
- * each interval between keys.
+ * '$t=T'` gives, for each morph, the vertices and faces that
+ * coons_model_set_time(T) and coons_model_sample() with the same `so`
+ * give, to the printed digits: every mesh of a morph uses one lattice and
+ * face list for its whole path, the lattice the file names in a comment:
+ * `so->resolution` when set, else the smallest uniform lattice whose mesh,
+ * with the face list fixed, is within the tolerance at every key time and
+ * at 4 times inside each interval between keys.
  * @param[in] body -1 for every body, else the index of the one body written
  * @return ::COONS_OK, ::COONS_E_INVALID, ::COONS_E_LIMIT (triangle budget),
  *         ::COONS_E_UNSUPPORTED (a morph whose lattice collapses

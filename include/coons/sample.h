@@ -102,6 +102,10 @@ COONS_EXPORT void coons_sample_options_init(coons_sample_options *o);
  * stored with the part: coons_mesh_part_sampling(). With a fixed
  * `resolution` it is measured the same way but not enforced.
  *
+ * A morph (coons_body_new_morph(), also transformed) is sampled at its
+ * current time on the one lattice and face list of its whole path, as
+ * coons_model_sample() describes: the same mesh at every time.
+ *
  * @param[in]  b     the body (not modified)
  * @param[in]  opts  NULL or options (see ::coons_sample_options)
  * @param[in]  name  the part's name (copied), or NULL
@@ -130,6 +134,16 @@ COONS_EXPORT coons_status coons_body_sample(const coons_body *b,
  * are disjoint are simply put together; other overlapping or touching
  * bodies need the Boolean union, which this function does not perform: it
  * returns ::COONS_E_UNSUPPORTED naming the two bodies.
+ *
+ * A morph body (also a transformed one) is one mesh at every time: it is
+ * sampled on one uniform lattice and face list for its whole path, those
+ * of coons_model_write_scad_animation() with the same `opts`, at its
+ * current time (coons_model_set_time()); its part's deviation is the
+ * largest measured over the path's check times (with `resolution` set:
+ * measured at this time, unless ::COONS_SAMPLE_UNMEASURED). A morph whose
+ * lattice collapses differently at different times, or whose boundary
+ * collapses entirely at a time the plan samples, has no such mesh and is
+ * sampled at its time alone.
  * @return as coons_body_sample(), plus ::COONS_E_UNSUPPORTED.
  */
 COONS_EXPORT coons_status coons_model_sample(const coons_model *m,

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* A model's bodies as one mesh, one part per body (sample.c does the work).
+/* A model's bodies as one mesh, one part per body (sample.c does the work;
+ * a morph is sampled on the lattice of its whole path, morph_lattice.c).
  * Without the Boolean layer, "union" is honoured only where it is a plain
  * collection: bodies whose sampled boxes, grown by twice the tolerance (the
  * sampled boundary lies within it of the exact one), are disjoint. In a
@@ -10,6 +11,7 @@
 #include "coons_internal.h"
 #include "model_glue.h"
 #include "mesh_impl.h"
+#include "morph_lattice.h"
 #include "union_find.h"
 
 #include <pthread.h>
@@ -164,7 +166,7 @@ coons_status coons__model_sample_threads(const coons_model *model,
         for (size_t j = i; j < nb; j++)
             if (comp[j] == i) idx[k++] = j;
         if (k == 1)
-            st = coons__body_sample_into(coons_model_body(model, i), &oi,
+            st = coons__body_sample_path(coons_model_body(model, i), &oi,
                                          coons_model_body_name(model, i), m, &used, err);
         else
             st = sample_component(model, idx, k, sf, nsf, &oi, m, &used, err);
@@ -211,7 +213,7 @@ static void sample_one(sample_jobs *j, size_t k)
         for (size_t b = i; b < j->nb; b++)
             if (j->comp[b] == i) idx[n++] = b;
         if (n == 1)
-            st = coons__body_sample_into(coons_model_body(j->model, i), j->o,
+            st = coons__body_sample_path(coons_model_body(j->model, i), j->o,
                                          coons_model_body_name(j->model, i), j->mesh[k],
                                          &j->used[k], &e);
         else

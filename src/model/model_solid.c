@@ -7,6 +7,7 @@
 #include "coons_internal.h"
 #include "csg_records.h"
 #include "model_glue.h"
+#include "morph_lattice.h"
 #include "pinch.h"
 
 /* Repairs (and with `unite` unites) the parts of m, then frees m. The
@@ -126,7 +127,7 @@ coons_status coons_model_solidify_body(const coons_model *model, size_t index,
     if (progress) progress(userdata, "sample", (double)index / (double)n);
     coons_mesh *m = NULL;
     if ((st = coons_mesh_new(&m, err))) return st;
-    st = coons__body_sample_into(coons_model_body(model, index), &o,
+    st = coons__body_sample_path(coons_model_body(model, index), &o,
                                  coons_model_body_name(model, index), m, NULL, err);
     if (st) {
         coons_mesh_free(m);

@@ -52,6 +52,7 @@
 #include "sampling.h"
 #include "mesh_impl.h"
 #include "flat.h"
+#include "morph_lattice.h"
 #include "sampler.h"
 #include "union_find.h"
 
@@ -1057,7 +1058,8 @@ coons_status coons_body_sample(const coons_body *b, const coons_sample_options *
     }
     coons_mesh *m;
     if ((st = coons_mesh_new(&m, err))) return st;
-    if ((st = coons__body_sample_into(b, &o, name, m, NULL, err))) {
+    /* a morph: the one mesh of its whole path, as coons_model_sample() */
+    if ((st = coons__body_sample_path(b, &o, name, m, NULL, err))) {
         coons_mesh_free(m);
         return st;
     }

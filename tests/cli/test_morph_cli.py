@@ -12,8 +12,9 @@
 - --frames N -o PATTERN: N files, frame k byte for byte the output of
   --time k/(N-1); bad patterns (no field, two fields, %s, a field in a
   directory) are usage errors and write nothing; a failure in frame k
-  (the triangle budget) leaves frames 0..k-1 and nothing else (no
-  temporary files), exit 3;
+  (a write error) leaves frames 0..k-1 and nothing else (no temporary
+  files), exit 3; a triangle budget below the morph's one lattice for
+  its whole path fails at frame 0;
 - --frames with .vtu: the frames and a ParaView .pvd whose DataSets name
   them at times k/(N-1);
 - --info "morph": the keys' types and times, the path; keys of opposite
@@ -152,15 +153,25 @@ T.check("--frames 1: usage error", rc == 2, err)
 rc, _, err = T.run([m1, "--frames", "3", "--time", "0.5", "-o", os.path.join(fdir, "h%d.stl")])
 T.check("--frames with --time: usage error", rc == 2, err)
 
-# a failure in frame 1: the cube (frame 0) fits a budget the spool-like
-# middle frame exceeds
+# a failure in frame 1: its name is taken by a directory (a write error)
 bdir = os.path.join(TMP, "budget")
 os.mkdir(bdir)
-rc, _, err = T.run([m1, "--frames", "3", "--max-triangles", "1000", "-o",
-                    os.path.join(bdir, "b%d.off")])
+os.mkdir(os.path.join(bdir, "b1.off"))
+rc, _, err = T.run([m1, "--frames", "3", "-o", os.path.join(bdir, "b%d.off")])
 left = sorted(os.listdir(bdir))
 T.check("a failure in frame 1 leaves frame 0 and nothing else, exit 3",
-        rc == 3 and left == ["b0.off"] and "frame 1" in err, f"rc={rc} {left} {err}")
+        rc == 3 and left == ["b0.off", "b1.off"] and os.path.isfile(os.path.join(bdir, "b0.off"))
+        and not os.listdir(os.path.join(bdir, "b1.off")) and "frame 1" in err,
+        f"rc={rc} {left} {err}")
+# every frame of a morph has the one lattice of its whole path: a budget it
+# exceeds fails at frame 0 (t = 0, where the cube alone would fit), nothing
+# written
+cdir = os.path.join(TMP, "budget0")
+os.mkdir(cdir)
+rc, _, err = T.run([m1, "--frames", "3", "--max-triangles", "1000", "-o",
+                    os.path.join(cdir, "b%d.off")])
+T.check("a budget the path's lattice exceeds: frame 0 fails, nothing written, exit 3",
+        rc == 3 and not os.listdir(cdir) and "frame 0" in err, f"rc={rc} {err}")
 
 # ---- .vtu frames and the .pvd
 vdir = os.path.join(TMP, "vtu")
