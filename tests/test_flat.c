@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "body_fixtures.h"
+#include "mesh/delaunay.h"
 #include "mesh/flat.h"
 #include "test_util.h"
 
