@@ -45,6 +45,8 @@
  * example). Cells converging to an apex are thin however they are split.
  */
 #include <float.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "body_impl.h"
@@ -75,6 +77,18 @@ enum {
  * predicted more than the final count (the spool at 1e-6: 5.2e7 predicted
  * from the first round, 5.0e7 on the 2048^3 lattice refinement reaches). */
 #define PREDICT_MARGIN 2.0
+/* A fixed lattice whose cheap measurement finds more than this share of
+ * the tolerance is measured again on the finer samples (measure_fixed):
+ * the cheap figure was within this factor of the fine one on every example
+ * (see measure_fixed). */
+#define CHEAP_CONFIRM 0.5
+/* A tolerance suggested by a budget refusal is checked by sampling to it
+ * within this share of the budgets (room for the prediction's error, and
+ * a check that costs a fraction of a sampling at the limit), in at most
+ * SUGGEST_TRIES tries at least SUGGEST_STEP apart. */
+#define SUGGEST_SHARE 0.125
+#define SUGGEST_TRIES 6
+#define SUGGEST_STEP 3.0
 
 const face_desc coons__faces[6] = {
     {0, 1, 2, 1, 0.0, "u0"}, {0, 1, 2, 0, 1.0, "u1"}, {1, 0, 2, 0, 0.0, "v0"},
@@ -667,8 +681,7 @@ static void mark(sampler *s, int d, size_t i)
 static void note_need(sampler *s, int d, size_t i, double ratio)
 {
     if (!(ratio > 1)) return;
-    double k = sqrt(ratio), most = (s->t[d][i + 1] - s->t[d][i]) / MIN_WIDTH;
-    if (k > most) k = most;
+    double k = sqrt(ratio); /* floored at MIN_WIDTH by predict() */
     if (k > s->need[d][i]) s->need[d][i] = k;
 }
 
@@ -771,10 +784,43 @@ static coons_status refine(sampler *s, size_t *split)
     return alloc_lattices(s);
 }
 
+/* The triangles and volume cells refinement would reach from the
+ * deviations the last scan measured (note_need), into s->pred (each
+ * interval no narrower than MIN_WIDTH) and s->pred_free (unbounded). */
+static void predict(sampler *s)
+{
+    double m[3], mf[3];
+    for (int d = 0; d < 3; d++) {
+        m[d] = mf[d] = 0;
+        for (size_t i = 0; i < s->n[d]; i++) {
+            double most = (s->t[d][i + 1] - s->t[d][i]) / MIN_WIDTH;
+            m[d] += dmax(1.0, dmin(s->need[d][i], most));
+            mf[d] += dmax(1.0, s->need[d][i]);
+        }
+    }
+    s->pred[0] = s->pred_free[0] = 0;
+    for (int f = 0; f < 6; f++)
+        if (!(s->skip & 1u << f)) {
+            s->pred[0] += 2 * m[FACES[f].a] * m[FACES[f].b];
+            s->pred_free[0] += 2 * mf[FACES[f].a] * mf[FACES[f].b];
+        }
+    s->pred[1] = m[0] * m[1] * m[2];
+    s->pred_free[1] = mf[0] * mf[1] * mf[2];
+    s->pred_dev = s->dev;
+    for (int d = 0; d < 3; d++) s->pred_n[d] = s->n[d];
+}
+
 static coons_status check_budget(sampler *s)
 {
     size_t need = tri_estimate(s->n, s->skip);
-    return need > s->o->max_triangles ? limit_error(s, need) : COONS_OK;
+    if (!(need > s->o->max_triangles)) return COONS_OK;
+    if (s->o->resolution) return limit_error(s, need);
+    /* Adaptive: the lattice of this round already exceeds the budget; the
+     * last scan's prediction, when higher, is what the tolerance needs. */
+    s->pred[0] = fmax(s->pred[0], (double)need);
+    s->pred_free[0] = fmax(s->pred_free[0], (double)need);
+    s->refused = 1;
+    return COONS_E_LIMIT;
 }
 
 /* Bounded work: from the deviations the last coarse scan measured
@@ -785,32 +831,13 @@ static coons_status check_budget(sampler *s)
  * (check_budget, the volume mesh's cell count). */
 static coons_status predict_budget(sampler *s)
 {
-    double m[3], tri = 0;
-    for (int d = 0; d < 3; d++) {
-        m[d] = 0;
-        for (size_t i = 0; i < s->n[d]; i++) m[d] += dmax(1.0, s->need[d][i]);
-    }
-    for (int f = 0; f < 6; f++)
-        if (!(s->skip & 1u << f)) tri += 2 * m[FACES[f].a] * m[FACES[f].b];
-    double cells = m[0] * m[1] * m[2];
+    predict(s);
+    double tri = s->pred[0], cells = s->pred[1];
     double tmax = (double)s->o->max_triangles, cmax = (double)s->o->max_cells;
     if (!(tri > PREDICT_MARGIN * tmax) && !(cmax > 0 && cells > PREDICT_MARGIN * cmax))
         return COONS_OK;
-    int by_cells = !(tri > PREDICT_MARGIN * tmax);
-    /* The count goes about as 1 / tolerance (h^2 per face, two directions). */
-    double fit = s->o->tolerance * (by_cells ? pow(cells / cmax, 2.0 / 3.0) : tri / tmax);
-    return coons__error_set(s->err, COONS_E_LIMIT,
-                            "body '%s': sampling to tolerance %g needs more than %zu %s (the "
-                            "limit): about %.3g predicted from the deviation %.3g on the "
-                            "%zu x %zu x %zu lattice; raise %s or loosen the tolerance (try "
-                            "%.2g or more)",
-                            s->name, s->o->tolerance, by_cells ? s->o->max_cells
-                                                               : s->o->max_triangles,
-                            by_cells ? "volume cells" : "triangles", by_cells ? cells : tri,
-                            s->dev / s->scale, s->n[0], s->n[1], s->n[2],
-                            by_cells ? "max_cells (or give coons2stl --resolution)"
-                                     : "max_triangles (coons2stl --max-triangles N)",
-                            fit);
+    s->refused = tri > PREDICT_MARGIN * tmax ? 1 : 2;
+    return COONS_E_LIMIT;
 }
 
 /* The body's orientation, for a sampler that leaves faces out (its own
@@ -845,7 +872,22 @@ static coons_status coarse_sign(sampler *s)
     return st;
 }
 
-static coons_status run(sampler *s)
+static coons_status run(sampler *s);
+
+/* A fixed lattice's deviation, cheaply: the 3 x 3 samples of every cell
+ * (edge midpoints and centre, as each round of adaptive refinement scans
+ * them: about 4 evaluations per lattice point); where that finds more than
+ * CHEAP_CONFIRM of the tolerance, the 7 x 7 samples of the adaptive
+ * acceptance (MEASURE_STEPS) give the figure reported. */
+static coons_status measure_fixed(sampler *s)
+{
+    s->measured = 1;
+    coons_status st = scan(s, 2, 0.0);
+    if (st || !(s->dev > CHEAP_CONFIRM * s->tol)) return st;
+    return scan(s, MEASURE_STEPS, 0.0);
+}
+
+static coons_status run_once(sampler *s)
 {
     coons_status st = init_lattices(s);
     if (st) return st;
@@ -853,8 +895,7 @@ static coons_status run(sampler *s)
     if (s->o->resolution) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
         if (s->o->flags & COONS_SAMPLE_UNMEASURED) return COONS_OK;
-        s->measured = 1;
-        return scan(s, MEASURE_STEPS, 0.0);
+        return measure_fixed(s);
     }
     for (int round = 0; round < MAX_ROUNDS; round++) {
         if ((st = check_budget(s)) || (st = build(s))) return st;
@@ -873,6 +914,89 @@ static coons_status run(sampler *s)
                             "body '%s': cannot reach tolerance %g (deviation %g remains where "
                             "the parameter step is already %g)",
                             s->name, s->o->tolerance, s->dev / s->scale, MIN_WIDTH);
+}
+
+/* x rounded up to two significant digits, as it would be typed. */
+static double round_up2(double x)
+{
+    char b[32];
+    double e = pow(10.0, floor(log10(x)) - 1);
+    snprintf(b, sizeof b, "%.2g", ceil(x / e * (1 - 1e-12)) * e);
+    double y = strtod(b, NULL);
+    return y >= x * (1 - 1e-9) ? y : x;
+}
+
+/* Does sampling to tolerance tol fit SUGGEST_SHARE of s's budgets? Runs a
+ * sampler like s at tol; *count: the count a refusal predicted, or 0. */
+static coons_status fits(const sampler *s, double tol, int *ok, double *count)
+{
+    coons__sample_opts o = *s->o;
+    o.tolerance = tol;
+    o.max_triangles = (size_t)(SUGGEST_SHARE * (double)o.max_triangles);
+    o.max_cells = (size_t)(SUGGEST_SHARE * (double)o.max_cells);
+    if (!o.max_triangles) o.max_triangles = 1;
+    o.flags |= COONS__SAMPLE_NO_SUGGEST;
+    coons_error err = COONS_ERROR_INIT;
+    sampler t;
+    coons__sampler_init(&t, s->body, &o, s->name, &err);
+    t.skip = s->skip;
+    for (int d = 0; d < 3; d++) {
+        t.start_t[d] = s->start_t[d];
+        t.start_n[d] = s->start_n[d];
+    }
+    coons_status st = run(&t);
+    double cells = (double)t.n[0] * (double)t.n[1] * (double)t.n[2];
+    *ok = st == COONS_OK && !(o.max_cells && cells > (double)o.max_cells);
+    *count = t.refused ? t.pred_free[t.refused - 1] : 0;
+    coons__sampler_free(&t);
+    return st == COONS_E_NOMEM ? coons__error_nomem(s->err) : COONS_OK;
+}
+
+/* A budget refusal of adaptive sampling: the message names the tolerance,
+ * the limit, the predicted count, and a tolerance verified to fit (sampled
+ * within SUGGEST_SHARE of the limit) when one is found in a few tries. The count goes
+ * about as 1 / tolerance (h^2 per face, two directions; cells as
+ * tolerance^-3/2); a kink converges more slowly, so each failed try moves
+ * on by at least SUGGEST_STEP. */
+static coons_status refusal(sampler *s)
+{
+    int cells = s->refused == 2;
+    double budget = cells ? (double)s->o->max_cells : (double)s->o->max_triangles;
+    double p = cells ? 2.0 / 3.0 : 1.0, tol = s->o->tolerance, count = s->pred_free[cells];
+    double sug = 0, cand = tol;
+    for (int k = 0; k < SUGGEST_TRIES && !(s->o->flags & COONS__SAMPLE_NO_SUGGEST); k++) {
+        double f = count > 0 ? pow(count / (SUGGEST_SHARE * budget), p) : 0;
+        cand = round_up2(cand * dmax(f, k ? SUGGEST_STEP : 1.0 + 1e-9));
+        int ok;
+        coons_status st = fits(s, cand, &ok, &count);
+        if (st) return st;
+        if (ok) {
+            sug = cand;
+            break;
+        }
+    }
+    char hint[96];
+    if (sug > 0)
+        snprintf(hint, sizeof hint, "try %.2g: sampling to it was checked to fit", sug);
+    else
+        snprintf(hint, sizeof hint, "none up to %.2g was found to fit", cand);
+    return coons__error_set(s->err, COONS_E_LIMIT,
+                            "body '%s': sampling to tolerance %g needs more than %zu %s (the "
+                            "limit): about %.3g predicted from the deviation %.3g on the "
+                            "%zu x %zu x %zu lattice; raise %s or loosen the tolerance (%s)",
+                            s->name, tol, cells ? s->o->max_cells : s->o->max_triangles,
+                            cells ? "volume cells" : "triangles", s->pred[cells],
+                            s->pred_dev / s->scale, s->pred_n[0], s->pred_n[1], s->pred_n[2],
+                            cells ? "max_cells (or give coons2stl --resolution)"
+                                  : "max_triangles (coons2stl --max-triangles N)",
+                            hint);
+}
+
+static coons_status run(sampler *s)
+{
+    s->refused = 0;
+    coons_status st = run_once(s);
+    return st == COONS_E_LIMIT && s->refused ? refusal(s) : st;
 }
 
 static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)

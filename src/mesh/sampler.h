@@ -66,11 +66,23 @@ typedef struct sampler {
     /* bit f: face f, ruled between two straight lines, is meshed as one
      * strip of quads spanning its rulings (flat.c). */
     unsigned ruled_faces;
+    /* Bounded work (sample.c): the last scan's prediction of the triangles
+     * [0] and volume cells [1] the tolerance needs (pred: as refinement
+     * would reach them, never below MIN_WIDTH; pred_free: the same without
+     * that floor, for the tolerance to suggest), the deviation and lattice
+     * it came from; refused: 1 (triangles) or 2 (cells) after a budget
+     * refusal of adaptive sampling. */
+    double pred[2], pred_free[2], pred_dev;
+    size_t pred_n[3];
+    int refused;
 } sampler;
 
 /* Internal flag of coons__sample_opts: every face keeps its lattice
  * triangles, also where it is flat (flat.c). */
 #define COONS__SAMPLE_LATTICE_FACES (1u << 30)
+/* Internal flag: a budget refusal suggests no tolerance (the sampler that
+ * checks a suggestion, sample.c). */
+#define COONS__SAMPLE_NO_SUGGEST (1u << 29)
 
 
 /* A sampler for body b (name may be NULL); run it, read it, free it. */
