@@ -82,10 +82,11 @@ enum {
  * the cheap figure was within this factor of the fine one on every example
  * (see measure_fixed). */
 #define CHEAP_CONFIRM 0.5
-/* A tolerance suggested by a budget refusal is checked by sampling to it
- * within this share of the budgets (room for the prediction's error, and
- * a check that costs a fraction of a sampling at the limit), in at most
- * SUGGEST_TRIES tries at least SUGGEST_STEP apart. */
+/* A tolerance suggested by a budget refusal is checked by sampling to it:
+ * within the whole of a budget up to SUGGEST_FULL, within SUGGEST_SHARE
+ * of a larger one (a check that costs a fraction of a sampling at the
+ * limit), in at most SUGGEST_TRIES tries at least SUGGEST_STEP apart. */
+#define SUGGEST_FULL 1e6
 #define SUGGEST_SHARE 0.125
 #define SUGGEST_TRIES 6
 #define SUGGEST_STEP 3.0
@@ -926,15 +927,22 @@ static double round_up2(double x)
     return y >= x * (1 - 1e-9) ? y : x;
 }
 
-/* Does sampling to tolerance tol fit SUGGEST_SHARE of s's budgets? Runs a
+/* The budget a suggested tolerance is checked against: all of a small one
+ * (the check is cheap), SUGGEST_SHARE of a large one but not below
+ * SUGGEST_FULL. */
+static double suggest_budget(double budget)
+{
+    return budget <= SUGGEST_FULL ? budget : dmax(SUGGEST_FULL, SUGGEST_SHARE * budget);
+}
+
+/* Does sampling to tolerance tol fit suggest_budget() of s's budgets? Runs a
  * sampler like s at tol; *count: the count a refusal predicted, or 0. */
 static coons_status fits(const sampler *s, double tol, int *ok, double *count)
 {
     coons__sample_opts o = *s->o;
     o.tolerance = tol;
-    o.max_triangles = (size_t)(SUGGEST_SHARE * (double)o.max_triangles);
-    o.max_cells = (size_t)(SUGGEST_SHARE * (double)o.max_cells);
-    if (!o.max_triangles) o.max_triangles = 1;
+    o.max_triangles = (size_t)suggest_budget((double)o.max_triangles);
+    o.max_cells = (size_t)suggest_budget((double)o.max_cells);
     o.flags |= COONS__SAMPLE_NO_SUGGEST;
     coons_error err = COONS_ERROR_INIT;
     sampler t;
@@ -954,7 +962,7 @@ static coons_status fits(const sampler *s, double tol, int *ok, double *count)
 
 /* A budget refusal of adaptive sampling: the message names the tolerance,
  * the limit, the predicted count, and a tolerance verified to fit (sampled
- * within SUGGEST_SHARE of the limit) when one is found in a few tries. The count goes
+ * within suggest_budget() of the limit) when one is found in a few tries. The count goes
  * about as 1 / tolerance (h^2 per face, two directions; cells as
  * tolerance^-3/2); a kink converges more slowly, so each failed try moves
  * on by at least SUGGEST_STEP. */
@@ -965,7 +973,7 @@ static coons_status refusal(sampler *s)
     double p = cells ? 2.0 / 3.0 : 1.0, tol = s->o->tolerance, count = s->pred_free[cells];
     double sug = 0, cand = tol;
     for (int k = 0; k < SUGGEST_TRIES && !(s->o->flags & COONS__SAMPLE_NO_SUGGEST); k++) {
-        double f = count > 0 ? pow(count / (SUGGEST_SHARE * budget), p) : 0;
+        double f = count > 0 ? pow(count / suggest_budget(budget), p) : 0;
         cand = round_up2(cand * dmax(f, k ? SUGGEST_STEP : 1.0 + 1e-9));
         int ok;
         coons_status st = fits(s, cand, &ok, &count);
