@@ -29,6 +29,8 @@
 #include "union_find.h"
 
 #define NONE UINT32_MAX
+/* Normal components closer than this are the same (the frame's axis). */
+#define FRAME_TIE 1e-9
 
 /* ---- Faces of a sampled body ---------------------------------------- */
 
@@ -336,10 +338,13 @@ coons_status coons__flat_faces(sampler *s)
             continue;
         }
         /* A frame (e1, e2, n), e1 from the axis least along n (exact for
-         * faces normal to an axis). */
+         * faces normal to an axis). Components within FRAME_TIE of each
+         * other (n is a unit vector) are a tie, broken by the lower axis:
+         * rounding, which differs at each scale of the model, must not
+         * turn the frame (the mesher's order follows it). */
         int ax = 0;
         for (int d = 1; d < 3; d++)
-            if (fabs(n[d]) < fabs(n[ax])) ax = d;
+            if (fabs(n[d]) < fabs(n[ax]) - FRAME_TIE) ax = d;
         double u[3] = {0, 0, 0}, e1[3], e2[3];
         u[ax] = 1;
         v3_cross(e1, n, u);
