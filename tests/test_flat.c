@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "body_fixtures.h"
+#include "delaunay.h"
 #include "flat.h"
 #include "test_util.h"
 

@@ -567,6 +567,21 @@ static void test_limits_and_options(void **state)
     assert_null(m);
     assert_non_null(strstr(err.message, "1000"));
     assert_non_null(strstr(err.message, "max-triangles"));
+    /* The refusal names the tolerance and a predicted count above the
+     * limit, and the tolerance it suggests samples within the limit. */
+    assert_non_null(strstr(err.message, "tolerance 1e-06"));
+    const char *pr = strstr(err.message, "about ");
+    assert_non_null(pr);
+    assert_true(strtod(pr + 6, NULL) > 1000);
+    const char *try_at = strstr(err.message, "(try ");
+    assert_non_null(try_at);
+    double suggested = strtod(try_at + 5, NULL);
+    assert_true(suggested > 1e-6);
+    o.tolerance = suggested;
+    assert_coons_ok(coons_body_sample(b, &o, "p", &m, &err), &err);
+    assert_true(coons_mesh_triangle_count(m) <= 1000);
+    coons_mesh_free(m);
+    m = (coons_mesh *)&o;
     o = (coons_sample_options)COONS_SAMPLE_OPTIONS_INIT;
     o.resolution = 100;
     o.max_triangles = 1000;

@@ -79,9 +79,10 @@ typedef struct coons_csg_options {
  */
 COONS_EXPORT void coons_csg_options_init(coons_csg_options *o);
 
-/** Version 2: adds `pinch_edges_split` and `pinch_vertices_split`; a
- *  version-1 record (without them) is still accepted and filled. */
-#define COONS_CSG_REPORT_VERSION 2
+/** Version 3: adds `tolerance` and `deviation` (model solids); version 2
+ *  added `pinch_edges_split` and `pinch_vertices_split`. Records of
+ *  versions 1 and 2 (without them) are still accepted and filled. */
+#define COONS_CSG_REPORT_VERSION 3
 
 /**
  * What coons_mesh_solidify() found and did. The caller sets `version` (use
@@ -109,6 +110,14 @@ typedef struct coons_csg_report {
                                      split into k edges of two faces each (model solids) */
     size_t pinch_vertices_split; /**< vertices whose triangles formed more than one fan,
                                       written once per fan (copies moved apart slightly) */
+    /** Model solids (coons_model_solidify(), coons_model_solidify_body()):
+     *  the tolerance the bodies were sampled to; 0 otherwise. */
+    double tolerance;
+    /** Model solids: the largest deviation measured on the sampled bodies
+     *  (coons_mesh_deviation() of the sampled shells: NaN when not measured,
+     *  see ::COONS_SAMPLE_UNMEASURED); above `tolerance` only with a fixed
+     *  `resolution`. 0 otherwise. */
+    double deviation;
 } coons_csg_report;
 
 #ifndef __cplusplus

@@ -60,9 +60,9 @@ typedef struct coons_sample_options {
 
 /**
  * Flag of ::coons_sample_options: with a fixed `resolution`, skip measuring
- * the deviation (it then reads NaN); the measurement evaluates each cell at
- * 36 more points and is most of the work of a fixed lattice. Adaptive
- * sampling always measures.
+ * the deviation (it then reads NaN). The measurement of a fixed lattice is
+ * cheap (about four evaluations per lattice point: see coons_body_sample()).
+ * Adaptive sampling always measures.
  */
 #define COONS_SAMPLE_UNMEASURED 1u
 
@@ -100,7 +100,9 @@ COONS_EXPORT void coons_sample_options_init(coons_sample_options *o);
  * margin covers maxima between the samples). That measured deviation (an
  * upper bound of the distance from those exact points to the mesh) is
  * stored with the part: coons_mesh_part_sampling(). With a fixed
- * `resolution` it is measured the same way but not enforced.
+ * `resolution` it is measured, not enforced, and cheaply: on the 3 x 3
+ * samples of every cell (edge midpoints and centre), and where those find
+ * more than half the tolerance on the 7 x 7 samples above.
  *
  * A morph (coons_body_new_morph(), also transformed) is sampled at its
  * current time on the one lattice and face list of its whole path, as
@@ -114,7 +116,9 @@ COONS_EXPORT void coons_sample_options_init(coons_sample_options *o);
  *         evaluates to a non-finite point, or whose boundary collapses
  *         entirely); ::COONS_E_LIMIT (more triangles than `max_triangles`
  *         would be needed; the message says the limit and how to raise
- *         it); ::COONS_E_NOMEM. Thread-safe for distinct outputs.
+ *         it, and for a tolerance the predicted count and a tolerance to
+ *         try that was sampled within the limit before it is named);
+ *         ::COONS_E_NOMEM. Thread-safe for distinct outputs.
  */
 COONS_EXPORT coons_status coons_body_sample(const coons_body *b,
                                             const coons_sample_options *opts, const char *name,

@@ -23,8 +23,8 @@ void coons_csg_report_init(coons_csg_report *r)
 coons_status coons__csg_records_check(const coons_csg_options *opts, const coons_csg_report *report,
                                       coons_error *err)
 {
-    /* options of version 2 (no `threads`) and reports of version 1 (no
-     * pinch fields) are read too */
+    /* options of version 2 (no `threads`) and reports of versions 1 (no
+     * pinch fields) and 2 (no tolerance and deviation) are read too */
     if (opts && coons__record_version_check("csg options", opts->version, 2, COONS_CSG_OPTIONS_VERSION,
                                             "COONS_CSG_OPTIONS_INIT", err))
         return COONS_E_INVALID;
@@ -34,17 +34,23 @@ coons_status coons__csg_records_check(const coons_csg_options *opts, const coons
     return COONS_OK;
 }
 
-/* The bytes a version-1 report has: everything before the pinch fields. */
-#define REPORT_V1_SIZE offsetof(coons_csg_report, pinch_edges_split)
+/* The bytes a report of an older version has: a version-1 report ends
+ * before the pinch fields, a version-2 report before `tolerance`. */
+static size_t report_size(unsigned version)
+{
+    return version == 1   ? offsetof(coons_csg_report, pinch_edges_split)
+           : version == 2 ? offsetof(coons_csg_report, tolerance)
+                          : sizeof(coons_csg_report);
+}
 
 void coons__csg_report_clear(coons_csg_report *report)
 {
     if (!report) return;
-    if (report->version == 1) {
+    if (report->version != COONS_CSG_REPORT_VERSION) {
         coons_csg_report full;
         coons_csg_report_init(&full);
-        full.version = 1;
-        memcpy(report, &full, REPORT_V1_SIZE);
+        full.version = report->version;
+        memcpy(report, &full, report_size(report->version));
     } else {
         coons_csg_report_init(report);
     }
@@ -60,8 +66,9 @@ coons_csg_report *coons__csg_report_open(coons_csg_report *report, coons_csg_rep
 void coons__csg_report_close(coons_csg_report *report, const coons_csg_report *filled)
 {
     if (!report || filled == report || !filled) return;
-    memcpy(report, filled, REPORT_V1_SIZE);
-    report->version = 1;
+    unsigned version = report->version;
+    memcpy(report, filled, report_size(version));
+    report->version = version;
 }
 
 void coons__csg_options_read(const coons_csg_options *in, coons_csg_options *out)

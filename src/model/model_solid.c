@@ -65,6 +65,17 @@ static coons_status solidify(coons_mesh *m, const coons_csg_options *copts, int 
     return st;
 }
 
+/* What sampling measured, into the report (version 3 on): the tolerance
+ * and the largest deviation of the sampled shells (coons_mesh_deviation()
+ * before they are repaired or united). */
+static void note_sampling(coons_csg_report *report, double tol, double dev)
+{
+    if (report && report->version >= 3) {
+        report->tolerance = tol;
+        report->deviation = dev;
+    }
+}
+
 /* The checks every entry makes first: the records' versions, then a
  * cleared report and no output. */
 static coons_status begin(const coons_csg_options *copts, coons_mesh **out,
@@ -98,9 +109,13 @@ coons_status coons_model_solidify(const coons_model *model, const coons_sample_o
             return st;
         }
         *out = m;
+        note_sampling(report, tol, coons_mesh_deviation(m));
         return COONS_OK;
     }
-    return solidify(m, copts, unite, out, report, err);
+    double dev = coons_mesh_deviation(m);
+    st = solidify(m, copts, unite, out, report, err);
+    if (!st) note_sampling(report, tol, dev);
+    return st;
 }
 
 /* One body alone: sampled as coons__model_sample() would sample it (the
@@ -136,7 +151,11 @@ coons_status coons_model_solidify_body(const coons_model *model, size_t index,
     if (progress) progress(userdata, "sample", 1.0);
     if (!coons_csg_is_available()) {
         *out = m;
+        note_sampling(report, o.tolerance, coons_mesh_deviation(m));
         return COONS_OK;
     }
-    return solidify(m, copts, 0, out, report, err);
+    double dev = coons_mesh_deviation(m);
+    st = solidify(m, copts, 0, out, report, err);
+    if (!st) note_sampling(report, o.tolerance, dev);
+    return st;
 }

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Flat faces sampled by their boundary (flat.c). Internal.
+/* Flat faces sampled by their boundary (flat.c), and what flat.c shares
+ * with the ruled faces (ruled.c). Internal.
  *
  * A face of a body whose points all lie in one plane needs no interior
  * lattice points: its mesh is a quality triangulation of its boundary
@@ -13,6 +14,31 @@
 /* Smallest angle, in degrees, the polygon mesher aims at (Delaunay
  * refinement; angles of the polygon itself below it stay). */
 #define COONS__FLAT_MIN_ANGLE 20.0
+
+/* Planarity and area-equality tolerance, relative to the body's extent
+ * (positions are scaled to about 1): far below any sampling tolerance,
+ * far above rounding (a few ulps). */
+#define COONS__FLAT_EPS 1e-12
+
+/* Twice the signed area of abc in the plane. */
+static inline double coons__orient2(const double *a, const double *b, const double *c)
+{
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* The corners (ia, ib) of triangle k (0, 1) of cell (p, q) split by
+ * diagonal dg (as emit_cells() in sample.c splits it). */
+static inline void coons__cell_tri(size_t p, size_t q, unsigned char dg, int k, size_t ia[3],
+                                   size_t ib[3])
+{
+    /* A = (p,q), B = (p+1,q), C = (p+1,q+1), D = (p,q+1) */
+    static const int ca[2][2][3] = {{{0, 1, 1}, {0, 1, 0}}, {{0, 1, 0}, {1, 1, 0}}};
+    static const int cb[2][2][3] = {{{0, 0, 1}, {0, 1, 1}}, {{0, 0, 1}, {0, 1, 1}}};
+    for (int j = 0; j < 3; j++) {
+        ia[j] = p + (size_t)ca[dg][k][j];
+        ib[j] = q + (size_t)cb[dg][k][j];
+    }
+}
 
 /* Replaces the lattice triangles of every flat face of s's final mesh
  * (not shared, not glued; planar within FLAT_EPS of the body's extent at
@@ -28,20 +54,5 @@
  * happens with COONS__SAMPLE_LATTICE_FACES or for morph bodies.
  * Returns COONS_OK, COONS_E_NOMEM, or an evaluation error of the body. */
 coons_status coons__flat_faces(sampler *s);
-
-/* Triangulates the simple polygon xy[0 .. 2m-1] (m points, counter-
- * clockwise, no point repeated) with Steiner points inside it, so that the
- * angles are at least `min_angle` degrees where the polygon's own angles
- * and edge lengths allow (the polygon's edges are never split).
- * On success *ok = 1, *pts (ns x 2, coons__malloc'd, may be NULL when
- * ns = 0) holds the Steiner points, numbered m, m+1, ... in *tri
- * (3 *nt indices, counter-clockwise, coons__malloc'd). *ok = 0 (nothing
- * allocated) when the polygon is not simple, has a repeated point, or the
- * result fails its checks (every triangle counter-clockwise, every polygon
- * edge an edge of a triangle, areas summing to the polygon's).
- * Returns COONS_OK or COONS_E_NOMEM. */
-coons_status coons__polygon_mesh(const double *xy, size_t m, double min_angle, double **pts,
-                                 size_t *ns, uint32_t **tri, size_t *nt, int *ok,
-                                 coons_error *err);
 
 #endif

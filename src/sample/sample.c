@@ -18,7 +18,7 @@
  * tolerance) plus 64 ulps of the largest coordinate: evaluating the same
  * point through different blend sums (e.g. (1-v)P + vP) differs from P by
  * a few ulps of the coordinates, while a real edge of an adaptive lattice
- * is at least MIN_WIDTH times the parametric speed, many orders above.
+ * is at least COONS__SAMPLE_MIN_WIDTH times the parametric speed, many orders above.
  *
  * Density: the lattices start proportional to the body's extent along each
  * direction, plus the breakpoints of the body's data (knots, segment ends,
@@ -43,8 +43,14 @@
  * cells across the whole lattice, and re-squaring them refines everything
  * (an aspect-driven loop gave 44 times the triangles on the polyline
  * example). Cells converging to an apex are thin however they are split.
+ *
+ * This file: the lattices, their mesh, the sampling loop and the part it
+ * emits. The measurement and refinement are in sample_measure.c, the
+ * options, budgets and refusals in sample_limits.c.
  */
 #include <float.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "body_impl.h"
@@ -60,7 +66,6 @@ enum {
     START_INTERVALS = 4, /* along the longest direction */
     MAX_ROUNDS = 200
 };
-#define MIN_WIDTH (1.0 / 1048576.0) /* 2^-20: narrowest interval refinement makes */
 #define LOOP_FRACTION 0.75          /* the coarse estimate aims below the tolerance */
 /* The final measurement must stay below this share of the tolerance: the
  * true maximum lies between the samples and was seen 5% above them (a
@@ -69,21 +74,18 @@ enum {
 /* The measuring pass samples every cell at multiples of 1/6 of its sides:
  * edge midpoints and the centroids of both triangles are among them. */
 #define MEASURE_STEPS 6
-/* A lattice predicted above this many times a budget is refused before
- * refining (predict_budget). The prediction assumes the deviation falls
- * like h^2; halving overshoots it, so it is low: over every example and
- * tests/data model at tolerances 0.3 to 0.0003 (984 samplings), no round
- * predicted more than the final count (the spool at 1e-6: 5.2e7 predicted
- * from the first round, 5.0e7 on the 2048^3 lattice refinement reaches). */
-#define PREDICT_MARGIN 2.0
-
+/* A fixed lattice whose cheap measurement finds more than this share of
+ * the tolerance is measured again on the finer samples (measure_fixed):
+ * the cheap figure was within this factor of the fine one on every example
+ * (see measure_fixed). */
+#define CHEAP_CONFIRM 0.5
 const face_desc coons__faces[6] = {
     {0, 1, 2, 1, 0.0, "u0"}, {0, 1, 2, 0, 1.0, "u1"}, {1, 0, 2, 0, 0.0, "v0"},
     {1, 0, 2, 1, 1.0, "v1"}, {2, 0, 1, 1, 0.0, "w0"}, {2, 0, 1, 0, 1.0, "w1"}};
 
-#define FACES coons__faces
+#define coons__faces coons__faces
 
-static coons_status ensure(double **p, size_t *cap, size_t need, coons_error *err)
+coons_status coons__sampler_ensure(double **p, size_t *cap, size_t need, coons_error *err)
 {
     if (need <= *cap) return COONS_OK;
     double *q = coons__malloc_array(need, sizeof(double));
@@ -95,10 +97,10 @@ static coons_status ensure(double **p, size_t *cap, size_t need, coons_error *er
 }
 
 /* Evaluates face f on av[0..na-1] x bv[0..nb-1] into out[(i*nb + j)*3]. */
-static coons_status eval_face(sampler *s, int f, const double *av, size_t na, const double *bv,
+coons_status coons__sampler_eval_face(sampler *s, int f, const double *av, size_t na, const double *bv,
                               size_t nb, double *out)
 {
-    const face_desc *F = &FACES[f];
+    const face_desc *F = &coons__faces[f];
     const double *q[3];
     size_t c[3];
     q[F->fixed] = &F->val;
@@ -118,17 +120,7 @@ static coons_status eval_face(sampler *s, int f, const double *av, size_t na, co
     return COONS_OK;
 }
 
-static size_t tri_estimate(const size_t n[3], unsigned skip)
-{
-    /* Two triangles per cell of the faces sampled, before degenerate ones
-     * drop; the lattice sizes are bounded far below overflow by the caller. */
-    size_t t = 0;
-    for (int f = 0; f < 6; f++)
-        if (!(skip & 1u << f)) t += 2 * n[FACES[f].a] * n[FACES[f].b];
-    return t;
-}
-
-static coons_status alloc_lattices(sampler *s)
+coons_status coons__sampler_alloc_lattices(sampler *s)
 {
     for (int d = 0; d < 3; d++) {
         coons__free(s->mark[d]);
@@ -161,18 +153,18 @@ static coons_status start_counts(sampler *s)
     enum { K = 9 };
     double g[K], len[3] = {0, 0, 0};
     for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
-    coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+    coons_status st = coons__sampler_ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
     if (st) return st;
     for (int f = 0; f < 6; f++) {
-        if ((st = eval_face(s, f, g, K, g, K, s->buf))) return st;
+        if ((st = coons__sampler_eval_face(s, f, g, K, g, K, s->buf))) return st;
         for (int j = 0; j < K; j++) {
             double la = 0, lb = 0;
             for (int i = 0; i + 1 < K; i++) {
                 la += v3_dist(s->buf + 3 * (i * K + j), s->buf + 3 * ((i + 1) * K + j));
                 lb += v3_dist(s->buf + 3 * (j * K + i), s->buf + 3 * (j * K + i + 1));
             }
-            if (la > len[FACES[f].a]) len[FACES[f].a] = la;
-            if (lb > len[FACES[f].b]) len[FACES[f].b] = lb;
+            if (la > len[coons__faces[f].a]) len[coons__faces[f].a] = la;
+            if (lb > len[coons__faces[f].b]) len[coons__faces[f].b] = lb;
         }
     }
     /* A body whose boundary runs far outside its control box (a huge
@@ -249,7 +241,7 @@ static coons_status init_lattices(sampler *s)
             if (!s->t[d]) return coons__error_nomem(s->err);
             memcpy(s->t[d], s->start_t[d], (s->n[d] + 1) * sizeof(double));
         }
-        return alloc_lattices(s);
+        return coons__sampler_alloc_lattices(s);
     }
     if (s->skip == 63 && !s->o->resolution) {
         /* Every face shared (a cell inside a lattice): no boundary of its
@@ -262,7 +254,7 @@ static coons_status init_lattices(sampler *s)
             s->t[d][0] = 0.0;
             s->t[d][1] = 1.0;
         }
-        return alloc_lattices(s);
+        return coons__sampler_alloc_lattices(s);
     }
     if (s->o->resolution) {
         for (int d = 0; d < 3; d++) s->n[d] = s->o->resolution;
@@ -270,32 +262,17 @@ static coons_status init_lattices(sampler *s)
         return st;
     }
     for (int d = 0; d < 3 && !st; d++) st = start_values(s, d);
-    return st ? st : alloc_lattices(s);
+    return st ? st : coons__sampler_alloc_lattices(s);
 }
 
-static coons_status limit_error(sampler *s, size_t need)
-{
-    if (s->o->resolution)
-        return coons__error_set(s->err, COONS_E_LIMIT,
-                                "body '%s': resolution %u gives %zu triangles, more than the "
-                                "limit of %zu; raise max_triangles (coons2stl --max-triangles N) "
-                                "or lower the resolution",
-                                s->name, s->o->resolution, need, s->o->max_triangles);
-    return coons__error_set(s->err, COONS_E_LIMIT,
-                            "body '%s': sampling to tolerance %g needs more than %zu triangles "
-                            "(the limit); raise max_triangles (coons2stl --max-triangles N) or "
-                            "loosen the tolerance",
-                            s->name, s->o->tolerance, s->o->max_triangles);
-}
-
-/* First face (in FACES order) holding lattice point ijk, of those not in
+/* First face (in coons__faces order) holding lattice point ijk, of those not in
  * the mask `skip`: that face owns it. -1 when no such face holds it. */
 static int owner(const sampler *s, const size_t ijk[3], unsigned skip)
 {
     for (int f = 0; f < 6; f++) {
         if (skip & 1u << f) continue;
-        size_t want = FACES[f].val == 0.0 ? 0 : s->n[FACES[f].fixed];
-        if (ijk[FACES[f].fixed] == want) return f;
+        size_t want = coons__faces[f].val == 0.0 ? 0 : s->n[coons__faces[f].fixed];
+        if (ijk[coons__faces[f].fixed] == want) return f;
     }
     return -1;
 }
@@ -330,15 +307,10 @@ static void free_mesh(sampler *s)
     }
 }
 
-static inline const double *rep_pos(sampler *s, uint32_t id)
-{
-    return s->pos + 3 * (size_t)coons__uf_find(s->uf, id);
-}
-
 /* Raw vertex of lattice point (ia, ib) of face f. */
 static inline uint32_t lattice_id(const sampler *s, int f, size_t ia, size_t ib)
 {
-    return s->ids[f][ia * (s->n[FACES[f].b] + 1) + ib];
+    return s->ids[f][ia * (s->n[coons__faces[f].b] + 1) + ib];
 }
 
 /* The arrays of one build: raw vertices (the lattice points on the
@@ -359,7 +331,7 @@ static coons_status alloc_mesh(sampler *s)
     if (!s->pos || !s->uf || !s->evaluated) return coons__error_nomem(s->err);
     size_t cells = 0;
     for (int f = 0; f < 6; f++) {
-        size_t na = n[FACES[f].a], nb = n[FACES[f].b];
+        size_t na = n[coons__faces[f].a], nb = n[coons__faces[f].b];
         s->ids[f] = coons__malloc_array((na + 1) * (nb + 1), sizeof(uint32_t));
         s->diag[f] = coons__malloc_array(na * nb, 1);
         if (!s->ids[f] || !s->diag[f]) return coons__error_nomem(s->err);
@@ -380,13 +352,13 @@ static coons_status eval_lattice(sampler *s, double lo[3], double hi[3])
     const size_t *n = s->n;
     uint32_t next = 0;
     for (int f = 0; f < 6; f++) {
-        const face_desc *F = &FACES[f];
+        const face_desc *F = &coons__faces[f];
         size_t na = n[F->a], nb = n[F->b];
         int sampled = !(s->skip & 1u << f);
         coons_status st = COONS_OK;
         if (sampled) {
-            st = ensure(&s->buf, &s->buf_cap, 3 * (na + 1) * (nb + 1), s->err);
-            if (!st) st = eval_face(s, f, s->t[F->a], na + 1, s->t[F->b], nb + 1, s->buf);
+            st = coons__sampler_ensure(&s->buf, &s->buf_cap, 3 * (na + 1) * (nb + 1), s->err);
+            if (!st) st = coons__sampler_eval_face(s, f, s->t[F->a], na + 1, s->t[F->b], nb + 1, s->buf);
             if (st) return st;
         }
         for (size_t ia = 0; ia <= na; ia++)
@@ -401,7 +373,7 @@ static coons_status eval_lattice(sampler *s, double lo[3], double hi[3])
                     id = next++;
                     v3_set(s->pos + 3 * (size_t)id, 0, 0, 0);
                 } else {
-                    id = lattice_id(s, g, ijk[FACES[g].a], ijk[FACES[g].b]);
+                    id = lattice_id(s, g, ijk[coons__faces[g].a], ijk[coons__faces[g].b]);
                 }
                 s->ids[f][ia * (nb + 1) + ib] = id;
                 if (sampled && owner(s, ijk, s->skip) == f) {
@@ -427,7 +399,7 @@ static void glue_opposite_faces(sampler *s)
     for (int d = 0; d < 3; d++) {
         if (s->skip & 3u << 2 * d) continue;
         const uint32_t *i0 = s->ids[2 * d], *i1 = s->ids[2 * d + 1];
-        size_t np = (s->n[FACES[2 * d].a] + 1) * (s->n[FACES[2 * d].b] + 1), k;
+        size_t np = (s->n[coons__faces[2 * d].a] + 1) * (s->n[coons__faces[2 * d].b] + 1), k;
         for (k = 0; k < np; k++)
             if (v3_dist(s->pos + 3 * (size_t)i0[k], s->pos + 3 * (size_t)i1[k]) > s->merge_tol)
                 break;
@@ -442,7 +414,7 @@ static void merge_lattice_lines(sampler *s)
 {
     for (int f = 0; f < 6; f++) {
         if (s->skip & 1u << f) continue;
-        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
+        size_t na = s->n[coons__faces[f].a], nb = s->n[coons__faces[f].b];
         for (size_t ia = 0; ia <= na; ia++)
             for (size_t ib = 0; ib <= nb; ib++) {
                 if (ia < na) merge_close(s, lattice_id(s, f, ia, ib), lattice_id(s, f, ia + 1, ib));
@@ -457,13 +429,13 @@ static void choose_diagonals(sampler *s)
 {
     for (int f = 0; f < 6; f++) {
         if (s->skip & 1u << f) continue;
-        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
+        size_t na = s->n[coons__faces[f].a], nb = s->n[coons__faces[f].b];
         for (size_t p = 0; p < na; p++)
             for (size_t q = 0; q < nb; q++) {
                 uint32_t i00 = lattice_id(s, f, p, q), i10 = lattice_id(s, f, p + 1, q);
                 uint32_t i01 = lattice_id(s, f, p, q + 1), i11 = lattice_id(s, f, p + 1, q + 1);
-                double d1 = v3_dist(rep_pos(s, i00), rep_pos(s, i11));
-                double d2 = v3_dist(rep_pos(s, i10), rep_pos(s, i01));
+                double d1 = v3_dist(coons__sampler_rep(s, i00), coons__sampler_rep(s, i11));
+                double d2 = v3_dist(coons__sampler_rep(s, i10), coons__sampler_rep(s, i01));
                 unsigned char dg = d2 < d1;
                 s->diag[f][p * nb + q] = dg;
                 if (dg)
@@ -482,8 +454,8 @@ static void emit_cells(sampler *s)
     s->flat_faces = 0;
     for (int f = 0; f < 6; f++) {
         s->face_tri[f] = nt;
-        if (s->glued & 1 << FACES[f].fixed || s->skip & 1u << f) continue;
-        size_t na = s->n[FACES[f].a], nb = s->n[FACES[f].b];
+        if (s->glued & 1 << coons__faces[f].fixed || s->skip & 1u << f) continue;
+        size_t na = s->n[coons__faces[f].a], nb = s->n[coons__faces[f].b];
         for (size_t p = 0; p < na; p++)
             for (size_t q = 0; q < nb; q++) {
                 uint32_t A = coons__uf_find(s->uf, lattice_id(s, f, p, q));
@@ -501,7 +473,7 @@ static void emit_cells(sampler *s)
                 for (int k = 0; k < 2; k++) {
                     uint32_t x = t[k][0], y = t[k][1], z = t[k][2];
                     if (x == y || y == z || z == x) continue; /* collapsed */
-                    if (FACES[f].flip) {
+                    if (coons__faces[f].flip) {
                         uint32_t tmp = y;
                         y = z;
                         z = tmp;
@@ -572,248 +544,6 @@ static coons_status build(sampler *s)
     return COONS_OK;
 }
 
-static inline double dmin(double a, double b) { return a < b ? a : b; }
-static inline double dmax(double a, double b) { return a > b ? a : b; }
-
-/* |o - t dir|^2: the squared distance of a point, o from a base point,
- * to the point at t along dir. */
-static double off_dist2(const double o[3], double t, const double dir[3])
-{
-    double q[3];
-    v3_copy(q, o);
-    v3_axpy(q, -t, dir);
-    return v3_dot(q, q);
-}
-
-/* Squared distance from p to segment ab. */
-static double seg_dist2(const double p[3], const double a[3], const double b[3])
-{
-    double ab[3], ap[3];
-    v3_sub(ab, b, a);
-    v3_sub(ap, p, a);
-    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(ap, ab) / l2 : 0;
-    return off_dist2(ap, clamp01(t), ab);
-}
-
-/* Squared distance from p to triangle abc (closest point by Voronoi
- * regions: Ericson, Real-Time Collision Detection, 5.1.5); also right for
- * degenerate triangles, whose regions reduce to sides and corners. */
-static double tri_dist2(const double p[3], const double a[3], const double b[3],
-                        const double c[3])
-{
-    double ab[3], ac[3], ap[3], q[3];
-    v3_sub(ab, b, a);
-    v3_sub(ac, c, a);
-    v3_sub(ap, p, a);
-    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return v3_dot(ap, ap);
-    double bp[3];
-    v3_sub(bp, p, b);
-    double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return v3_dot(bp, bp);
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double v = d1 / (d1 - d3);
-        return off_dist2(ap, v, ab);
-    }
-    double cp[3];
-    v3_sub(cp, p, c);
-    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return v3_dot(cp, cp);
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double w = d2 / (d2 - d6);
-        return off_dist2(ap, w, ac);
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        double bc[3];
-        v3_sub(bc, c, b);
-        return off_dist2(bp, w, bc);
-    }
-    double den = va + vb + vc;
-    if (!(den > 0)) /* degenerate (collinear): the nearest side */
-        return dmin(seg_dist2(p, a, b), dmin(seg_dist2(p, b, c), seg_dist2(p, c, a)));
-    double v = vb / den, w = vc / den;
-    v3_copy(q, ap);
-    v3_axpy(q, -v, ab);
-    v3_axpy(q, -w, ac);
-    return v3_dot(q, q);
-}
-
-/* Distance from p to the cell's two triangles (diagonal dg): an upper bound
- * of the distance from p to the mesh. Both count: on a twisted cell the
- * tilted neighbour of the triangle that holds p's parameters is often the
- * nearer one (taking only that triangle gave the deformed cube example 4
- * times the lattice lines along w). */
-static double cell_dist(const double p[3], const double *P00, const double *P10,
-                        const double *P01, const double *P11, int dg)
-{
-    if (!dg) return sqrt(dmin(tri_dist2(p, P00, P10, P11), tri_dist2(p, P00, P11, P01)));
-    return sqrt(dmin(tri_dist2(p, P00, P10, P01), tri_dist2(p, P10, P11, P01)));
-}
-
-static void mark(sampler *s, int d, size_t i)
-{
-    if (s->t[d][i + 1] - s->t[d][i] >= 2 * MIN_WIDTH) s->mark[d][i] = 1;
-}
-
-/* Records that interval i of direction d showed the deviation `ratio`
- * times the threshold: the deviation of a smooth surface from its
- * triangles falls like h^2 with the cell's side h, so the interval must
- * shrink about sqrt(ratio) times (never below MIN_WIDTH). A kink inside
- * a cell falls only like h: it needs more, so the prediction is low,
- * never high, there. */
-static void note_need(sampler *s, int d, size_t i, double ratio)
-{
-    if (!(ratio > 1)) return;
-    double k = sqrt(ratio), most = (s->t[d][i + 1] - s->t[d][i]) / MIN_WIDTH;
-    if (k > most) k = most;
-    if (k > s->need[d][i]) s->need[d][i] = k;
-}
-
-/* Compares F with the mesh at the (r+1)^2 sub-samples of every cell, keeps
- * the largest distance in s->dev and, when thr > 0, marks the intervals to
- * halve. Rows of sub-samples are evaluated in blocks of cells along a, so
- * that the basis along b is computed once per block. */
-static coons_status scan(sampler *s, int r, double thr)
-{
-    enum { BLOCK_POINTS = 1 << 15 };
-    s->dev = 0;
-    if (thr > 0)
-        for (int d = 0; d < 3; d++) memset(s->need[d], 0, s->n[d] * sizeof(double));
-    for (int f = 0; f < 6; f++) {
-        const face_desc *F = &FACES[f];
-        if (s->glued & 1 << F->fixed || s->skip & 1u << f) continue;
-        size_t na = s->n[F->a], nb = s->n[F->b], nbs = (size_t)r * nb + 1;
-        size_t block = BLOCK_POINTS / ((size_t)r * nbs);
-        if (block < 1) block = 1;
-        if (block > na) block = na;
-        const double *ta = s->t[F->a], *tb = s->t[F->b];
-        coons_status st = ensure(&s->bs, &s->bs_cap, nbs + (size_t)r * block + 1, s->err);
-        if (!st) st = ensure(&s->buf, &s->buf_cap, 3 * ((size_t)r * block + 1) * nbs, s->err);
-        if (st) return st;
-        double *as = s->bs + nbs;
-        for (size_t q = 0; q < nb; q++)
-            for (int j = 0; j < r; j++) s->bs[q * r + j] = tb[q] + (tb[q + 1] - tb[q]) * j / r;
-        s->bs[nb * r] = tb[nb];
-        for (size_t p0 = 0; p0 < na; p0 += block) {
-            size_t p1 = p0 + block < na ? p0 + block : na, rows = (p1 - p0) * (size_t)r + 1;
-            for (size_t p = p0; p < p1; p++)
-                for (int i = 0; i < r; i++)
-                    as[(p - p0) * r + i] = ta[p] + (ta[p + 1] - ta[p]) * i / r;
-            as[rows - 1] = ta[p1];
-            if ((st = eval_face(s, f, as, rows, s->bs, nbs, s->buf))) return st;
-            for (size_t p = p0; p < p1; p++)
-                for (size_t q = 0; q < nb; q++) {
-                    const uint32_t *id = s->ids[f];
-                    const double *P00 = rep_pos(s, id[p * (nb + 1) + q]);
-                    const double *P10 = rep_pos(s, id[(p + 1) * (nb + 1) + q]);
-                    const double *P01 = rep_pos(s, id[p * (nb + 1) + q + 1]);
-                    const double *P11 = rep_pos(s, id[(p + 1) * (nb + 1) + q + 1]);
-                    int dg = s->diag[f][p * nb + q];
-                    double ea = 0, eb = 0, ec = 0;
-                    for (int i = 0; i <= r; i++)
-                        for (int j = 0; j <= r; j++) {
-                            int ei = i == 0 || i == r, ej = j == 0 || j == r;
-                            if (ei && ej) continue; /* lattice point */
-                            size_t row = (p - p0) * (size_t)r + (size_t)i;
-                            const double *X = s->buf + 3 * (row * nbs + q * r + j);
-                            double e = cell_dist(X, P00, P10, P01, P11, dg);
-                            if (ej)
-                                ea = dmax(ea, e);
-                            else if (ei)
-                                eb = dmax(eb, e);
-                            else
-                                ec = dmax(ec, e);
-                        }
-                    double e = dmax(ea, dmax(eb, ec));
-                    if (e > s->dev) s->dev = e;
-                    if (!(thr > 0)) continue;
-                    double la = dmax(v3_dist(P00, P10), v3_dist(P01, P11));
-                    double lb = dmax(v3_dist(P00, P01), v3_dist(P10, P11));
-                    int ma = ea > thr, mb = eb > thr;
-                    if (ec > thr && !ma && !mb) {
-                        ma = la >= lb;
-                        mb = lb >= la;
-                    }
-                    if (ma) mark(s, F->a, p);
-                    if (mb) mark(s, F->b, q);
-                    note_need(s, F->a, p, (ma && !(ea > thr) ? ec : ea) / thr);
-                    note_need(s, F->b, q, (mb && !(eb > thr) ? ec : eb) / thr);
-                }
-        }
-    }
-    return COONS_OK;
-}
-
-/* Halves the marked intervals; returns how many were split. */
-static coons_status refine(sampler *s, size_t *split)
-{
-    *split = 0;
-    for (int d = 0; d < 3; d++) {
-        size_t m = 0;
-        for (size_t i = 0; i < s->n[d]; i++) m += s->mark[d][i];
-        if (!m) continue;
-        double *t = coons__malloc_array(s->n[d] + m + 1, sizeof(double));
-        if (!t) return coons__error_nomem(s->err);
-        size_t k = 0;
-        for (size_t i = 0; i < s->n[d]; i++) {
-            t[k++] = s->t[d][i];
-            if (s->mark[d][i]) t[k++] = 0.5 * (s->t[d][i] + s->t[d][i + 1]);
-        }
-        t[k] = 1.0;
-        coons__free(s->t[d]);
-        s->t[d] = t;
-        s->n[d] += m;
-        *split += m;
-    }
-    return alloc_lattices(s);
-}
-
-static coons_status check_budget(sampler *s)
-{
-    size_t need = tri_estimate(s->n, s->skip);
-    return need > s->o->max_triangles ? limit_error(s, need) : COONS_OK;
-}
-
-/* Bounded work: from the deviations the last coarse scan measured
- * (note_need), the interval counts refinement would reach, and the
- * triangles (and volume cells) they give. A request predicted above
- * PREDICT_MARGIN times a budget is refused at once, before the rounds
- * that would fill memory; one that may fit runs on to the exact checks
- * (check_budget, the volume mesh's cell count). */
-static coons_status predict_budget(sampler *s)
-{
-    double m[3], tri = 0;
-    for (int d = 0; d < 3; d++) {
-        m[d] = 0;
-        for (size_t i = 0; i < s->n[d]; i++) m[d] += dmax(1.0, s->need[d][i]);
-    }
-    for (int f = 0; f < 6; f++)
-        if (!(s->skip & 1u << f)) tri += 2 * m[FACES[f].a] * m[FACES[f].b];
-    double cells = m[0] * m[1] * m[2];
-    double tmax = (double)s->o->max_triangles, cmax = (double)s->o->max_cells;
-    if (!(tri > PREDICT_MARGIN * tmax) && !(cmax > 0 && cells > PREDICT_MARGIN * cmax))
-        return COONS_OK;
-    int by_cells = !(tri > PREDICT_MARGIN * tmax);
-    /* The count goes about as 1 / tolerance (h^2 per face, two directions). */
-    double fit = s->o->tolerance * (by_cells ? pow(cells / cmax, 2.0 / 3.0) : tri / tmax);
-    return coons__error_set(s->err, COONS_E_LIMIT,
-                            "body '%s': sampling to tolerance %g needs more than %zu %s (the "
-                            "limit): about %.3g predicted from the deviation %.3g on the "
-                            "%zu x %zu x %zu lattice; raise %s or loosen the tolerance (try "
-                            "%.2g or more)",
-                            s->name, s->o->tolerance, by_cells ? s->o->max_cells
-                                                               : s->o->max_triangles,
-                            by_cells ? "volume cells" : "triangles", by_cells ? cells : tri,
-                            s->dev / s->scale, s->n[0], s->n[1], s->n[2],
-                            by_cells ? "max_cells (or give coons2stl --resolution)"
-                                     : "max_triangles (coons2stl --max-triangles N)",
-                            fit);
-}
-
 /* The body's orientation, for a sampler that leaves faces out (its own
  * shell is then open): the sign of the volume enclosed by all six faces
  * sampled on a K x K grid each, wound as emit_cells() winds them. */
@@ -822,9 +552,9 @@ static coons_status coarse_sign(sampler *s)
     enum { K = 9 };
     double g[K], vol = 0, o[3] = {0, 0, 0};
     for (int i = 0; i < K; i++) g[i] = (double)i / (K - 1);
-    coons_status st = ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
+    coons_status st = coons__sampler_ensure(&s->buf, &s->buf_cap, 3 * K * K, s->err);
     for (int f = 0; f < 6 && !st; f++) {
-        if ((st = eval_face(s, f, g, K, g, K, s->buf))) break;
+        if ((st = coons__sampler_eval_face(s, f, g, K, g, K, s->buf))) break;
         if (f == 0) v3_copy(o, s->buf); /* a point of the shell: less cancellation */
         for (int p = 0; p + 1 < K; p++)
             for (int q = 0; q + 1 < K; q++) {
@@ -835,8 +565,8 @@ static coons_status coarse_sign(sampler *s)
                 for (int k = 0; k < 2; k++) {
                     double a[3], b[3], c[3], bc[3];
                     v3_sub(a, tri[k][0], o);
-                    v3_sub(b, tri[k][FACES[f].flip ? 2 : 1], o);
-                    v3_sub(c, tri[k][FACES[f].flip ? 1 : 2], o);
+                    v3_sub(b, tri[k][coons__faces[f].flip ? 2 : 1], o);
+                    v3_sub(c, tri[k][coons__faces[f].flip ? 1 : 2], o);
                     v3_cross(bc, b, c);
                     vol += v3_dot(a, bc);
                 }
@@ -846,34 +576,53 @@ static coons_status coarse_sign(sampler *s)
     return st;
 }
 
-static coons_status run(sampler *s)
+/* A fixed lattice's deviation, cheaply: the 3 x 3 samples of every cell
+ * (edge midpoints and centre, as each round of adaptive refinement scans
+ * them: about 4 evaluations per lattice point); where that finds more than
+ * CHEAP_CONFIRM of the tolerance, the 7 x 7 samples of the adaptive
+ * acceptance (MEASURE_STEPS) give the figure reported. */
+static coons_status measure_fixed(sampler *s)
+{
+    s->measured = 1;
+    coons_status st = coons__sampler_scan(s, 2, 0.0);
+    if (st || !(s->dev > CHEAP_CONFIRM * s->tol)) return st;
+    return coons__sampler_scan(s, MEASURE_STEPS, 0.0);
+}
+
+static coons_status run_once(sampler *s)
 {
     coons_status st = init_lattices(s);
     if (st) return st;
     if (s->skip && s->skip != 63 && (st = coarse_sign(s))) return st;
     if (s->o->resolution) {
-        if ((st = check_budget(s)) || (st = build(s))) return st;
+        if ((st = coons__sampler_check_budget(s)) || (st = build(s))) return st;
         if (s->o->flags & COONS_SAMPLE_UNMEASURED) return COONS_OK;
-        s->measured = 1;
-        return scan(s, MEASURE_STEPS, 0.0);
+        return measure_fixed(s);
     }
     for (int round = 0; round < MAX_ROUNDS; round++) {
-        if ((st = check_budget(s)) || (st = build(s))) return st;
-        if ((st = scan(s, 2, LOOP_FRACTION * s->tol)) || (st = predict_budget(s))) return st;
+        if ((st = coons__sampler_check_budget(s)) || (st = build(s))) return st;
+        if ((st = coons__sampler_scan(s, 2, LOOP_FRACTION * s->tol)) || (st = coons__sampler_predict_budget(s))) return st;
         size_t split;
-        if ((st = refine(s, &split))) return st;
+        if ((st = coons__sampler_refine(s, &split))) return st;
         if (split) continue;
         /* The coarse estimate is satisfied: measure on the finer samples. */
-        if ((st = scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->tol))) return st;
+        if ((st = coons__sampler_scan(s, MEASURE_STEPS, ACCEPT_FRACTION * s->tol))) return st;
         s->measured = 1;
         if (s->dev <= ACCEPT_FRACTION * s->tol) return COONS_OK;
-        if ((st = refine(s, &split))) return st;
+        if ((st = coons__sampler_refine(s, &split))) return st;
         if (!split) break;
     }
     return coons__error_set(s->err, COONS_E_LIMIT,
                             "body '%s': cannot reach tolerance %g (deviation %g remains where "
                             "the parameter step is already %g)",
-                            s->name, s->o->tolerance, s->dev / s->scale, MIN_WIDTH);
+                            s->name, s->o->tolerance, s->dev / s->scale, COONS__SAMPLE_MIN_WIDTH);
+}
+
+coons_status coons__sampler_adapt(sampler *s)
+{
+    s->refused = 0;
+    coons_status st = run_once(s);
+    return st == COONS_E_LIMIT && s->refused ? coons__sampler_refusal(s) : st;
 }
 
 static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
@@ -898,7 +647,7 @@ static coons_status emit(sampler *s, coons_mesh *mesh, size_t *triangles)
     }
     if (params) { /* raw vertex parameters in uvw[3 nv ..], then compacted */
         for (int f = 0; f < 6; f++) {
-            const face_desc *F = &FACES[f];
+            const face_desc *F = &coons__faces[f];
             for (size_t ia = 0; ia <= s->n[F->a]; ia++)
                 for (size_t ib = 0; ib <= s->n[F->b]; ib++) {
                     double *q = uvw + 3 * (s->nv + (size_t)lattice_id(s, f, ia, ib));
@@ -965,7 +714,7 @@ coons_status coons__sampler_run(sampler *s)
     free_lattices(s);
     s->measured = 0;
     s->dev = 0;
-    coons_status st = run(s);
+    coons_status st = coons__sampler_adapt(s);
     return st ? st : coons__flat_faces(s);
 }
 
@@ -985,7 +734,7 @@ coons_status coons__body_sample_into(const coons_body *b, const coons__sample_op
 {
     sampler s;
     coons__sampler_init(&s, b, o, name, err);
-    coons_status st = run(&s);
+    coons_status st = coons__sampler_adapt(&s);
     if (!st) st = emit(&s, mesh, triangles);
     coons__sampler_free(&s);
     return st;
@@ -997,7 +746,7 @@ coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample
 {
     sampler s;
     coons__sampler_init(&s, b, o, name, err);
-    coons_status st = run(&s);
+    coons_status st = coons__sampler_adapt(&s);
     for (int d = 0; d < 3; d++) {
         if (st == COONS_OK) {
             t[d] = s.t[d];
@@ -1011,64 +760,4 @@ coons_status coons__body_sample_lattice(const coons_body *b, const coons__sample
     if (deviation) *deviation = st == COONS_OK && s.measured ? s.dev / s.scale : NAN;
     coons__sampler_free(&s);
     return st;
-}
-
-coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__sample_opts *out,
-                                        coons_error *err)
-{
-    coons_sample_options def = COONS_SAMPLE_OPTIONS_INIT;
-    if (!in) in = &def;
-    if (COONS__RECORD_CHECK(err, "sample options", in->version, COONS_SAMPLE_OPTIONS))
-        return COONS_E_INVALID;
-    if (isnan(in->tolerance) || isinf(in->tolerance))
-        return coons__error_set(err, COONS_E_INVALID, "tolerance must be a finite number");
-    if (isnan(in->max_aspect) || (in->max_aspect != 0.0 && in->max_aspect < 1.0))
-        return coons__error_set(err, COONS_E_INVALID,
-                                "max_aspect must be 0 (default) or at least 1, not %g",
-                                in->max_aspect);
-    /* Caps the lattice so that no size computation can overflow: 2^20
-     * intervals per direction is far beyond any triangle budget. */
-    if (in->resolution > (1u << 20))
-        return coons__error_set(err, COONS_E_LIMIT, "resolution %u is above %u", in->resolution,
-                                1u << 20);
-    out->tolerance = in->tolerance;
-    out->resolution = in->resolution;
-    out->max_triangles = in->max_triangles ? in->max_triangles : COONS_MESH_MAX_TRIANGLES;
-    out->max_aspect = in->max_aspect != 0.0 ? in->max_aspect : COONS_SAMPLE_DEFAULT_MAX_ASPECT;
-    if (in->flags & ~COONS_SAMPLE_UNMEASURED)
-        return coons__error_set(err, COONS_E_INVALID, "unknown sample option flags 0x%x",
-                                in->flags & ~COONS_SAMPLE_UNMEASURED);
-    out->flags = in->flags;
-    out->max_cells = 0;
-    return COONS_OK;
-}
-
-coons_status coons_body_sample(const coons_body *b, const coons_sample_options *opts,
-                               const char *name, coons_mesh **out, coons_error *err)
-{
-    *out = NULL;
-    coons__sample_opts o;
-    coons_status st = coons__sample_opts_resolve(opts, &o, err);
-    if (st) return st;
-    if (!(o.tolerance > 0)) {
-        double lo[3], hi[3];
-        coons_body_control_bbox(b, lo, hi);
-        double d = bbox_diag(lo, hi);
-        o.tolerance = d > 0 ? 1e-3 * d : 1e-3;
-    }
-    coons_mesh *m;
-    if ((st = coons_mesh_new(&m, err))) return st;
-    /* a morph: the one mesh of its whole path, as coons_model_sample() */
-    if ((st = coons__body_sample_path(b, &o, name, m, NULL, err))) {
-        coons_mesh_free(m);
-        return st;
-    }
-    *out = m;
-    return COONS_OK;
-}
-
-void coons_sample_options_init(coons_sample_options *o)
-{
-    const coons_sample_options d = COONS_SAMPLE_OPTIONS_INIT;
-    if (o) *o = d;
 }

@@ -1,11 +1,14 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The boundary sampler's record (sample.c), shared with the control-lattice
- * assembler (sample_lattice.c), which samples several bodies and joins
- * them along their shared faces by lattice index. Internal. */
+/* The boundary sampler's record (sample.c, with its measurement in
+ * sample_measure.c and its options and limits in sample_limits.c), shared
+ * with the control-lattice assembler (sample_lattice.c), which samples
+ * several bodies and joins them along their shared faces by lattice index.
+ * Internal. */
 #ifndef COONS_SAMPLER_H
 #define COONS_SAMPLER_H
 
 #include "sampling.h"
+#include "union_find.h"
 
 typedef struct face_desc {
     int fixed, a, b; /* fixed direction; the face's (s,t) directions, a < b */
@@ -66,11 +69,23 @@ typedef struct sampler {
     /* bit f: face f, ruled between two straight lines, is meshed as one
      * strip of quads spanning its rulings (flat.c). */
     unsigned ruled_faces;
+    /* Bounded work (sample.c): the last scan's prediction of the triangles
+     * [0] and volume cells [1] the tolerance needs (pred: as refinement
+     * would reach them, never below MIN_WIDTH; pred_free: the same without
+     * that floor, for the tolerance to suggest), the deviation and lattice
+     * it came from; refused: 1 (triangles) or 2 (cells) after a budget
+     * refusal of adaptive sampling. */
+    double pred[2], pred_free[2], pred_dev;
+    size_t pred_n[3];
+    int refused;
 } sampler;
 
 /* Internal flag of coons__sample_opts: every face keeps its lattice
  * triangles, also where it is flat (flat.c). */
 #define COONS__SAMPLE_LATTICE_FACES (1u << 30)
+/* Internal flag: a budget refusal suggests no tolerance (the sampler that
+ * checks a suggestion, sample.c). */
+#define COONS__SAMPLE_NO_SUGGEST (1u << 29)
 
 
 /* A sampler for body b (name may be NULL); run it, read it, free it. */
@@ -85,6 +100,43 @@ static inline uint32_t coons__sampler_id(const sampler *s, int f, size_t ia, siz
 {
     return s->ids[f][ia * (s->n[coons__faces[f].b] + 1) + ib];
 }
+
+/* ---- Between sample.c, sample_measure.c and sample_limits.c ---- */
+
+/* 2^-20: the narrowest interval refinement makes. */
+#define COONS__SAMPLE_MIN_WIDTH (1.0 / 1048576.0)
+
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+static inline double dmax(double a, double b) { return a > b ? a : b; }
+
+/* The position of raw vertex id's representative (union-find root). */
+static inline const double *coons__sampler_rep(sampler *s, uint32_t id)
+{
+    return s->pos + 3 * (size_t)coons__uf_find(s->uf, id);
+}
+
+/* sample.c: grows a scratch array (contents dropped); evaluates face f on
+ * av[0..na-1] x bv[0..nb-1] into out[(i*nb + j)*3], scaled; (re)allocates
+ * the per-interval arrays of the lattice; adaptive or fixed sampling of
+ * the lattice (no flat faces), with a budget refusal's message. */
+coons_status coons__sampler_ensure(double **p, size_t *cap, size_t need, coons_error *err);
+coons_status coons__sampler_eval_face(sampler *s, int f, const double *av, size_t na,
+                                      const double *bv, size_t nb, double *out);
+coons_status coons__sampler_alloc_lattices(sampler *s);
+coons_status coons__sampler_adapt(sampler *s);
+
+/* sample_measure.c: compares F with the mesh at the (r+1)^2 sub-samples of
+ * every cell (s->dev: the largest distance; thr > 0: marks intervals to
+ * halve and notes their need); halves the marked intervals. */
+coons_status coons__sampler_scan(sampler *s, int r, double thr);
+coons_status coons__sampler_refine(sampler *s, size_t *split);
+
+/* sample_limits.c: the exact budget check of a build; the prediction
+ * from the last scan (refused far above a budget); the message of an
+ * adaptive budget refusal, with a tolerance checked to fit. */
+coons_status coons__sampler_check_budget(sampler *s);
+coons_status coons__sampler_predict_budget(sampler *s);
+coons_status coons__sampler_refusal(sampler *s);
 
 /* The body's point of raw vertex v (positions are scaled: see `scale`). */
 static inline void coons__sampler_unscaled(const sampler *s, uint32_t v, double out[3])

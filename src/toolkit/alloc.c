@@ -58,3 +58,15 @@ int coons__all_finite(const double *a, size_t n)
         if (!isfinite(a[i])) return 0;
     return 1;
 }
+
+int coons__grow(void **p, size_t *cap, size_t need, size_t size)
+{
+    if (need <= *cap) return 0;
+    size_t c = *cap ? *cap : 16;
+    while (c < need) c *= 2;
+    void *q = coons__realloc(*p, c * size);
+    if (!q) return -1;
+    *p = q;
+    *cap = c;
+    return 0;
+}

@@ -20,6 +20,9 @@ void *coons__malloc(size_t n);
 void *coons__calloc(size_t count, size_t size); /* zeroed, overflow-checked */
 void *coons__realloc(void *p, size_t n);
 void coons__free(void *p);
+/* Grows the array *p of *cap elements of `size` bytes (doubling from 16)
+ * to hold at least `need`: 0, or -1 when out of memory (*p unchanged). */
+int coons__grow(void **p, size_t *cap, size_t need, size_t size);
 /* malloc of count*size with overflow check; NULL on overflow or failure. */
 void *coons__malloc_array(size_t count, size_t size);
 /* Duplicate count*size bytes (NULL input or count 0 gives NULL and ok). */

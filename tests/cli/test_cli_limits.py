@@ -10,10 +10,13 @@ directory. The full disk is a 256 KiB tmpfs mounted in a private mount
 namespace (unshare -rm); where that is not permitted the case is skipped
 with a note.
 """
+import json
 import os
+import re
 import resource
 import shutil
 import signal
+import struct
 import subprocess
 import sys
 import tempfile
@@ -38,6 +41,24 @@ def kept(d, out):
     with open(out, "rb") as f:
         same = f.read() == OLD
     return same and os.listdir(d) == ["out.stl"], f"unchanged {same}, files {os.listdir(d)}"
+
+
+def stl_volume_area(path):
+    """Volume (divergence theorem) and area of a binary STL, computed here."""
+    with open(path, "rb") as f:
+        data = f.read()
+    n = struct.unpack_from("<I", data, 80)[0]
+    vol = area = 0.0
+    for i in range(n):
+        v = struct.unpack_from("<9f", data, 84 + 50 * i + 12)
+        a, b, c = v[0:3], v[3:6], v[6:9]
+        vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6
+        u = [b[k] - a[k] for k in range(3)]
+        w = [c[k] - a[k] for k in range(3)]
+        x = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
+        area += 0.5 * sum(q * q for q in x) ** 0.5
+    return vol, area
 
 
 def main():
@@ -80,6 +101,55 @@ def main():
                     rc == 2 and not missing, f"status {rc}: {err!r}")
             ok, why = kept(d, out)
             T.check(f"{' '.join(args)}: earlier output unchanged", ok, why)
+
+        # ---- a refusal's suggested tolerance succeeds ---------------------------------
+        # Refused at once from the first lattice's prediction (1e-6), and while
+        # refining, when the prediction was low (3e-4): each names the tolerance,
+        # a predicted count above the limit, and a tolerance that then samples.
+        for tol in ("1e-6", "3e-4"):
+            d, out = prepare(root)
+            rc, _, err = T.run(["-t", tol, "--max-triangles", "100000", "-o", out, spool])
+            m = re.search(r"about ([0-9.e+]+) predicted.*\(try ([0-9.e+-]+)", err)
+            T.check(f"-t {tol} --max-triangles 100000: refused naming the tolerance, a "
+                    "predicted count above the limit and a tolerance to try",
+                    rc == 3 and m is not None and f"tolerance {float(tol):g}" in err
+                    and float(m.group(1)) > 100000, err)
+            ok, why = kept(d, out)
+            T.check(f"-t {tol}: earlier output unchanged", ok, why)
+            if m:
+                rc, _, err = T.run(["-t", m.group(2), "--max-triangles", "100000", "-o", out,
+                                    spool])
+                T.check(f"-t {tol}: the suggested -t {m.group(2)} samples within the limit",
+                        rc == 0, err)
+
+        # ---- a fixed resolution is measured and warned about ---------------------------
+        # The warned deviation d bounds the volume error: |V_mesh - V| <= d * area
+        # (V: the model's exact volume from --info; V_mesh and area: the STL's).
+        rc, js, err = T.run(["--info", spool])
+        exact = json.loads(js)["total_volume"] if rc == 0 else None
+        tolerance = json.loads(js)["tolerance"] if rc == 0 else None
+        for res, warned in (("4", True), ("64", False)):
+            out = os.path.join(root, f"r{res}.stl")
+            rc, _, err = T.run(["--resolution", res, "-o", out, spool])
+            m = re.search(r"warning: the fixed resolution (\d+) leaves a deviation of "
+                          r"([0-9.e+-]+), more than the tolerance ([0-9.e+-]+)", err)
+            if warned:
+                ok = rc == 0 and m is not None and exact is not None
+                if ok:
+                    vol, area = stl_volume_area(out)
+                    dev = float(m.group(2))
+                    ok = (m.group(1) == res and abs(float(m.group(3)) - tolerance) < 1e-3 * tolerance
+                          and dev > tolerance and abs(vol - exact) <= dev * area)
+                T.check(f"--resolution {res}: written, with a warning naming the deviation "
+                        "(above the tolerance, bounding the volume error) and the tolerance",
+                        ok, err)
+                rc, _, err = T.run(["-q", "--resolution", res, "-o", out, spool])
+                T.check(f"--resolution {res} -q: no warning", rc == 0 and err == "", err)
+            else:
+                vol, area = stl_volume_area(out) if rc == 0 else (0, 0)
+                T.check(f"--resolution {res}: written without a warning (its volume error "
+                        "is within tolerance x area)",
+                        rc == 0 and err == "" and abs(vol - exact) <= tolerance * area, err)
 
         # ---- the loader's limits can be raised ----------------------------------------
         model = os.path.join(root, "m.json")

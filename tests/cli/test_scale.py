@@ -7,7 +7,8 @@ written as OFF (doubles): the same triangles at every scale, every vertex
 exactly the unscaled one times 2^k (a power of two scales every
 evaluation exactly, so any tolerance or limit that is not relative to the
 size would show). A box scaled by powers of ten (10^e, e = -148..147:
-not exact in binary) keeps its triangle count. --info describes each
+not exact in binary) keeps its triangle count, and so does the spool
+(flat faces meshed in a frame that rounding must not turn). --info describes each
 model at the extreme scales. Sizes outside 1e-150..1e150 are refused at once with the
 size named; STL refuses a mesh too small or too large for its 32-bit
 floats. Every run is bounded by the subprocess timeout (120 s), far above
@@ -26,6 +27,7 @@ MODELS = [("deformed-cube.json", None), ("body1-density.json", None), ("spool.js
           ("lattice-l-bracket.json", None), ("union-three-bodies.json", "none")]
 EXPONENTS = [-490, -330, -166, 0, 166, 330, 488]  # powers of two
 DECIMAL = [-148, -100, -50, 0, 50, 100, 147]
+DECIMAL_SPOOL = [-148, -100, -50, -20, 0, 10, 20, 50, 100, 147]
 
 
 def scaled(x, f, key=None):
@@ -90,21 +92,24 @@ def main():
             r.check(f"{name}: the same triangle count at every scale {sorted(set(counts.values()))}",
                     len(counts) == len(EXPONENTS) and len(set(counts.values())) == 1,
                     repr(counts))
-        # Decimal scales: rounding differs, the lattice does not.
-        with open(os.path.join(r.src, "examples", "deformed-cube.json")) as f:
-            base = json.load(f)
-        counts = {}
-        for e in DECIMAL:
-            path = os.path.join(tmp, "d.json")
-            with open(path, "w") as f:
-                json.dump(scaled(base, 10.0 ** e), f)
-            out = os.path.join(tmp, "d.off")
-            st, _, err = r.run(["-o", out, path])
-            if r.check(f"deformed-cube.json at 1e{e}: -o .off", st == 0, err):
-                counts[e] = read_off(out)[1]
-        r.check(f"deformed-cube.json: the same triangle count at 1e-148..1e147 "
-                f"{sorted(set(counts.values()))}",
-                len(counts) == len(DECIMAL) and len(set(counts.values())) == 1, repr(counts))
+        # Decimal scales: rounding differs, the lattice and the mesh do not (the
+        # spool's flat ends: their frame must not turn with the rounding of
+        # their normal, 1e10 and 1e50 gave 6,066 triangles instead of 6,060).
+        for name, exps in (("deformed-cube.json", DECIMAL), ("spool.json", DECIMAL_SPOOL)):
+            with open(os.path.join(r.src, "examples", name)) as f:
+                base = json.load(f)
+            counts = {}
+            for e in exps:
+                path = os.path.join(tmp, "d.json")
+                with open(path, "w") as f:
+                    json.dump(scaled(base, 10.0 ** e), f)
+                out = os.path.join(tmp, "d.off")
+                st, _, err = r.run(["-o", out, path])
+                if r.check(f"{name} at 1e{e}: -o .off", st == 0, err):
+                    counts[e] = read_off(out)[1]
+            r.check(f"{name}: the same triangle count at 1e{exps[0]}..1e{exps[-1]} "
+                    f"{sorted(set(counts.values()))}",
+                    len(counts) == len(exps) and len(set(counts.values())) == 1, repr(counts))
         # Outside the supported sizes: refused at once, the size named.
         with open(os.path.join(r.src, "examples", "deformed-cube.json")) as f:
             base = json.load(f)

@@ -23,9 +23,8 @@ static coons_sample_options sample_options(const options *o, const coons_model *
     so.tolerance = o->tolerance > 0 ? o->tolerance : coons_model_tolerance(m);
     so.resolution = o->resolution;
     so.max_triangles = o->max_triangles;
-    /* A mesh on a fixed lattice needs no measured deviation (--info reports
-     * it); measuring would be most of the sampling time. */
-    if (o->resolution && !o->info) so.flags |= COONS_SAMPLE_UNMEASURED;
+    /* A fixed lattice is measured too (cheaply: libcoons(3)), so that a
+     * deviation above the tolerance is warned about. */
     return so;
 }
 

@@ -73,8 +73,14 @@ int cli_is_model_file(const char *output, const char *input)
            in_st.st_dev == out_st.st_dev && in_st.st_ino == out_st.st_ino;
 }
 
-static void mesh_warnings(const coons_csg_report *rep)
+static void mesh_warnings(const coons_csg_report *rep, const coons_sample_options *so)
 {
+    if (so->resolution && rep->deviation > rep->tolerance)
+        cli_message(1,
+                    "the fixed resolution %u leaves a deviation of %.3g, more than the "
+                    "tolerance %.3g (raise --resolution, or leave it out to sample to the "
+                    "tolerance)",
+                    so->resolution, rep->deviation, rep->tolerance);
     if (rep->triangles_out > 0 && !rep->closed)
         cli_message(1, "the mesh is not closed");
     else if (rep->nonmanifold_edges)
@@ -252,7 +258,7 @@ int cli_write_output(const coons_model *m, long body, coons_format format, const
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }
-    mesh_warnings(&rep);
+    mesh_warnings(&rep, so);
     return write_named(m, mesh, format, to_stdout ? NULL : output, input, shown, NULL, 0);
 }
 
