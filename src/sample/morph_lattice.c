@@ -297,7 +297,7 @@ static coons_status faces_on_lattice(const coons_body *b, const coons_body *m,
         coons_mesh_free(ref);
         if (st) return st;
         p->n = n;
-        if (2 * p->nt > o->max_triangles)
+        if (p->nt > o->max_triangles)
             return coons__error_set(err, COONS_E_LIMIT,
                                     "body '%s': the lattice of %u intervals of the morph's "
                                     "whole path needs more than %zu triangles (the limit)",
