@@ -226,6 +226,16 @@ COONS_EXPORT size_t coons_volume_mesh_face_set_count(const coons_volume_mesh *vm
 
 /** Borrowed view: 3 doubles per node (NULL when there are no nodes). */
 COONS_EXPORT const double *coons_volume_mesh_nodes(const coons_volume_mesh *vm);
+
+/**
+ * Multiplies every node by `factor` (a change of units); cells, parts,
+ * sets and fields stay (a field keeps the units it was computed in).
+ * @return ::COONS_OK; ::COONS_E_INVALID (no mesh, or `factor` not a finite
+ *         number > 0); ::COONS_E_LIMIT when a coordinate would overflow
+ *         (the mesh is then unchanged).
+ */
+COONS_EXPORT coons_status coons_volume_mesh_scale(coons_volume_mesh *vm, double factor,
+                                                  coons_error *err);
 /** Borrowed view: coons_volume_mesh_nodes_per_cell() node indices per cell. */
 COONS_EXPORT const uint32_t *coons_volume_mesh_cells(const coons_volume_mesh *vm);
 /** Borrowed view: the part index of each cell. */

@@ -54,9 +54,36 @@ typedef struct options {
     const char *deform;   /* --deform IN (STL or OFF), or NULL */
     const char *frame_arg; /* --frame x0,y0,z0,x1,y1,z1 as given, or NULL */
     double frame[6];      /* --frame's corners (when frame_arg) */
+    const char *scale_to; /* --scale-to UNIT, or NULL */
+    double scale;         /* its factor from the model's units (cli_resolve_units; 1: none) */
+    const char *units_out; /* the units written: --scale-to's, else the model's */
 } options;
-/* -j N as parsed (options.c), for cli_make_solid(); 0 = the number of cores. */
-extern unsigned cli_jobs;
+
+/* Where and how a mesh is written: -o (NULL or "-": standard output), the
+ * format, the model file (never overwritten; names the output on standard
+ * output), and the units: coordinates multiplied by `scale` and labelled
+ * `units` (--scale-to). */
+typedef struct cli_output {
+    const char *path;
+    coons_format format;
+    const char *input;
+    double scale;
+    const char *units;
+} cli_output;
+/* output.c: the cli_output of the options (path -o). */
+cli_output cli_output_of(const options *o);
+
+/* units.c: the length of one `unit` in millimetres (um, mm, cm, in, ft, m
+ * and their spelled-out names, any case); 0 when unknown. */
+double cli_unit_mm(const char *unit);
+/* units.c: after the model is loaded: --scale-to's factor into o->scale
+ * and o->units_out, and the warning when a mesh not in millimetres goes
+ * to a format without units (once per run); -1 to go on, else the
+ * status (reported). */
+int cli_resolve_units(options *o, const coons_model *m);
+/* units.c: whether `f` is a surface format whose readers take millimetres
+ * (STL, OFF, SCAD: no units a reader honours). */
+int cli_format_unitless(coons_format f);
 
 /* options.c: parses the command line into `o` (zeroed, load.version set);
  * returns -1 to go on, else an exit status (--help, --version, a usage
@@ -83,7 +110,7 @@ void cli_message(int warning, const char *fmt, ...);
 
 /* solid.c: all bodies' solid (body < 0), else that body's alone. */
 coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_options *so,
-                            int repair, coons_mesh **out, coons_csg_report *rep,
+                            int repair, unsigned jobs, coons_mesh **out, coons_csg_report *rep,
                             coons_error *err);
 
 /* The modes; each prints its own diagnostics and returns the exit status. */
@@ -100,7 +127,7 @@ void cli_print_volume_quality(const coons_volume_mesh *vm, size_t part);
  * --allow-inverted), writes atomically; returns the exit status. */
 int cli_write_volume(const coons_model *m, long body, const options *o);
 /* The same for a mesh already made (--info -o). */
-int cli_write_volume_mesh(const coons_model *m, const coons_volume_mesh *vm, const options *o);
+int cli_write_volume_mesh(coons_volume_mesh *vm, const options *o);
 /* Whether the output format `f` is a volume-mesh format. */
 int cli_is_volume_format(coons_format f);
 
@@ -120,11 +147,13 @@ int cli_write_iso(const coons_model *m, long body, const options *o,
                   const coons_sample_options *so);
 /* output.c: writes a surface mesh made elsewhere (and frees it) as -o
  * writes the solid; `shown` names the output in messages. */
-int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
-                      const char *shown);
+int cli_write_surface(coons_mesh *mesh, const options *o, const char *shown);
 
-int cli_write_output(const coons_model *m, long body, coons_format format, const char *output,
-                     const coons_sample_options *so, int repair, const char *input);
+/* output.c: -o of a boundary mesh: the solid of `body` (< 0: all) sampled
+ * with `so`, repaired (`repair`) and united on `jobs` threads (0: the
+ * number of cores), written to `out`; the exit status. */
+int cli_write_output(const coons_model *m, long body, const cli_output *out,
+                     const coons_sample_options *so, int repair, unsigned jobs);
 
 /* options.c: a usage error with its message (status EXIT_USAGE). */
 int cli_usage_error(const char *msg);

@@ -214,5 +214,5 @@ int cli_deform(const coons_model *m, long body, const options *o)
         return st;
     }
     coons_mesh_free(in);
-    return cli_write_surface(m, out, o, shown);
+    return cli_write_surface(out, o, shown);
 }

@@ -333,13 +333,14 @@ static void print_solid(const coons_mesh_report *r, const coons_csg_report *rep,
 /* "solid": what -o would write (cli_make_solid()) and what repair and union
  * found and did. A failure is reported in the JSON ("error") and warned
  * about, not turned into an exit status: --info describes the model. */
-static int info_solid(const coons_model *m, long only, const coons_sample_options *so, int repair)
+static int info_solid(const coons_model *m, long only, const coons_sample_options *so, int repair,
+                      unsigned jobs)
 {
     coons_error err = COONS_ERROR_INIT;
     coons_mesh *solid = NULL;
     coons_csg_report rep = COONS_CSG_REPORT_INIT;
     int csg = coons_csg_is_available();
-    coons_status rc = cli_make_solid(m, only, so, repair, &solid, &rep, &err);
+    coons_status rc = cli_make_solid(m, only, so, repair, jobs, &solid, &rep, &err);
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
     size_t pairs = 0, pairs32 = 0;
     if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
@@ -473,7 +474,7 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     if (o->no_solid) {
         printf(",\n  \"solid\": null");
     } else {
-        int rc = info_solid(m, only, so, !o->no_repair);
+        int rc = info_solid(m, only, so, !o->no_repair, o->jobs);
         if (rc) {
             coons_volume_mesh_free(vm);
             return rc;
@@ -482,7 +483,7 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     printf("\n}\n");
     /* --info -o FILE.vtu: the report, then the mesh written as -o alone would. */
     int rc = 0;
-    if (vm && !o->volume_mesh) rc = fflush(stdout) != 0 ? EXIT_GEOMETRY : cli_write_volume_mesh(m, vm, o);
+    if (vm && !o->volume_mesh) rc = fflush(stdout) != 0 ? EXIT_GEOMETRY : cli_write_volume_mesh(vm, o);
     coons_volume_mesh_free(vm);
     return rc;
 }

@@ -61,5 +61,5 @@ int cli_write_iso(const coons_model *m, long body, const options *o,
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
         return EXIT_GEOMETRY;
     }
-    return cli_write_surface(m, mesh, o, shown);
+    return cli_write_surface(mesh, o, shown);
 }

@@ -123,23 +123,27 @@ int cli_write_volume(const coons_model *m, long body, const options *o)
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
         return EXIT_GEOMETRY;
     }
-    int status = cli_write_volume_mesh(m, vm, o);
+    int status = cli_write_volume_mesh(vm, o);
     coons_volume_mesh_free(vm);
     return status;
 }
 
-int cli_write_volume_mesh(const coons_model *m, const coons_volume_mesh *vm, const options *o)
+int cli_write_volume_mesh(coons_volume_mesh *vm, const options *o)
 {
     coons_error err = COONS_ERROR_INIT;
     int to_stdout = !o->output || strcmp(o->output, "-") == 0;
     const char *shown = to_stdout ? "<stdout>" : o->output;
     int status = o->allow_inverted ? 0 : refuse_inverted(vm, shown);
     if (status) return status;
+    if (o->scale != 1.0 && coons_volume_mesh_scale(vm, o->scale, &err) != COONS_OK) {
+        cli_message(0, "%s: %s; nothing was written", shown, err.message);
+        return EXIT_GEOMETRY;
+    }
     coons_status rc;
     char name[256];
     base_name(to_stdout ? o->input : o->output, name, sizeof name);
     coons_write_options wopts = COONS_WRITE_OPTIONS_INIT;
-    wopts.units = coons_model_units(m);
+    wopts.units = o->units_out;
     wopts.name = name[0] ? name : NULL;
     int from_file = o->input && strcmp(o->input, "-") != 0;
     wopts.protect_path = from_file ? o->input : NULL;
