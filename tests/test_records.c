@@ -33,7 +33,8 @@ static void test_write_options_init(void **state)
     (void)state;
     FROM_INIT(coons_write_options, coons_write_options_init, COONS_WRITE_OPTIONS_INIT);
     SAME(version), SAME(name), SAME(units), SAME(header), SAME(protect_path), SAME(cancel),
-        SAME(cancel_ctx);
+        SAME(cancel_ctx), SAME(written), SAME(written_ctx);
+    assert_null(a.written);
     assert_int_equal(a.version, COONS_WRITE_OPTIONS_VERSION);
 }
 
@@ -164,6 +165,55 @@ static void test_write_options_version(void **state)
     coons_model_free(m);
 }
 
+/* Version 2's `written`: the bytes so far, ending with the file's size,
+ * never decreasing; a version-1 record is still accepted and not asked. */
+typedef struct written_log {
+    unsigned long long last;
+    int calls, decreased;
+} written_log;
+
+static void on_written(void *ctx, unsigned long long bytes)
+{
+    written_log *w = ctx;
+    if (bytes < w->last) w->decreased = 1;
+    w->last = bytes;
+    w->calls++;
+}
+
+static void test_write_options_written(void **state)
+{
+    (void)state;
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh = NULL;
+    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    char path[64];
+    snprintf(path, sizeof path, "records-w-%ld.off", (long)getpid());
+    for (unsigned version = 1; version <= COONS_WRITE_OPTIONS_VERSION; version++) {
+        written_log w = {0, 0, 0};
+        coons_write_options o = COONS_WRITE_OPTIONS_INIT;
+        o.version = version;
+        o.written = on_written;
+        o.written_ctx = &w;
+        assert_coons_ok(coons_mesh_write(mesh, path, COONS_FORMAT_OFF, &o, &err), &err);
+        FILE *fp = fopen(path, "rb");
+        assert_non_null(fp);
+        fseek(fp, 0, SEEK_END);
+        long size = ftell(fp);
+        fclose(fp);
+        remove(path);
+        if (version == 1) {
+            assert_int_equal(w.calls, 0);
+        } else {
+            assert_true(w.calls >= 1);
+            assert_false(w.decreased);
+            assert_int_equal(w.last, (unsigned long long)size);
+        }
+    }
+    coons_mesh_free(mesh);
+    coons_model_free(m);
+}
+
 static void test_csg_records_version(void **state)
 {
     (void)state;
@@ -281,6 +331,7 @@ int main(void)
         cmocka_unit_test(test_csg_report_init),
         cmocka_unit_test(test_sample_options_version),
         cmocka_unit_test(test_write_options_version),
+        cmocka_unit_test(test_write_options_written),
         cmocka_unit_test(test_csg_records_version),
         cmocka_unit_test(test_model_load_options_version),
         cmocka_unit_test(test_hermite_options_version),

@@ -101,6 +101,10 @@ int cli_progress_on(void);
 void cli_progress_end(void);
 void cli_progress_sampling(size_t i, size_t n, const char *name);
 void cli_on_progress(void *userdata, const char *stage, double fraction);
+/* coons_write_options.written: "writing NAME: SIZE"; ctx is NAME. */
+void cli_on_written(void *ctx, unsigned long long bytes);
+/* Text put before every progress line ("frame 2 of 5: "); NULL: none. */
+void cli_progress_prefix(const char *prefix);
 /* "coons2stl: [warning: ]message" on standard error, after the standard
  * output so far and on a line of its own; warnings obey -q. */
 #if defined(__GNUC__)

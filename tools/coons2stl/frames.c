@@ -204,6 +204,9 @@ int cli_write_frames(coons_model *m, long body, const options *o,
         }
         frame_name(o->output, k, name, sizeof name);
         fo.output = name;
+        char prefix[64];
+        snprintf(prefix, sizeof prefix, "frame %u of %u: ", k + 1, o->frames);
+        cli_progress_prefix(prefix);
         cli_output out = cli_output_of(&fo);
         int rc = cli_is_volume_format(o->format)
                      ? cli_write_volume(m, body, &fo)

@@ -11,6 +11,7 @@
 #define _POSIX_C_SOURCE 200809L /* sigaction */
 
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -282,6 +283,8 @@ static int write_named(coons_mesh *mesh, const cli_output *out, const char *show
     wopts.name = name[0] ? name : NULL;
     wopts.protect_path = from_file ? out->input : NULL;
     wopts.cancel = write_cancelled;
+    wopts.written = cli_progress_on() ? cli_on_written : NULL;
+    wopts.written_ctx = (void *)(uintptr_t)shown;
     if (out->scale != 1.0 && coons_mesh_scale(mesh, out->scale, &err) != COONS_OK) {
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
         coons_mesh_free(mesh);
@@ -292,6 +295,7 @@ static int write_named(coons_mesh *mesh, const cli_output *out, const char *show
         return EXIT_GEOMETRY;
     }
     rc = write_mesh(mesh, to_stdout ? NULL : out->path, out->format, &wopts, &err);
+    cli_progress_end();
     if (caught_signal) cli_die_of_caught_signal(rc, shown);
     if (rc != COONS_OK) {
         fprintf(stderr, "%s: %s\n", PROG, err.message);

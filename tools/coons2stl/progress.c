@@ -8,11 +8,17 @@
  * only when standard error is a terminal (a log file would fill up with
  * rewrites); --progress forces it, -q turns it off. The library never
  * prints: it reports through coons_csg_options.progress (stage names and
- * the fraction done), and the CLI prints.
+ * the fraction done) and coons_write_options.written (bytes written), and
+ * the CLI prints. A report that only moves a percentage or a byte count is
+ * drawn at most every RATE seconds (the callbacks stay cheap); a new stage,
+ * its start (0) and its end (1) are always drawn. --frames puts "frame k
+ * of N" before each frame's stages.
  */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "cli.h"
 
@@ -23,7 +29,36 @@ static struct {
     size_t width;             /* its length, to blank out what a shorter one leaves */
     char last[160];           /* its text, to print only changes */
     const coons_model *model; /* names the bodies of the stage "sample" */
+    char prefix[64];          /* "frame k of N: " or "" */
+    char stage[64];           /* the stage last drawn, to draw every new one */
+    double drawn_at;          /* when the line was last drawn (monotonic seconds) */
 } ui;
+
+/* Seconds between two redraws of the same stage. */
+#define RATE 0.1
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Whether a report of `stage` at `fraction` is drawn (see above). */
+static int due(const char *stage, double fraction)
+{
+    double t = now();
+    int fresh = strcmp(stage, ui.stage) != 0;
+    if (!fresh && fraction > 0 && fraction < 1 && t - ui.drawn_at < RATE) return 0;
+    snprintf(ui.stage, sizeof ui.stage, "%s", stage);
+    ui.drawn_at = t;
+    return 1;
+}
+
+void cli_progress_prefix(const char *prefix)
+{
+    snprintf(ui.prefix, sizeof ui.prefix, "%s", prefix ? prefix : "");
+}
 
 void cli_progress_start(int on, int quiet, const coons_model *m)
 {
@@ -42,13 +77,14 @@ void cli_progress_end(void)
     ui.open = 0;
     ui.width = 0;
     ui.last[0] = '\0';
+    ui.stage[0] = '\0';
 }
 
 static void progress_line(const char *text)
 {
     if (!ui.on || strcmp(text, ui.last) == 0) return;
-    size_t n = strlen(text);
-    fprintf(stderr, "\r%s: %s", PROG, text);
+    size_t n = strlen(ui.prefix) + strlen(text);
+    fprintf(stderr, "\r%s: %s%s", PROG, ui.prefix, text);
     for (size_t k = n; k < ui.width; k++) fputc(' ', stderr);
     fflush(stderr);
     ui.open = 1;
@@ -89,8 +125,21 @@ void cli_on_progress(void *userdata, const char *stage, double fraction)
         if (i < n) cli_progress_sampling(i, n, coons_model_body_name(ui.model, i));
         return;
     }
+    if (!due(stage, fraction)) return;
     char text[128];
     snprintf(text, sizeof text, "repair and union: %s %3d%%", stage, (int)(100 * fraction));
+    progress_line(text);
+}
+
+void cli_on_written(void *ctx, unsigned long long bytes)
+{
+    if (!ui.on || !due("write", 0.5)) return;
+    char nm[64], text[128];
+    printable(nm, sizeof nm, ctx ? (const char *)ctx : "<stdout>");
+    if (bytes < 10000000ull)
+        snprintf(text, sizeof text, "writing %s: %.1f kB", nm, (double)bytes / 1e3);
+    else
+        snprintf(text, sizeof text, "writing %s: %.1f MB", nm, (double)bytes / 1e6);
     progress_line(text);
 }
 

@@ -10,6 +10,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -147,8 +148,11 @@ int cli_write_volume_mesh(coons_volume_mesh *vm, const options *o)
     wopts.name = name[0] ? name : NULL;
     int from_file = o->input && strcmp(o->input, "-") != 0;
     wopts.protect_path = from_file ? o->input : NULL;
+    wopts.written = cli_progress_on() ? cli_on_written : NULL;
+    wopts.written_ctx = (void *)(uintptr_t)shown;
     rc = to_stdout ? coons_volume_mesh_write_stream(vm, stdout, o->format, &wopts, &err)
                    : cli_write_volume_file(vm, o->output, o->format, &wopts, &err);
+    cli_progress_end();
     if (cli_caught_signal()) cli_die_of_caught_signal(rc, shown);
     if (rc != COONS_OK) {
         cli_message(0, "%s", err.message);
