@@ -172,7 +172,10 @@ COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_
  *                   `progress` also hears the stage "sample" before each
  *                   body, with the share of bodies sampled (i / count, then
  *                   1), before the stages of coons_mesh_solidify(), whose
- *                   fraction starts again from 0
+ *                   fraction starts again from 0; with `threads` > 1 the
+ *                   bodies are sampled at once and the calling thread
+ *                   reports "sample" i / count each time body i becomes
+ *                   the first one (in body order) still being sampled
  * @param[in,out] report may be NULL; else its `version` must be
  *                ::COONS_CSG_REPORT_VERSION; its output fields are zeroed
  *                when no CGAL work was needed

@@ -246,7 +246,8 @@ int cli_write_output(const coons_model *m, long body, const cli_output *out,
     coons_mesh *mesh = NULL;
     coons_csg_report rep = COONS_CSG_REPORT_INIT;
     coons_status rc = cli_make_solid(m, body, so, repair, jobs, &mesh, &rep, &err);
-    cli_progress_end();
+    /* The progress line stays: the writing stage replaces it (a message
+     * ends it first). */
     if (rc == COONS_E_CSG) {
         csg_failure(m, body, repair, shown, err.message);
         coons_mesh_free(mesh);

@@ -119,7 +119,6 @@ int cli_write_volume(const coons_model *m, long body, const options *o)
     const char *shown = to_stdout ? "<stdout>" : o->output;
     coons_volume_mesh *vm = NULL;
     coons_status rc = cli_volume_mesh(m, body, o, &vm, &err);
-    cli_progress_end();
     if (rc != COONS_OK) {
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
         return EXIT_GEOMETRY;
