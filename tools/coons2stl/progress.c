@@ -32,6 +32,7 @@ static struct {
     char prefix[64];          /* "frame k of N: " or "" */
     char stage[64];           /* the stage last drawn, to draw every new one */
     double drawn_at;          /* when the line was last drawn (monotonic seconds) */
+    char pending[160];        /* a report skipped by the rate limit, drawn at the end */
 } ui;
 
 /* Seconds between two redraws of the same stage. */
@@ -69,8 +70,16 @@ void cli_progress_start(int on, int quiet, const coons_model *m)
 
 int cli_progress_on(void) { return ui.on; }
 
+static void progress_line(const char *text);
+
 void cli_progress_end(void)
 {
+    if (ui.pending[0]) { /* the last state, skipped by the rate limit */
+        char text[sizeof ui.pending];
+        memcpy(text, ui.pending, sizeof text);
+        ui.pending[0] = '\0';
+        progress_line(text);
+    }
     if (!ui.open) return;
     fputc('\n', stderr);
     fflush(stderr);
@@ -82,6 +91,7 @@ void cli_progress_end(void)
 
 static void progress_line(const char *text)
 {
+    ui.pending[0] = '\0';
     if (!ui.on || strcmp(text, ui.last) == 0) return;
     size_t n = strlen(ui.prefix) + strlen(text);
     fprintf(stderr, "\r%s: %s%s", PROG, ui.prefix, text);
@@ -133,14 +143,18 @@ void cli_on_progress(void *userdata, const char *stage, double fraction)
 
 void cli_on_written(void *ctx, unsigned long long bytes)
 {
-    if (!ui.on || !due("write", 0.5)) return;
+    if (!ui.on) return;
+    int draw = due("write", 0.5);
     char nm[64], text[128];
     printable(nm, sizeof nm, ctx ? (const char *)ctx : "<stdout>");
     if (bytes < 10000000ull)
         snprintf(text, sizeof text, "writing %s: %.1f kB", nm, (double)bytes / 1e3);
     else
         snprintf(text, sizeof text, "writing %s: %.1f MB", nm, (double)bytes / 1e6);
-    progress_line(text);
+    if (draw)
+        progress_line(text);
+    else
+        snprintf(ui.pending, sizeof ui.pending, "%s", text);
 }
 
 void cli_message(int warning, const char *fmt, ...)
