@@ -214,6 +214,62 @@ static void test_write_options_written(void **state)
     coons_model_free(m);
 }
 
+/* Version 2 of coons_volume_options: the stages lattice, evaluate, cells
+ * in that order, each from 0 (or its first body) to 1 without going back;
+ * a version-1 record still meshes, unasked. */
+typedef struct stage_log {
+    char order[4]; /* first letter of each stage, as they begin */
+    size_t n;
+    double last;
+    int back, ends, bad;
+} stage_log;
+
+static void on_stage(void *ctx, const char *stage, double fraction)
+{
+    stage_log *l = ctx;
+    if (!(fraction >= 0 && fraction <= 1)) l->bad = 1;
+    if (l->n == 0 || l->order[l->n - 1] != stage[0]) {
+        if (l->n < sizeof l->order - 1) l->order[l->n++] = stage[0];
+        l->last = 0;
+    }
+    if (fraction < l->last) l->back = 1;
+    l->last = fraction;
+    l->ends += fraction == 1.0;
+}
+
+static void test_volume_options_progress(void **state)
+{
+    (void)state;
+    FROM_INIT(coons_volume_options, coons_volume_options_init, COONS_VOLUME_OPTIONS_INIT);
+    SAME(version), SAME(element), SAME(resolution), SAME(tolerance), SAME(max_cells),
+        SAME(progress), SAME(userdata);
+    assert_null(a.progress);
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    for (unsigned version = 1; version <= COONS_VOLUME_OPTIONS_VERSION; version++) {
+        stage_log l;
+        memset(&l, 0, sizeof l);
+        coons_volume_options o = COONS_VOLUME_OPTIONS_INIT;
+        o.version = version;
+        o.resolution[0] = o.resolution[1] = o.resolution[2] = 3;
+        o.progress = on_stage;
+        o.userdata = &l;
+        coons_volume_mesh *vm = NULL;
+        assert_coons_ok(coons_model_volume_mesh(m, &o, &vm, &err), &err);
+        assert_int_equal(coons_volume_mesh_cell_count(vm), 27);
+        coons_volume_mesh_free(vm);
+        if (version == 1) {
+            assert_int_equal(l.n, 0);
+        } else {
+            assert_string_equal(l.order, "lec");
+            assert_false(l.back);
+            assert_false(l.bad);
+            assert_int_equal(l.ends, 3);
+        }
+    }
+    coons_model_free(m);
+}
+
 static void test_csg_records_version(void **state)
 {
     (void)state;
@@ -332,6 +388,7 @@ int main(void)
         cmocka_unit_test(test_sample_options_version),
         cmocka_unit_test(test_write_options_version),
         cmocka_unit_test(test_write_options_written),
+        cmocka_unit_test(test_volume_options_progress),
         cmocka_unit_test(test_csg_records_version),
         cmocka_unit_test(test_model_load_options_version),
         cmocka_unit_test(test_hermite_options_version),

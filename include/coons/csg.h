@@ -37,13 +37,6 @@
 extern "C" {
 #endif
 
-/**
- * Progress callback: `stage` names the step ("autorefine", "classify",
- * "check", ...), `fraction` in [0,1] is the share of all work done. Called
- * from the calling thread; must not call back into the library.
- */
-typedef void (*coons_progress_fn)(void *userdata, const char *stage, double fraction);
-
 /** Options of coons_mesh_solidify(). Initialise with ::COONS_CSG_OPTIONS_INIT. */
 typedef struct coons_csg_options {
     unsigned version;           /**< ::COONS_CSG_OPTIONS_VERSION */

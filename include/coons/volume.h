@@ -275,8 +275,9 @@ COONS_EXPORT const char *coons_volume_mesh_face_set(const coons_volume_mesh *vm,
  *  coons_model_volume_mesh(): 2^22 (4,194,304). */
 #define COONS_VOLUME_MAX_CELLS ((size_t)1 << 22)
 
-/** Version of ::coons_volume_options this header describes. */
-#define COONS_VOLUME_OPTIONS_VERSION 1
+/** Version of ::coons_volume_options this header describes. Version 2:
+ *  `progress` and `userdata`; records of version 1 are still accepted. */
+#define COONS_VOLUME_OPTIONS_VERSION 2
 
 /**
  * How bodies are meshed. Initialise with ::COONS_VOLUME_OPTIONS_INIT;
@@ -300,9 +301,17 @@ typedef struct coons_volume_options {
     double tolerance;
     /** Largest number of cells; 0: ::COONS_VOLUME_MAX_CELLS. */
     size_t max_cells;
+    /** (version 2) Progress: the stage "lattice" before each body's lattice
+     *  is chosen (i / count, then 1), "evaluate" as the bodies' nodes are
+     *  evaluated (the share of nodes done), "cells" as the cells are made
+     *  (the share of cells). NULL: no reports. */
+    coons_progress_fn progress;
+    /** (version 2) Passed to `progress`. */
+    void *userdata;
 } coons_volume_options;
 
-#define COONS_VOLUME_OPTIONS_INIT {COONS_VOLUME_OPTIONS_VERSION, COONS_ELEMENT_HEX8, {0u, 0u, 0u}, 0.0, 0u}
+#define COONS_VOLUME_OPTIONS_INIT \
+    {COONS_VOLUME_OPTIONS_VERSION, COONS_ELEMENT_HEX8, {0u, 0u, 0u}, 0.0, 0u, NULL, NULL}
 
 /** Sets `*o` to ::COONS_VOLUME_OPTIONS_INIT; NULL is a harmless no-op. */
 COONS_EXPORT void coons_volume_options_init(coons_volume_options *o);

@@ -3,6 +3,7 @@
 """The progress report (coons2stl(1), --progress; issue 24 "progress that
 moves"), read from standard error with --progress:
 
+- volume meshes: the stages lattice, evaluate and cells, each to 100%;
 - a writing stage after the mesh is made: "writing FILE: SIZE", whose last
   figure is the size of the file written (checked against the file), on
   the same line as the stages before it (one line, ended by one newline);
@@ -70,6 +71,15 @@ for name, args in (("surface .stl", ["-o", os.path.join(TMP, "a.stl")]),
     T.check(f"{name}: one progress line, ended by one newline, the writing stage last",
             err.endswith("\n") and err.count("\n") == 1
             and err.rstrip().split("\r")[-1].startswith("coons2stl: writing "), repr(err[-200:]))
+
+rc, _, err = run(["--progress", "--resolution", "8", "-o", os.path.join(TMP, "v.inp"), MODEL])
+stages = re.findall(r"coons2stl: (volume mesh: [a-z]+|writing)", err)
+firsts = [s for i, s in enumerate(stages) if i == 0 or stages[i - 1] != s]
+T.check("volume mesh: its stages lattice, evaluate, cells (each to 100%), then writing",
+        rc == 0 and firsts == ["volume mesh: lattice", "volume mesh: evaluate",
+                               "volume mesh: cells", "writing"]
+        and all(f"volume mesh: {s} 100%" in err for s in ("lattice", "evaluate", "cells")),
+        repr(err))
 
 rc, out, err = run(["--progress", "-o", "-", MODEL])
 w = last_written(err, "<stdout>")

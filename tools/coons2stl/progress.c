@@ -122,13 +122,15 @@ void cli_progress_sampling(size_t i, size_t n, const char *name)
     progress_line(text);
 }
 
-/* coons_csg_options.progress. coons_model_solidify() and
- * coons_model_solidify_body() report the stage "sample" before each body with
- * the share of bodies done (i / count), then the stages of repair and
- * union with their own fraction. */
+/* coons_csg_options.progress and coons_volume_options.progress; userdata
+ * is what the line calls the operation ("repair and union", "volume
+ * mesh"). coons_model_solidify() and coons_model_solidify_body() report
+ * the stage "sample" before each body with the share of bodies done
+ * (i / count), then the stages of repair and union with their own
+ * fraction; the volume mesher its stages "lattice", "evaluate", "cells". */
 void cli_on_progress(void *userdata, const char *stage, double fraction)
 {
-    (void)userdata;
+    const char *what = userdata ? (const char *)userdata : "repair and union";
     if (strcmp(stage, "sample") == 0) {
         size_t n = ui.model ? coons_model_body_count(ui.model) : 0;
         size_t i = (size_t)(fraction * (double)n + 0.5);
@@ -137,7 +139,7 @@ void cli_on_progress(void *userdata, const char *stage, double fraction)
     }
     if (!due(stage, fraction)) return;
     char text[128];
-    snprintf(text, sizeof text, "repair and union: %s %3d%%", stage, (int)(100 * fraction));
+    snprintf(text, sizeof text, "%s: %s %3d%%", what, stage, (int)(100 * fraction));
     progress_line(text);
 }
 

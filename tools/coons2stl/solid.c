@@ -8,6 +8,7 @@
  * union that needs it).
  */
 #define _DEFAULT_SOURCE /* sysconf(_SC_NPROCESSORS_ONLN) */
+#include <stdint.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -21,6 +22,7 @@ coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     copts.threads = jobs ? jobs : (cores > 0 ? (unsigned)cores : 1u);
     copts.progress = cli_progress_on() ? cli_on_progress : NULL;
+    copts.userdata = (void *)(uintptr_t)"repair and union";
     coons_csg_report_init(rep);
     if (body < 0) return coons_model_solidify(m, so, &copts, out, rep, err);
     return coons_model_solidify_body(m, (size_t)body, so, &copts, out, rep, err);

@@ -23,6 +23,8 @@ coons_status cli_volume_mesh(const coons_model *m, long body, const options *o,
     vo.element = o->element;
     for (int d = 0; d < 3; d++) vo.resolution[d] = o->resolution3[d];
     vo.tolerance = o->tolerance > 0 ? o->tolerance : coons_model_tolerance(m);
+    vo.progress = cli_progress_on() ? cli_on_progress : NULL;
+    vo.userdata = (void *)(uintptr_t)"volume mesh";
     if (body < 0) return coons_model_volume_mesh(m, &vo, out, err);
     return coons_body_volume_mesh(coons_model_body(m, (size_t)body), &vo,
                                   coons_model_body_name(m, (size_t)body), out, err);
