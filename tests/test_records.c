@@ -24,7 +24,8 @@ static void test_sample_options_init(void **state)
     (void)state;
     FROM_INIT(coons_sample_options, coons_sample_options_init, COONS_SAMPLE_OPTIONS_INIT);
     SAME(version), SAME(tolerance), SAME(resolution), SAME(max_triangles), SAME(max_aspect),
-        SAME(flags);
+        SAME(flags), SAME(progress), SAME(userdata);
+    assert_null(a.progress);
     assert_int_equal(a.version, COONS_SAMPLE_OPTIONS_VERSION);
 }
 
@@ -237,6 +238,40 @@ static void on_stage(void *ctx, const char *stage, double fraction)
     l->ends += fraction == 1.0;
 }
 
+/* Version 2 of coons_sample_options: "measure" reports within [0, 1],
+ * each pass reaching 1; the mesh is the same as without reports, and a
+ * version-1 record still samples, unasked. */
+static void test_sample_options_progress(void **state)
+{
+    (void)state;
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh[3] = {NULL, NULL, NULL};
+    for (unsigned k = 0; k < 3; k++) {
+        stage_log l;
+        memset(&l, 0, sizeof l);
+        coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+        o.version = k == 0 ? 1u : COONS_SAMPLE_OPTIONS_VERSION;
+        o.tolerance = 1e-4;
+        o.progress = k == 2 ? NULL : on_stage;
+        o.userdata = &l;
+        assert_coons_ok(coons_body_sample(coons_model_body(m, 0), &o, "b", &mesh[k], &err), &err);
+        if (k == 0) assert_int_equal(l.n, 0);
+        if (k == 1) {
+            assert_string_equal(l.order, "m");
+            assert_false(l.bad);
+            assert_true(l.ends >= 1);
+        }
+    }
+    for (unsigned k = 1; k < 3; k++) {
+        assert_int_equal(coons_mesh_vertex_count(mesh[k]), coons_mesh_vertex_count(mesh[0]));
+        assert_memory_equal(coons_mesh_vertices(mesh[k]), coons_mesh_vertices(mesh[0]),
+                            3 * sizeof(double) * coons_mesh_vertex_count(mesh[0]));
+    }
+    for (unsigned k = 0; k < 3; k++) coons_mesh_free(mesh[k]);
+    coons_model_free(m);
+}
+
 static void test_volume_options_progress(void **state)
 {
     (void)state;
@@ -389,6 +424,7 @@ int main(void)
         cmocka_unit_test(test_write_options_version),
         cmocka_unit_test(test_write_options_written),
         cmocka_unit_test(test_volume_options_progress),
+        cmocka_unit_test(test_sample_options_progress),
         cmocka_unit_test(test_csg_records_version),
         cmocka_unit_test(test_model_load_options_version),
         cmocka_unit_test(test_hermite_options_version),

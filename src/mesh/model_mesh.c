@@ -317,7 +317,9 @@ static coons_status sample_parallel(const coons_model *model, const coons__sampl
     j.nb = nb;
     j.sf = sf;
     j.nsf = nsf;
-    j.o = o;
+    coons__sample_opts quiet = *o; /* workers report nothing: not the calling thread */
+    quiet.progress = NULL;
+    j.o = &quiet;
     size_t *lead = coons__malloc_array(nlead, sizeof *lead);
     j.mesh = coons__calloc(nlead, sizeof *j.mesh);
     j.used = coons__calloc(nlead, sizeof *j.used);

@@ -704,6 +704,8 @@ static coons_status scan(sampler *s, int r, double thr)
                     as[(p - p0) * r + i] = ta[p] + (ta[p + 1] - ta[p]) * i / r;
             as[rows - 1] = ta[p1];
             if ((st = eval_face(s, f, as, rows, s->bs, nbs, s->buf))) return st;
+            if (s->o->progress) /* the pass's share: faces, then rows */
+                s->o->progress(s->o->userdata, "measure", ((double)f + (double)p1 / na) / 6);
             for (size_t p = p0; p < p1; p++)
                 for (size_t q = 0; q < nb; q++) {
                     const uint32_t *id = s->ids[f];
@@ -1017,9 +1019,9 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
 {
     coons_sample_options def = COONS_SAMPLE_OPTIONS_INIT;
     if (!in) in = &def;
-    if (in->version != COONS_SAMPLE_OPTIONS_VERSION)
+    if (in->version != COONS_SAMPLE_OPTIONS_VERSION && in->version != 1)
         return coons__error_set(err, COONS_E_INVALID,
-                                "sample options version %u, expected %u (use "
+                                "sample options version %u, expected 1 to %u (use "
                                 "COONS_SAMPLE_OPTIONS_INIT)",
                                 in->version, (unsigned)COONS_SAMPLE_OPTIONS_VERSION);
     if (isnan(in->tolerance) || isinf(in->tolerance))
@@ -1042,6 +1044,8 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
                                 in->flags & ~COONS_SAMPLE_UNMEASURED);
     out->flags = in->flags;
     out->max_cells = 0;
+    out->progress = in->version >= 2 ? in->progress : NULL;
+    out->userdata = in->version >= 2 ? in->userdata : NULL;
     return COONS_OK;
 }
 

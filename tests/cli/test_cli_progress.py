@@ -8,6 +8,8 @@ moves"), read from standard error with --progress:
   figure is the size of the file written (checked against the file), on
   the same line as the stages before it (one line, ended by one newline);
   for surface meshes, volume meshes and standard output (-o -);
+- one body: "sampling body 1 of 1 (NAME)" followed by the share of the
+  current measuring pass;
 - --frames: "frame k of N: " before the stages of frame k, for every k;
 - sampling on threads (-j 2) still names each body in order, and the
   output is the same bytes as with -j 1;
@@ -93,12 +95,20 @@ T.check("--frames 3: 'frame k of 3: ' before each frame's stages, k = 1, 2, 3",
         and all(f"coons2stl: frame {k} of 3: writing " in err for k in (1, 2, 3)),
         repr(err[-300:]))
 
+SPOOL = os.path.join(T.src, "examples", "spool.json")
+rc, _, err = run(["--progress", "-j", "1", "-t", "0.002", "-o", os.path.join(TMP, "s.stl"), SPOOL])
+pcts = [int(x) for x in re.findall(r"sampling body 1 of 1 \(spool\) +(\d+)%", err)]
+T.check("one body: its line moves with the share of the measuring pass (a percentage)",
+        rc == 0 and len(pcts) >= 1 and all(0 <= p <= 100 for p in pcts), repr(err[:300]))
+
 outs = []
 for j in ("1", "2"):
     out = os.path.join(TMP, f"j{j}.stl")
     rc, _, err = run(["--progress", "-j", j, "-o", out, MODEL])
     T.check(f"-j {j}: each body named in order (sampling body i of 3)",
-            rc == 0 and [int(i) for i in re.findall(r"sampling body (\d) of 3", err)] == [1, 2, 3],
+            rc == 0 and sorted(set(int(i) for i in re.findall(r"sampling body (\d) of 3", err)))
+            == [1, 2, 3] and sorted(re.findall(r"sampling body (\d) of 3", err))
+            == re.findall(r"sampling body (\d) of 3", err),
             repr(err))
     outs.append(open(out, "rb").read() if os.path.exists(out) else None)
 T.check("-j 1 and -j 2 write the same bytes", outs[0] is not None and outs[0] == outs[1])

@@ -101,6 +101,9 @@ int cli_progress_on(void);
 void cli_progress_end(void);
 void cli_progress_sampling(size_t i, size_t n, const char *name);
 void cli_on_progress(void *userdata, const char *stage, double fraction);
+/* coons_sample_options.progress: the body being sampled, with the share
+ * of the current measuring pass ("sampling body 1 of 3 (a)  40%"). */
+void cli_on_measure(void *userdata, const char *stage, double fraction);
 /* coons_write_options.written: "writing NAME: SIZE"; ctx is NAME. */
 void cli_on_written(void *ctx, unsigned long long bytes);
 /* Text put before every progress line ("frame 2 of 5: "); NULL: none. */

@@ -26,6 +26,7 @@ static coons_sample_options sample_options(const options *o, const coons_model *
     /* A mesh on a fixed lattice needs no measured deviation (--info reports
      * it); measuring would be most of the sampling time. */
     if (o->resolution && !o->info) so.flags |= COONS_SAMPLE_UNMEASURED;
+    so.progress = cli_progress_on() ? cli_on_measure : NULL;
     return so;
 }
 

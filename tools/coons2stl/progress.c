@@ -33,6 +33,7 @@ static struct {
     char stage[64];           /* the stage last drawn, to draw every new one */
     double drawn_at;          /* when the line was last drawn (monotonic seconds) */
     char pending[160];        /* a report skipped by the rate limit, drawn at the end */
+    char body[128];           /* "sampling body i of n (name)", the body being sampled */
 } ui;
 
 /* Seconds between two redraws of the same stage. */
@@ -119,6 +120,8 @@ void cli_progress_sampling(size_t i, size_t n, const char *name)
     char nm[48], text[128];
     printable(nm, sizeof nm, name);
     snprintf(text, sizeof text, "sampling body %zu of %zu (%s)", i + 1, n, nm);
+    snprintf(ui.body, sizeof ui.body, "%s", text);
+    snprintf(ui.stage, sizeof ui.stage, "%s", "sample");
     progress_line(text);
 }
 
@@ -140,6 +143,16 @@ void cli_on_progress(void *userdata, const char *stage, double fraction)
     if (!due(stage, fraction)) return;
     char text[128];
     snprintf(text, sizeof text, "%s: %s %3d%%", what, stage, (int)(100 * fraction));
+    progress_line(text);
+}
+
+void cli_on_measure(void *userdata, const char *stage, double fraction)
+{
+    (void)userdata;
+    (void)stage;
+    if (!ui.on || !ui.body[0] || !due("measure", 0.5)) return;
+    char text[160];
+    snprintf(text, sizeof text, "%s %3d%%", ui.body, (int)(100 * fraction));
     progress_line(text);
 }
 
