@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Test hooks: internal functions for the tests, never exported from the
- * shared library (hidden visibility; link coons_static to reach them). Not thread-safe: set them before any other
- * call, as coons_set_allocator(). Plain C. */
+ * shared library (hidden visibility; link coons_static to reach them). Not
+ * thread-safe: set them before any other call, as coons_set_allocator().
+ * Plain C. */
 #ifndef COONS_TEST_HOOKS_H
 #define COONS_TEST_HOOKS_H
 

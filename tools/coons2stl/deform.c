@@ -214,5 +214,6 @@ int cli_deform(const coons_model *m, long body, const options *o)
         return st;
     }
     coons_mesh_free(in);
-    return cli_write_surface(out, o, shown);
+    cli_output where = cli_output_of(o);
+    return cli_write_surface(out, &where, shown);
 }

@@ -208,8 +208,9 @@ int cli_write_frames(coons_model *m, long body, const options *o,
         snprintf(prefix, sizeof prefix, "frame %u of %u: ", k + 1, o->frames);
         cli_progress_prefix(prefix);
         cli_output out = cli_output_of(&fo);
+        cli_volume vol = cli_volume_of(o);
         int rc = cli_is_volume_format(o->format)
-                     ? cli_write_volume(m, body, &fo)
+                     ? cli_write_volume(m, body, &vol, &out)
                      : cli_write_output(m, body, &out, so, !o->no_repair, o->jobs);
         if (rc) {
             if (k)

@@ -427,7 +427,8 @@ static void print_model(const coons_model *m, double tol, const double clo[3],
     json_box(clo, chi);
 }
 
-int cli_info(const coons_model *m, long only, const coons_sample_options *so, const options *o)
+int cli_info(const coons_model *m, long only, const coons_sample_options *so,
+             const cli_info_options *io)
 {
     size_t n = coons_model_body_count(m);
     double clo[3], chi[3];
@@ -439,13 +440,13 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     double rel = diag > 0 ? tol / diag : 1e-6;
     if (rel > 1e-6) rel = 1e-6;
     if (rel < 1e-12) rel = 1e-12;
-    int checks = !o->no_solid && coons_csg_is_available();
+    int checks = io->solid && coons_csg_is_available();
     double total = 0.0;
     size_t listed = 0;
     coons_volume_mesh *vm = NULL;
-    if (o->volume_mesh || (cli_is_volume_format(o->format) && (o->output || o->format_arg))) {
+    if (io->volume_mesh) {
         coons_error err = COONS_ERROR_INIT;
-        if (cli_volume_mesh(m, only, o, &vm, &err) != COONS_OK) {
+        if (cli_volume_mesh(m, only, io->volume, &vm, &err) != COONS_OK) {
             cli_progress_end();
             cli_message(0, "volume mesh: %s", err.message);
             return EXIT_GEOMETRY;
@@ -471,10 +472,10 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
         coons_volume_mesh_free(vm);
         return EXIT_GEOMETRY;
     }
-    if (o->no_solid) {
+    if (!io->solid) {
         printf(",\n  \"solid\": null");
     } else {
-        int rc = info_solid(m, only, so, !o->no_repair, o->jobs);
+        int rc = info_solid(m, only, so, io->repair, io->jobs);
         if (rc) {
             coons_volume_mesh_free(vm);
             return rc;
@@ -483,7 +484,8 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     printf("\n}\n");
     /* --info -o FILE.vtu: the report, then the mesh written as -o alone would. */
     int rc = 0;
-    if (vm && !o->volume_mesh) rc = fflush(stdout) != 0 ? EXIT_GEOMETRY : cli_write_volume_mesh(vm, o);
+    if (vm && io->out)
+        rc = fflush(stdout) != 0 ? EXIT_GEOMETRY : cli_write_volume_mesh(vm, io->volume, io->out);
     coons_volume_mesh_free(vm);
     return rc;
 }

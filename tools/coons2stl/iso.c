@@ -7,6 +7,7 @@
  * (coons_model_iso_surfaces(), coons_body_iso_surface()).
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -38,28 +39,32 @@ static coons_status one_body(const coons_model *m, size_t body, const coons_iso_
     return COONS_OK;
 }
 
-int cli_write_iso(const coons_model *m, long body, const options *o,
-                  const coons_sample_options *so)
+int cli_write_iso(const coons_model *m, long body, const cli_iso *iso,
+                  const coons_sample_options *so, const cli_output *out)
 {
     coons_error err = COONS_ERROR_INIT;
-    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
-    const char *shown = to_stdout ? "<stdout>" : o->output;
-    coons_iso_request req[sizeof o->iso_value / sizeof o->iso_value[0]];
-    for (size_t i = 0; i < o->niso_surfaces; i++) {
-        req[i].direction = o->iso_dir[i];
-        req[i].value = o->iso_value[i];
+    int to_stdout = !out->path || strcmp(out->path, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : out->path;
+    coons_iso_request *req = malloc((iso->n ? iso->n : 1) * sizeof *req);
+    if (!req) {
+        cli_message(0, "%s: out of memory; nothing was written", shown);
+        return EXIT_GEOMETRY;
+    }
+    for (size_t i = 0; i < iso->n; i++) {
+        req[i].direction = iso->dir[i];
+        req[i].value = iso->value[i];
     }
     coons_mesh *mesh = NULL;
     coons_status rc =
-        body < 0 ? coons_model_iso_surfaces(m, req, o->niso_surfaces, so,
-                                            o->with_boundary ? COONS_ISO_WITH_BOUNDARY : 0u,
+        body < 0 ? coons_model_iso_surfaces(m, req, iso->n, so,
+                                            iso->with_boundary ? COONS_ISO_WITH_BOUNDARY : 0u,
                                             &mesh, &err)
-                 : one_body(m, (size_t)body, req, o->niso_surfaces, so, o->with_boundary,
-                            &mesh, &err);
+                 : one_body(m, (size_t)body, req, iso->n, so, iso->with_boundary, &mesh, &err);
+    free(req);
     cli_progress_end();
     if (rc != COONS_OK) {
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
         return EXIT_GEOMETRY;
     }
-    return cli_write_surface(mesh, o, shown);
+    return cli_write_surface(mesh, out, shown);
 }

@@ -30,14 +30,31 @@ static coons_sample_options sample_options(const options *o, const coons_model *
     return so;
 }
 
+/* --info's record: -o with a volume format writes that mesh after the
+ * report; --volume-mesh reports it only. */
+static int run_info(const options *o, const coons_model *m, long body,
+                    const coons_sample_options *so)
+{
+    cli_volume vol = cli_volume_of(o);
+    cli_output out = cli_output_of(o);
+    int writes = cli_is_volume_format(o->format) && (o->output || o->format_arg);
+    cli_info_options io = {!o->no_solid, !o->no_repair, o->jobs, o->volume_mesh || writes, &vol,
+                           writes ? &out : NULL};
+    return cli_info(m, body, so, &io);
+}
+
 static int run_mode(const options *o, coons_model *m, long body)
 {
     coons_sample_options so = sample_options(o, m);
+    cli_output out = cli_output_of(o);
     if (o->deform) return cli_deform(m, body, o);
     if (o->frames) return cli_write_frames(m, body, o, &so);
     if (o->eval) return cli_eval(coons_model_body(m, body < 0 ? 0 : (size_t)body), o->jacobian);
-    if (o->info) return cli_info(m, body, &so, o);
-    if (o->niso) return cli_write_iso(m, body, o, &so);
+    if (o->info) return run_info(o, m, body, &so);
+    if (o->niso) {
+        cli_iso iso = {o->iso_dir, o->iso_value, o->niso_surfaces, o->with_boundary};
+        return cli_write_iso(m, body, &iso, &so, &out);
+    }
     if (o->format == COONS_FORMAT_SCAD && !o->time_arg && coons_model_morph_count(m)) {
         if (o->scale_to)
             return cli_usage_error("--scale-to cannot scale the OpenSCAD animation of a morph: "
@@ -52,9 +69,9 @@ static int run_mode(const options *o, coons_model *m, long body)
                     PROG, o->output, o->input);
             return EXIT_USAGE;
         }
-        return cli_write_volume(m, body, o);
+        cli_volume vol = cli_volume_of(o);
+        return cli_write_volume(m, body, &vol, &out);
     }
-    cli_output out = cli_output_of(o);
     return cli_write_output(m, body, &out, &so, !o->no_repair, o->jobs);
 }
 

@@ -262,10 +262,9 @@ int cli_write_output(const coons_model *m, long body, const cli_output *out,
     return write_named(mesh, out, shown);
 }
 
-int cli_write_surface(coons_mesh *mesh, const options *o, const char *shown)
+int cli_write_surface(coons_mesh *mesh, const cli_output *out, const char *shown)
 {
-    cli_output out = cli_output_of(o);
-    return write_named(mesh, &out, shown);
+    return write_named(mesh, out, shown);
 }
 
 /* Writes `mesh` (and frees it) to out->path (NULL or "-": standard
