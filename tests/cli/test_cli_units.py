@@ -21,6 +21,8 @@ import os
 import shutil
 import sys
 import tempfile
+import xml.etree.ElementTree as ET
+import zipfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import clitest  # noqa: E402
@@ -116,6 +118,30 @@ T.check("volume mesh --scale-to mm: every node times 25.4 (to the 17 digits prin
         len(vin) == len(vmm) > 8 and all(abs(b[k] - a[k] * 25.4) <= 1e-14 * max(1, abs(b[k]))
                                           for a, b in zip(vin, vmm) for k in range(3)),
         f"{vin[:2]} {vmm[:2]}")
+
+# 3MF carries units: 'inch' as the model says, no warning; with --scale-to mm the
+# coordinates times 25.4 and 'millimeter' (when the library has lib3mf)
+def read_3mf(path):
+    with zipfile.ZipFile(path) as z:
+        name = [n for n in z.namelist() if n.endswith(".model")][0]
+        root = ET.fromstring(z.read(name))
+    xs = [float(v.get("x")) for v in root.iter() if v.tag.endswith("vertex")]
+    return root.get("unit"), xs
+
+
+t_in, t_mm = os.path.join(TMP, "in.3mf"), os.path.join(TMP, "mm.3mf")
+rc, _, err = T.run(["-o", t_in, inch])
+if rc == 0:
+    rc2, _, err2 = T.run(["--scale-to", "mm", "-o", t_mm, inch])
+    (u_in, x_in), (u_mm, x_mm) = read_3mf(t_in), read_3mf(t_mm) if rc2 == 0 else (None, [])
+    T.check("3MF of a model in inches: unit 'inch', no warning (3MF carries units)",
+            u_in == "inch" and err == "", f"{u_in} {err}")
+    T.check("3MF --scale-to mm: unit 'millimeter', the same vertices times 25.4 (6 decimals)",
+            u_mm == "millimeter" and len(x_in) == len(x_mm) > 8
+            and all(abs(b - a * 25.4) <= 1e-5 * max(1, abs(b)) for a, b in zip(x_in, x_mm)),
+            f"{u_mm} {x_in[:3]} {x_mm[:3]}")
+else:
+    T.check("3MF without lib3mf: refused as before", rc == 3 and "3MF" in err, err)
 
 # refusals: nothing written
 def refused(name, args, status, words):
