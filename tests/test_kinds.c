@@ -402,7 +402,7 @@ static void test_grid_jacobians(void **state)
     }
     const double at[3] = {0.0, 0.4, 1.0};
     for (int m = 0; m < TB_MAX_BODIES; m++) {
-        const coons_body *keys[3] = {b[m], x[(m + 3) % TB_MAX_BODIES], b[(m + 7) % TB_MAX_BODIES]};
+        coons_body *keys[3] = {b[m], x[(m + 3) % TB_MAX_BODIES], b[(m + 7) % TB_MAX_BODIES]};
         coons_body *mo = NULL, *xm = NULL;
         assert_coons_ok(coons_body_new_morph(keys, 3, at, COONS_MORPH_SMOOTH, 0.55, &mo, &err),
                         &err);

@@ -160,7 +160,7 @@ static void test_eval_is_blend_and_jacobian_fd(void **state)
         for (int trial = 0; trial < 6; trial++) {
             double t = tb_rand(&r), w[3];
             coons_body *m = NULL;
-            assert_coons_ok(coons_body_new_morph((const coons_body *const *)k, 3, at, path, t, &m,
+            assert_coons_ok(coons_body_new_morph(k, 3, at, path, t, &m,
                                                  &err),
                             &err);
             assert_int_equal(coons_body_kind(m), COONS_BODY_MORPH);
@@ -236,7 +236,7 @@ static void test_bspline_grid_points(void **state)
         /* two keys, linear: weights 1 - t and t written out */
         double pb[N * 3];
         for (int i = 0; i < N * 3; i++) pb[i] = (1 - t) * p0[i] + t * p1[i];
-        assert_coons_ok(coons_body_new_morph((const coons_body *const *)k, 2, NULL,
+        assert_coons_ok(coons_body_new_morph(k, 2, NULL,
                                              COONS_MORPH_LINEAR, t, &m, &err),
                         &err);
         assert_coons_ok(coons_body_new_bspline(deg, pb, n, ku, kv, kw, NULL, &direct, &err), &err);
@@ -252,7 +252,7 @@ static void test_bspline_grid_points(void **state)
         double at[3] = {0, 0.6, 1}, W[3];
         assert_coons_ok(coons_morph_weights(3, at, COONS_MORPH_SMOOTH, t, W, NULL, &err), &err);
         for (int i = 0; i < N * 3; i++) pb[i] = W[0] * p0[i] + W[1] * p1[i] + W[2] * p2[i];
-        assert_coons_ok(coons_body_new_morph((const coons_body *const *)k, 3, at,
+        assert_coons_ok(coons_body_new_morph(k, 3, at,
                                              COONS_MORPH_SMOOTH, t, &m, &err),
                         &err);
         assert_coons_ok(coons_body_new_bspline(deg, pb, n, ku, kv, kw, NULL, &direct, &err), &err);
@@ -280,7 +280,7 @@ static void test_handedness_fold(void **state)
     assert_coons_ok(coons_body_new_body0(c[0], COONS_BLEND_LINEAR, &k[0], &err), &err);
     const double mirror[12] = {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     assert_coons_ok(coons_body_new_transformed(k[0], mirror, &k[1], &err), &err);
-    assert_coons_ok(coons_body_new_morph((const coons_body *const *)k, 2, NULL,
+    assert_coons_ok(coons_body_new_morph(k, 2, NULL,
                                          COONS_MORPH_LINEAR, 0.25, &m, &err),
                     &err);
     double md, where[3], o[3], J[3][3];
@@ -321,10 +321,10 @@ static void test_nested_time(void **state)
     assert_coons_ok(coons_body_new_body0(c0[0], COONS_BLEND_LINEAR, &a, &err), &err);
     assert_coons_ok(coons_body_new_body0(c1[0], COONS_BLEND_LINEAR, &b, &err), &err);
     assert_coons_ok(coons_body_new_body0(c2[0], COONS_BLEND_LINEAR, &c, &err), &err);
-    const coons_body *ab[2] = {a, b};
+    coons_body *ab[2] = {a, b};
     assert_coons_ok(coons_body_new_morph(ab, 2, NULL, COONS_MORPH_LINEAR, 0.0, &inner, &err),
                     &err);
-    const coons_body *ic[2] = {inner, c};
+    coons_body *ic[2] = {inner, c};
     assert_coons_ok(coons_body_new_morph(ic, 2, NULL, COONS_MORPH_LINEAR, 0.0, &outer, &err),
                     &err);
     const double shift[12] = {1, 0, 0, 10, 0, 1, 0, 0, 0, 0, 1, 0};
@@ -366,7 +366,7 @@ static void test_invalid(void **state)
     coons_body *k[2], *m = NULL;
     assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_LINEAR, &k[0], &err), &err);
     assert_coons_ok(coons_body_new_body0(tb_hex()[0], COONS_BLEND_CUBIC, &k[1], &err), &err);
-    const coons_body *const *kk = (const coons_body *const *)k;
+    coons_body *const *kk = k;
     assert_int_equal(coons_body_new_morph(kk, 1, NULL, COONS_MORPH_LINEAR, 0, &m, &err),
                      COONS_E_INVALID);
     const double bad1[2] = {0.0, 0.9}, bad2[2] = {0.1, 1.0}, ok[2] = {0.0, 1.0};
@@ -462,7 +462,7 @@ static void test_alloc_failures(void **state)
         coons_test_fail_after(n);
         coons_error err = COONS_ERROR_INIT;
         coons_body *m = NULL, *c = NULL;
-        int rc = coons_body_new_morph((const coons_body *const *)k, 3, NULL, COONS_MORPH_SMOOTH,
+        int rc = coons_body_new_morph(k, 3, NULL, COONS_MORPH_SMOOTH,
                                       0.4, &m, &err);
         if (!rc) rc = coons_body_at_time(m, 0.7, &c, &err);
         double g[2] = {0, 1}, out[8 * 3];

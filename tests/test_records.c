@@ -25,7 +25,8 @@ static void test_sample_options_init(void **state)
     (void)state;
     FROM_INIT(coons_sample_options, coons_sample_options_init, COONS_SAMPLE_OPTIONS_INIT);
     SAME(version), SAME(tolerance), SAME(resolution), SAME(max_triangles), SAME(max_aspect),
-        SAME(flags);
+        SAME(flags), SAME(progress), SAME(userdata);
+    assert_null(a.progress);
     assert_int_equal(a.version, COONS_SAMPLE_OPTIONS_VERSION);
 }
 
@@ -34,7 +35,8 @@ static void test_write_options_init(void **state)
     (void)state;
     FROM_INIT(coons_write_options, coons_write_options_init, COONS_WRITE_OPTIONS_INIT);
     SAME(version), SAME(name), SAME(units), SAME(header), SAME(protect_path), SAME(cancel),
-        SAME(cancel_ctx);
+        SAME(cancel_ctx), SAME(written), SAME(written_ctx);
+    assert_null(a.written);
     assert_int_equal(a.version, COONS_WRITE_OPTIONS_VERSION);
 }
 
@@ -179,6 +181,145 @@ static void test_write_options_version(void **state)
         fclose(fp);
     }
     coons_mesh_free(mesh);
+    coons_model_free(m);
+}
+
+/* Version 2's `written`: the bytes so far, ending with the file's size,
+ * never decreasing; a version-1 record is still accepted and not asked. */
+typedef struct written_log {
+    unsigned long long last;
+    int calls, decreased;
+} written_log;
+
+static void on_written(void *ctx, unsigned long long bytes)
+{
+    written_log *w = ctx;
+    if (bytes < w->last) w->decreased = 1;
+    w->last = bytes;
+    w->calls++;
+}
+
+static void test_write_options_written(void **state)
+{
+    (void)state;
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh = NULL;
+    assert_coons_ok(coons_model_sample(m, NULL, &mesh, &err), &err);
+    char path[64];
+    snprintf(path, sizeof path, "records-w-%ld.off", (long)getpid());
+    for (unsigned version = 1; version <= COONS_WRITE_OPTIONS_VERSION; version++) {
+        written_log w = {0, 0, 0};
+        coons_write_options o = COONS_WRITE_OPTIONS_INIT;
+        o.version = version;
+        o.written = on_written;
+        o.written_ctx = &w;
+        assert_coons_ok(coons_mesh_write(mesh, path, COONS_FORMAT_OFF, &o, &err), &err);
+        FILE *fp = fopen(path, "rb");
+        assert_non_null(fp);
+        fseek(fp, 0, SEEK_END);
+        long size = ftell(fp);
+        fclose(fp);
+        remove(path);
+        if (version == 1) {
+            assert_int_equal(w.calls, 0);
+        } else {
+            assert_true(w.calls >= 1);
+            assert_false(w.decreased);
+            assert_int_equal(w.last, (unsigned long long)size);
+        }
+    }
+    coons_mesh_free(mesh);
+    coons_model_free(m);
+}
+
+/* Version 2 of coons_volume_options: the stages lattice, evaluate, cells
+ * in that order, each from 0 (or its first body) to 1 without going back;
+ * a version-1 record still meshes, unasked. */
+typedef struct stage_log {
+    char order[4]; /* first letter of each stage, as they begin */
+    size_t n;
+    double last;
+    int back, ends, bad;
+} stage_log;
+
+static void on_stage(void *ctx, const char *stage, double fraction)
+{
+    stage_log *l = ctx;
+    if (!(fraction >= 0 && fraction <= 1)) l->bad = 1;
+    if (l->n == 0 || l->order[l->n - 1] != stage[0]) {
+        if (l->n < sizeof l->order - 1) l->order[l->n++] = stage[0];
+        l->last = 0;
+    }
+    if (fraction < l->last) l->back = 1;
+    l->last = fraction;
+    l->ends += fraction == 1.0;
+}
+
+/* Version 2 of coons_sample_options: "measure" reports within [0, 1],
+ * each pass reaching 1; the mesh is the same as without reports, and a
+ * version-1 record still samples, unasked. */
+static void test_sample_options_progress(void **state)
+{
+    (void)state;
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    coons_mesh *mesh[3] = {NULL, NULL, NULL};
+    for (unsigned k = 0; k < 3; k++) {
+        stage_log l;
+        memset(&l, 0, sizeof l);
+        coons_sample_options o = COONS_SAMPLE_OPTIONS_INIT;
+        o.version = k == 0 ? 1u : COONS_SAMPLE_OPTIONS_VERSION;
+        o.tolerance = 1e-4;
+        o.progress = k == 2 ? NULL : on_stage;
+        o.userdata = &l;
+        assert_coons_ok(coons_body_sample(coons_model_body(m, 0), &o, "b", &mesh[k], &err), &err);
+        if (k == 0) assert_int_equal(l.n, 0);
+        if (k == 1) {
+            assert_string_equal(l.order, "m");
+            assert_false(l.bad);
+            assert_true(l.ends >= 1);
+        }
+    }
+    for (unsigned k = 1; k < 3; k++) {
+        assert_int_equal(coons_mesh_vertex_count(mesh[k]), coons_mesh_vertex_count(mesh[0]));
+        assert_memory_equal(coons_mesh_vertices(mesh[k]), coons_mesh_vertices(mesh[0]),
+                            3 * sizeof(double) * coons_mesh_vertex_count(mesh[0]));
+    }
+    for (unsigned k = 0; k < 3; k++) coons_mesh_free(mesh[k]);
+    coons_model_free(m);
+}
+
+static void test_volume_options_progress(void **state)
+{
+    (void)state;
+    FROM_INIT(coons_volume_options, coons_volume_options_init, COONS_VOLUME_OPTIONS_INIT);
+    SAME(version), SAME(element), SAME(resolution), SAME(tolerance), SAME(max_cells),
+        SAME(progress), SAME(userdata);
+    assert_null(a.progress);
+    coons_model *m = cube();
+    coons_error err = COONS_ERROR_INIT;
+    for (unsigned version = 1; version <= COONS_VOLUME_OPTIONS_VERSION; version++) {
+        stage_log l;
+        memset(&l, 0, sizeof l);
+        coons_volume_options o = COONS_VOLUME_OPTIONS_INIT;
+        o.version = version;
+        o.resolution[0] = o.resolution[1] = o.resolution[2] = 3;
+        o.progress = on_stage;
+        o.userdata = &l;
+        coons_volume_mesh *vm = NULL;
+        assert_coons_ok(coons_model_volume_mesh(m, &o, &vm, &err), &err);
+        assert_int_equal(coons_volume_mesh_cell_count(vm), 27);
+        coons_volume_mesh_free(vm);
+        if (version == 1) {
+            assert_int_equal(l.n, 0);
+        } else {
+            assert_string_equal(l.order, "lec");
+            assert_false(l.back);
+            assert_false(l.bad);
+            assert_int_equal(l.ends, 3);
+        }
+    }
     coons_model_free(m);
 }
 
@@ -383,6 +524,9 @@ int main(void)
         cmocka_unit_test(test_csg_report_init),
         cmocka_unit_test(test_sample_options_version),
         cmocka_unit_test(test_write_options_version),
+        cmocka_unit_test(test_write_options_written),
+        cmocka_unit_test(test_volume_options_progress),
+        cmocka_unit_test(test_sample_options_progress),
         cmocka_unit_test(test_csg_records_version),
         cmocka_unit_test(test_model_load_options_version),
         cmocka_unit_test(test_hermite_options_version),

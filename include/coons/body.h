@@ -344,7 +344,7 @@ COONS_EXPORT coons_status coons_morph_weights(size_t nkeys, const double *at,
  *         more than ::COONS_MORPH_MAX_KEYS keys, bad times or path, t outside
  *         [0,1]: the message says which), ::COONS_E_NOMEM.
  */
-COONS_EXPORT coons_status coons_body_new_morph(const coons_body *const *keys, size_t nkeys,
+COONS_EXPORT coons_status coons_body_new_morph(coons_body *const *keys, size_t nkeys,
                                                const double *at, coons_morph_path path,
                                                double t, coons_body **out, coons_error *err);
 

@@ -38,13 +38,6 @@
 extern "C" {
 #endif
 
-/**
- * Progress callback: `stage` names the step ("autorefine", "classify",
- * "check", ...), `fraction` in [0,1] is the share of all work done. Called
- * from the calling thread; must not call back into the library.
- */
-typedef void (*coons_progress_fn)(void *userdata, const char *stage, double fraction);
-
 /** Options of coons_mesh_solidify(). Initialise with ::COONS_CSG_OPTIONS_INIT. */
 typedef struct coons_csg_options {
     unsigned version;           /**< ::COONS_CSG_OPTIONS_VERSION */
@@ -190,7 +183,10 @@ COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_
  *                   `progress` also hears the stage "sample" before each
  *                   body, with the share of bodies sampled (i / count, then
  *                   1), before the stages of coons_mesh_solidify(), whose
- *                   fraction starts again from 0
+ *                   fraction starts again from 0; with `threads` > 1 the
+ *                   bodies are sampled at once and the calling thread
+ *                   reports "sample" i / count each time body i becomes
+ *                   the first one (in body order) still being sampled
  * @param[in,out] report may be NULL; else its `version` must be
  *                ::COONS_CSG_REPORT_VERSION; its output fields are zeroed
  *                when no CGAL work was needed

@@ -167,8 +167,10 @@ typedef enum coons_mesh_kind {
     COONS_MESH_KIND_VOLUME = 2   /**< a volume mesh, ::coons_volume_mesh */
 } coons_mesh_kind;
 
-/** Version of ::coons_write_options this header describes. */
-#define COONS_WRITE_OPTIONS_VERSION 1
+/** Version of ::coons_write_options this header describes. Version 2:
+ *  `written` and `written_ctx`; records of version 1 are still accepted
+ *  (as without them). */
+#define COONS_WRITE_OPTIONS_VERSION 2
 
 /**
  * Options of the writers. Initialise with ::COONS_WRITE_OPTIONS_INIT and set
@@ -216,6 +218,14 @@ typedef struct coons_write_options {
     const size_t *background;
     /** Number of indices in `background`. */
     size_t nbackground;
+    /** (version 2) Progress of the write: called from the calling thread
+     *  after every buffer written (at most 1 MiB apart) and once at the end,
+     *  with the number of bytes of the output written so far (a file's
+     *  final size at the end). Keep it cheap; it must not call back into
+     *  the library. NULL: no reports. */
+    void (*written)(void *ctx, unsigned long long bytes);
+    /** (version 2) Passed to `written`. */
+    void *written_ctx;
 } coons_write_options;
 
 /** Default options. */

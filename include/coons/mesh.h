@@ -49,6 +49,15 @@ COONS_EXPORT size_t coons_mesh_vertex_count(const coons_mesh *m);
 COONS_EXPORT size_t coons_mesh_triangle_count(const coons_mesh *m);
 /** Borrowed view: 3 doubles per vertex. */
 COONS_EXPORT const double *coons_mesh_vertices(const coons_mesh *m);
+
+/**
+ * Multiplies every vertex by `factor` (a change of units: 25.4 turns
+ * inches into millimetres); triangles, parts and vertex parameters stay.
+ * @return ::COONS_OK; ::COONS_E_INVALID (no mesh, or `factor` not a finite
+ *         number > 0); ::COONS_E_LIMIT when a coordinate would overflow
+ *         (the mesh is then unchanged).
+ */
+COONS_EXPORT coons_status coons_mesh_scale(coons_mesh *m, double factor, coons_error *err);
 /** Borrowed view: 3 indices per triangle (into the whole mesh's vertices). */
 COONS_EXPORT const uint32_t *coons_mesh_triangles(const coons_mesh *m);
 

@@ -20,8 +20,9 @@ extern "C" {
 /** Default largest side ratio of the cells of the starting lattice. */
 #define COONS_SAMPLE_DEFAULT_MAX_ASPECT 4.0
 
-/** Version of ::coons_sample_options this header describes. */
-#define COONS_SAMPLE_OPTIONS_VERSION 1
+/** Version of ::coons_sample_options this header describes. Version 2:
+ *  `progress` and `userdata`; records of version 1 are still accepted. */
+#define COONS_SAMPLE_OPTIONS_VERSION 2
 
 /**
  * How a body's boundary is sampled. Initialise with
@@ -56,6 +57,15 @@ typedef struct coons_sample_options {
     double max_aspect;
     /** Zero or more ::COONS_SAMPLE_UNMEASURED. */
     unsigned int flags;
+    /** (version 2) Progress of each body's sampling, from the calling
+     *  thread: the stage "measure" with the share of the body's face rows
+     *  measured in the current pass (adaptive sampling makes several
+     *  passes, each from 0 to 1). Bodies that coons_model_solidify()
+     *  samples on other threads report nothing here (see its progress).
+     *  NULL: no reports. */
+    coons_progress_fn progress;
+    /** (version 2) Passed to `progress`. */
+    void *userdata;
 } coons_sample_options;
 
 /**

@@ -102,6 +102,15 @@ typedef struct coons_model coons_model;
 typedef struct coons_mesh coons_mesh;
 
 /**
+ * Progress callback of the options records that take one (repair and union,
+ * coons/csg.h; volume meshes, coons/volume.h): `stage` names the step
+ * ("sample", "autorefine", "check", "evaluate", ...), `fraction` in [0,1]
+ * is the share of that step's work done. Called from the calling thread;
+ * keep it cheap; it must not call back into the library.
+ */
+typedef void (*coons_progress_fn)(void *userdata, const char *stage, double fraction);
+
+/**
  * Returns a static, never-NULL English description of a status code.
  */
 COONS_EXPORT const char *coons_strerror(int code);

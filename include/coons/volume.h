@@ -232,6 +232,16 @@ COONS_EXPORT size_t coons_volume_mesh_face_set_count(const coons_volume_mesh *vm
 
 /** Borrowed view: 3 doubles per node (NULL when there are no nodes). */
 COONS_EXPORT const double *coons_volume_mesh_nodes(const coons_volume_mesh *vm);
+
+/**
+ * Multiplies every node by `factor` (a change of units); cells, parts,
+ * sets and fields stay (a field keeps the units it was computed in).
+ * @return ::COONS_OK; ::COONS_E_INVALID (no mesh, or `factor` not a finite
+ *         number > 0); ::COONS_E_LIMIT when a coordinate would overflow
+ *         (the mesh is then unchanged).
+ */
+COONS_EXPORT coons_status coons_volume_mesh_scale(coons_volume_mesh *vm, double factor,
+                                                  coons_error *err);
 /** Borrowed view: coons_volume_mesh_nodes_per_cell() node indices per cell. */
 COONS_EXPORT const uint32_t *coons_volume_mesh_cells(const coons_volume_mesh *vm);
 /** Borrowed view: the part index of each cell. */
@@ -271,8 +281,9 @@ COONS_EXPORT const char *coons_volume_mesh_face_set(const coons_volume_mesh *vm,
  *  coons_model_volume_mesh(): 2^22 (4,194,304). */
 #define COONS_VOLUME_MAX_CELLS ((size_t)1 << 22)
 
-/** Version of ::coons_volume_options this header describes. */
-#define COONS_VOLUME_OPTIONS_VERSION 1
+/** Version of ::coons_volume_options this header describes. Version 2:
+ *  `progress` and `userdata`; records of version 1 are still accepted. */
+#define COONS_VOLUME_OPTIONS_VERSION 2
 
 /**
  * How bodies are meshed. Initialise with ::COONS_VOLUME_OPTIONS_INIT;
@@ -296,6 +307,13 @@ typedef struct coons_volume_options {
     double tolerance;
     /** Largest number of cells; 0: ::COONS_VOLUME_MAX_CELLS. */
     size_t max_cells;
+    /** (version 2) Progress: the stage "lattice" before each body's lattice
+     *  is chosen (i / count, then 1), "evaluate" as the bodies' nodes are
+     *  evaluated (the share of nodes done), "cells" as the cells are made
+     *  (the share of cells). NULL: no reports. */
+    coons_progress_fn progress;
+    /** (version 2) Passed to `progress`. */
+    void *userdata;
 } coons_volume_options;
 
 #ifndef __cplusplus

@@ -252,7 +252,7 @@ const coons__body_kind coons__morph_kind = {
     COONS_BODY_MORPH, eval, grid, det_grid, breaks, copy, release,
 };
 
-coons_status coons_body_new_morph(const coons_body *const *keys, size_t nkeys, const double *at,
+coons_status coons_body_new_morph(coons_body *const *keys, size_t nkeys, const double *at,
                                   coons_morph_path path, double t, coons_body **out,
                                   coons_error *err)
 {

@@ -24,7 +24,10 @@ static coons_status edges(coons__ld *L, coons_patch *const f[6], const size_t to
     return coons__ld_fail_in(L, "faces", a, tok[r.a], COONS_E_INCOMPATIBLE,
                              "faces %s and %s disagree along their shared edge %s: at %c = %.6g, "
                              "%s gives %s and %s gives %s, %.3g apart, more than the tolerance "
-                             "%.3g",
+                             "%.3g. Faces that share an edge must be the same curve there at "
+                             "the same parameter: give both the same knots and equal control "
+                             "points along the edge, or build the faces from the edge curves "
+                             "(\"type\": \"coons\")",
                              a, b, coons_body_edge_name(r.at), "uvw"[r.at / 4], r.ta, a, sa, b,
                              sb, r.dist, L->ctol);
 }

@@ -101,7 +101,7 @@ coons_status coons__ld_read_morph(coons__ld *L, coons__ld_obj *o, coons_body **o
     if (!rc && L->build) {
         coons_error e = COONS_ERROR_INIT;
         coons_status r =
-            coons_body_new_morph((const coons_body *const *)keys, n, at,
+            coons_body_new_morph(keys, n, at,
                                  smooth ? COONS_MORPH_SMOOTH : COONS_MORPH_LINEAR, t, out, &e);
         rc = coons__ld_built(L, o->tok, r, o->what, &e);
     }

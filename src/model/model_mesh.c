@@ -122,9 +122,15 @@ coons_status coons__model_sample(const coons_model *model, const coons_sample_op
     return coons__model_sample_threads(model, opts, progress, userdata, 1, out, tolerance, err);
 }
 
+typedef struct {
+    void (*fn)(void *, const char *, double);
+    void *userdata;
+} sample_progress;
+
 static coons_status sample_parallel(const coons_model *model, const coons__sample_opts *o,
                                     unsigned threads, const uint32_t *comp, size_t nb,
-                                    const coons__shared_face *sf, size_t nsf, coons_mesh **out,
+                                    const coons__shared_face *sf, size_t nsf,
+                                    const sample_progress *progress, coons_mesh **out,
                                     int *fallback, coons_error *err);
 
 coons_status coons__model_sample_threads(const coons_model *model,
@@ -149,11 +155,9 @@ coons_status coons__model_sample_threads(const coons_model *model,
     if (!st) st = components(model, nb, comp, &sf, &nsf, err);
     int fallback = 1;
     if (!st && threads > 1 && nb > 1) {
-        st = sample_parallel(model, &o, threads, comp, nb, sf, nsf, &m, &fallback, err);
-        /* Progress from this thread: each body (as one thread reports it),
-         * once all are done. */
-        for (size_t i = 0; i < nb && !st && !fallback && progress; i++)
-            if (comp[i] == i) progress(userdata, "sample", (double)i / (double)nb);
+        /* Progress from this thread as the workers finish. */
+        sample_progress sp = {progress, userdata};
+        st = sample_parallel(model, &o, threads, comp, nb, sf, nsf, &sp, &m, &fallback, err);
     }
     if (!st && fallback) st = coons_mesh_new(&m, err);
     for (size_t i = 0; i < nb && !st && fallback; i++) {
@@ -201,6 +205,9 @@ typedef struct {
     coons_status *st;
     pthread_mutex_t lock;
     size_t next;
+    pthread_cond_t finished; /* signalled as each job ends (with progress) */
+    unsigned char *ended;    /* per job: it ended (with progress) */
+    int watch;               /* progress is reported: mark and signal */
 } sample_jobs;
 
 static void sample_one(sample_jobs *j, size_t k)
@@ -233,7 +240,37 @@ static void *sample_worker(void *arg)
         pthread_mutex_unlock(&j->lock);
         if (k == SIZE_MAX) return NULL;
         sample_one(j, k);
+        if (j->watch) {
+            pthread_mutex_lock(&j->lock);
+            j->ended[k] = 1;
+            pthread_cond_signal(&j->finished);
+            pthread_mutex_unlock(&j->lock);
+        }
     }
+}
+
+/* The calling thread while the workers sample: the stage "sample" with
+ * the first body (in body order) not yet sampled, i / count, each time
+ * that body changes: every body before it is done (each body passed over
+ * is reported too, in order, as the one-thread run reports it). */
+static void report_until_done(sample_jobs *j, const sample_progress *p)
+{
+    size_t first = 0; /* job of the first body not yet sampled */
+    p->fn(p->userdata, "sample", 0.0);
+    pthread_mutex_lock(&j->lock);
+    while (first < j->nlead) {
+        size_t was = first;
+        while (first < j->nlead && j->ended[first]) first++;
+        if (first == was) {
+            pthread_cond_wait(&j->finished, &j->lock);
+            continue;
+        }
+        pthread_mutex_unlock(&j->lock);
+        for (size_t k = was + 1; k <= first && k < j->nlead; k++)
+            p->fn(p->userdata, "sample", (double)j->lead[k] / (double)j->nb);
+        pthread_mutex_lock(&j->lock);
+    }
+    pthread_mutex_unlock(&j->lock);
 }
 
 /* The parts of src appended to dst as they are (metadata included). */
@@ -267,7 +304,8 @@ static coons_status append_parts(coons_mesh *dst, const coons_mesh *src, coons_e
  * the one-thread run then reports it exactly as it would). */
 static coons_status sample_parallel(const coons_model *model, const coons__sample_opts *o,
                                     unsigned threads, const uint32_t *comp, size_t nb,
-                                    const coons__shared_face *sf, size_t nsf, coons_mesh **out,
+                                    const coons__shared_face *sf, size_t nsf,
+                                    const sample_progress *progress, coons_mesh **out,
                                     int *fallback, coons_error *err)
 {
     *fallback = 0;
@@ -280,7 +318,9 @@ static coons_status sample_parallel(const coons_model *model, const coons__sampl
     j.nb = nb;
     j.sf = sf;
     j.nsf = nsf;
-    j.o = o;
+    coons__sample_opts quiet = *o; /* workers report nothing: not the calling thread */
+    quiet.progress = NULL;
+    j.o = &quiet;
     size_t *lead = coons__malloc_array(nlead, sizeof *lead);
     j.mesh = coons__calloc(nlead, sizeof *j.mesh);
     j.used = coons__calloc(nlead, sizeof *j.used);
@@ -302,10 +342,20 @@ static coons_status sample_parallel(const coons_model *model, const coons__sampl
         *fallback = 1;
         goto done;
     }
-    for (unsigned t = 1; t < threads && t < nlead; t++, started++)
+    /* With progress the calling thread reports while `threads` workers
+     * sample (it waits, it does not sample); else it is one of them. */
+    j.ended = progress && progress->fn ? coons__calloc(nlead, 1) : NULL;
+    j.watch = j.ended && pthread_cond_init(&j.finished, NULL) == 0;
+    unsigned first = j.watch ? 0u : 1u;
+    for (unsigned t = first; t < threads && t < nlead + first; t++, started++)
         if (pthread_create(&tid[started], NULL, sample_worker, &j)) break;
-    sample_worker(&j);
+    if (j.watch && started == 0) j.watch = 0; /* no worker: sample here, unwatched */
+    if (j.watch)
+        report_until_done(&j, progress);
+    else
+        sample_worker(&j);
     for (unsigned t = 0; t < started; t++) pthread_join(tid[t], NULL);
+    if (first == 0) pthread_cond_destroy(&j.finished);
     pthread_mutex_destroy(&j.lock);
     for (size_t k = 0; k < nlead && !*fallback; k++) {
         if (j.st[k] || j.used[k] > budget) *fallback = 1;
@@ -319,6 +369,7 @@ static coons_status sample_parallel(const coons_model *model, const coons__sampl
         m = NULL;
     }
 done:
+    coons__free(j.ended);
     for (size_t k = 0; j.mesh && k < nlead; k++) coons_mesh_free(j.mesh[k]);
     coons__free(lead);
     coons__free(j.mesh);

@@ -199,7 +199,9 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
 {
     coons_sample_options def = COONS_SAMPLE_OPTIONS_INIT;
     if (!in) in = &def;
-    if (COONS__RECORD_CHECK(err, "sample options", in->version, COONS_SAMPLE_OPTIONS))
+    /* version 1 has no progress fields */
+    if (coons__record_version_check("sample options", in->version, 1,
+                                    COONS_SAMPLE_OPTIONS_VERSION, "COONS_SAMPLE_OPTIONS_INIT", err))
         return COONS_E_INVALID;
     if (isnan(in->tolerance) || isinf(in->tolerance))
         return coons__error_set(err, COONS_E_INVALID, "tolerance must be a finite number");
@@ -221,6 +223,8 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
                                 in->flags & ~COONS_SAMPLE_UNMEASURED);
     out->flags = in->flags;
     out->max_cells = 0;
+    out->progress = in->version >= 2 ? in->progress : NULL;
+    out->userdata = in->version >= 2 ? in->userdata : NULL;
     return COONS_OK;
 }
 

@@ -143,6 +143,8 @@ coons_status coons__sampler_scan(sampler *s, int r, double thr)
                     as[(p - p0) * r + i] = ta[p] + (ta[p + 1] - ta[p]) * i / r;
             as[rows - 1] = ta[p1];
             if ((st = coons__sampler_eval_face(s, f, as, rows, s->bs, nbs, s->buf))) return st;
+            if (s->o->progress) /* the pass's share: faces, then rows */
+                s->o->progress(s->o->userdata, "measure", ((double)f + (double)p1 / na) / 6);
             for (size_t p = p0; p < p1; p++)
                 for (size_t q = 0; q < nb; q++) {
                     const uint32_t *id = s->ids[f];

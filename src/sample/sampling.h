@@ -23,6 +23,9 @@ typedef struct coons__sample_opts {
     /* A volume mesh's cell budget (volume/lattice.c): 0 for none; else the
      * sampler refuses at once a lattice predicted far above it. */
     size_t max_cells;
+    /* coons_sample_options.progress (version 2), or NULL: "measure" */
+    void (*progress)(void *, const char *, double);
+    void *userdata;
 } coons__sample_opts;
 
 /* Internal flag of coons__sample_opts: coons__body_sample_into() stores

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Test hooks: internal functions for the tests and for the CLI's testing
- * aid, never exported from the shared library (hidden visibility; link
- * coons_static to reach them). Not thread-safe: set them before any other
- * call, as coons_set_allocator(). Plain C. */
+/* Test hooks: internal functions for the tests, never exported from the
+ * shared library (hidden visibility; link coons_static to reach them). Not
+ * thread-safe: set them before any other call, as coons_set_allocator().
+ * Plain C. */
 #ifndef COONS_TEST_HOOKS_H
 #define COONS_TEST_HOOKS_H
 
@@ -23,8 +23,8 @@ int coons__cxx_injected(const char *entry);
 
 /* Nonzero: coons_mesh_solidify() throws a CGAL failure ("injected failure
  * (testing)") once the parts are known, as if CGAL could not complete; its
- * message names the bodies. Read by coons2stl for
- * COONS2STL_INJECT_CSG_FAILURE. */
+ * message names the bodies. Set by the test-only build of coons2stl
+ * (tests/tools/coons2stl_csg_failure.c); the installed coons2stl cannot. */
 void coons__csg_inject_failure(int on);
 int coons__csg_failure_injected(void);
 

@@ -60,6 +60,11 @@ static const unsigned char FACE_CORNERS[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0,
 typedef coons__vbody vbody;
 typedef coons__vbuild vbuild;
 
+static void report(const vbuild *v, const char *stage, double fraction)
+{
+    if (v->progress) v->progress(v->userdata, stage, fraction);
+}
+
 static void vbuild_free(vbuild *v)
 {
     for (size_t i = 0; i < v->nb; i++)
@@ -78,9 +83,19 @@ static coons_status opts_resolve(const coons_volume_options *in, coons_volume_op
 {
     coons_volume_options def = COONS_VOLUME_OPTIONS_INIT;
     if (!in) in = &def;
-    if (COONS__RECORD_CHECK(err, "volume options", in->version, COONS_VOLUME_OPTIONS))
+    /* version 1 has no progress fields to read */
+    if (coons__record_version_check("volume options", in->version, 1,
+                                    COONS_VOLUME_OPTIONS_VERSION, "COONS_VOLUME_OPTIONS_INIT", err))
         return COONS_E_INVALID;
-    *out = *in;
+    if (in->version == 1) {
+        *out = def;
+        out->element = in->element;
+        for (int d = 0; d < 3; d++) out->resolution[d] = in->resolution[d];
+        out->tolerance = in->tolerance;
+        out->max_cells = in->max_cells;
+    } else {
+        *out = *in;
+    }
     if (out->element == 0) out->element = COONS_ELEMENT_HEX8;
     if (out->element != COONS_ELEMENT_HEX8 && out->element != COONS_ELEMENT_HEX20 &&
         out->element != COONS_ELEMENT_HEX27)
@@ -156,6 +171,7 @@ static coons_status evaluate(vbuild *v)
 {
     for (size_t i = 0; i < v->nb; i++) {
         vbody *B = &v->vb[i];
+        report(v, "evaluate", (double)B->base / (double)v->nraw);
         coons_status st = coons_body_eval_grid(B->b, B->L[0], B->m[0], B->L[1], B->m[1],
                                                B->L[2], B->m[2], v->pos + 3 * B->base, v->err);
         if (st) return st;
@@ -418,6 +434,7 @@ static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, uint32_t **celln
     for (size_t i = 0; i < v->nb && !st; i++) {
         const vbody *B = &v->vb[i];
         size_t nc = B->n[0] * B->n[1] * B->n[2], start[4] = {0, 0, 0, 0};
+        report(v, "cells", (double)base / (double)(total ? total : 1));
         uint32_t *rows = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
         uint32_t *out = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
         if (!rows || !out) {
@@ -621,7 +638,11 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
 {
     coons_status st = COONS_OK;
     size_t cells = 0;
-    for (size_t i = 0; i < v->nb && !st; i++) st = body_lattice(v, &v->vb[i], o, tolerance);
+    for (size_t i = 0; i < v->nb && !st; i++) {
+        report(v, "lattice", (double)i / (double)v->nb);
+        st = body_lattice(v, &v->vb[i], o, tolerance);
+    }
+    if (!st) report(v, "lattice", 1.0);
     if (!st) st = coons__vlattice_share(v);
     for (size_t i = 0; i < v->nb && !st; i++) {
         vbody *B = &v->vb[i];
@@ -647,12 +668,15 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     v->id = coons__malloc_array(v->nraw, sizeof(uint32_t));
     if (!v->pos || !v->uf || !v->id) return coons__error_nomem(v->err);
     if ((st = evaluate(v)) || (st = merge(v))) return st;
+    report(v, "evaluate", 1.0);
     coons_volume_mesh *vm;
     if ((st = coons_volume_mesh_new(v->el, &vm, v->err))) return st;
     double *par = NULL, *det = NULL;
     uint32_t *cellno = NULL;
     st = number_nodes(v, vm, &par, &det);
+    report(v, "cells", 0.0);
     if (!st) st = add_cells(v, vm, &cellno);
+    if (!st) report(v, "cells", 1.0);
     if (!st) st = add_fields(v, vm, par, det);
     if (!st) st = add_sets(v, vm, cellno);
     if (!st) st = coons__vlattice_check(v, vm);
@@ -681,6 +705,8 @@ static coons_status run(const coons_body *const *bodies, const char *const *name
     v.npc = (size_t)o.element;
     v.step = o.element == COONS_ELEMENT_HEX8 ? 1 : 2;
     v.err = err;
+    v.progress = o.progress;
+    v.userdata = o.userdata;
     v.vb = coons__calloc(nb ? nb : 1, sizeof(vbody));
     if (!v.vb) return coons__error_nomem(err);
     v.nb = nb;

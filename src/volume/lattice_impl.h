@@ -34,6 +34,8 @@ typedef struct coons__vbuild {
     uint32_t *id;    /* nraw: final node of a representative, UINT32_MAX if unused */
     size_t nn;       /* final nodes */
     coons_error *err;
+    coons_progress_fn progress; /* the options' (version 2), or NULL */
+    void *userdata;
 } coons__vbuild;
 
 /* Raw id of node lattice point (a, b, c) of body B (coons_body_eval_grid's

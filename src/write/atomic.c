@@ -33,7 +33,10 @@ coons_status coons__write_prepare(coons__write_job *job, int mesh_given, coons_f
                                   coons_error *err)
 {
     if (!mesh_given) return coons__error_set(err, COONS_E_INVALID, "no mesh given");
-    if (opts && COONS__RECORD_CHECK(err, "write options", opts->version, COONS_WRITE_OPTIONS))
+    /* version 1 has no `written` progress fields */
+    if (opts && coons__record_version_check("write options", opts->version, 1,
+                                            COONS_WRITE_OPTIONS_VERSION,
+                                            "COONS_WRITE_OPTIONS_INIT", err))
         return COONS_E_INVALID;
     job->row = coons__format_row_of(format);
     if (!job->row)
@@ -112,7 +115,8 @@ coons_status coons__write_stream(const coons__write_job *job, FILE *fp,
         stat(opts->protect_path, &in_st) == 0 && same_file(&out_st, &in_st))
         return coons__error_set(err, COONS_E_INVALID, "the output stream is the input '%s'",
                                 opts->protect_path);
-    coons__sink s = {NULL, 0, -1, fp, "<stream>", opts, NULL, COONS_OK, err};
+    coons__sink s = {NULL, 0, -1, fp, "<stream>", opts, NULL, COONS_OK, err, 0, NULL, NULL};
+    coons__sink_watch(&s, opts);
     errno = 0;
     if (write_all(job, &s) != COONS_OK) return s.status;
     if (fflush(fp) != 0 || ferror(fp)) {
@@ -207,7 +211,8 @@ coons_status coons__write_path(const coons__write_job *job, const char *path,
                                 "the output '%s' is the input file '%s'; refusing to overwrite it",
                                 path, opts->protect_path);
 
-    coons__sink s = {NULL, 0, -1, NULL, path, opts, NULL, COONS_OK, err};
+    coons__sink s = {NULL, 0, -1, NULL, path, opts, NULL, COONS_OK, err, 0, NULL, NULL};
+    coons__sink_watch(&s, opts);
     if (!coons__sink_ok(&s)) return s.status;
     char tmp[PATH_MAX];
     s.fd = create_temp(target, tmp, sizeof tmp, 0666);

@@ -61,6 +61,7 @@ int coons__sink_flush(coons__sink *s)
     const char *p = s->buf;
     size_t n = s->len;
     s->len = 0;
+    s->bytes += n;
     while (n > 0) {
         if (s->fd >= 0) {
             ssize_t w = write(s->fd, p, n);
@@ -85,6 +86,11 @@ int coons__sink_flush(coons__sink *s)
             }
             n = 0;
         }
+    }
+    if (s->written) { /* in the caller's locale, as `cancel` */
+        if (s->fmt) coons__fmt_suspend(s->fmt);
+        s->written(s->written_ctx, s->bytes);
+        if (s->fmt) coons__fmt_resume(s->fmt);
     }
     return coons__sink_ok(s);
 }

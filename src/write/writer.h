@@ -33,7 +33,19 @@ typedef struct coons__sink {
     coons__fmt_scope *fmt;       /* restored around `cancel` */
     coons_status status;         /* sticky: first error wins */
     coons_error *err;
+    unsigned long long bytes;    /* written out so far */
+    void (*written)(void *ctx, unsigned long long bytes); /* opts' (version 2), or NULL */
+    void *written_ctx;
 } coons__sink;
+
+/* Takes `written` from opts of version 2 or later (none from version 1). */
+static inline void coons__sink_watch(coons__sink *s, const coons_write_options *opts)
+{
+    if (opts && opts->version >= 2) {
+        s->written = opts->written;
+        s->written_ctx = opts->written_ctx;
+    }
+}
 
 /* Polls opts->cancel; on cancellation records COONS_E_IO. Returns 0 when
  * the write must stop (cancelled or an earlier error). */

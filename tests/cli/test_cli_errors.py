@@ -79,7 +79,12 @@ CASES = {
     "closed-coons-cubic-repeat": (9, 28, "/bodies/0/edges/u00/points/3", ["repeat", "3 distinct"]),
     # faces u0 u1 v0 v1 on lines 7-10: `        "v1": ` -> '{' at 15; v1 and w1 disagree
     # along edge u11, v1 is named first
-    "body2-faces-disagree": (10, 15, "/bodies/0/faces/v1", ["v1", "w1", "u11", "0.5 apart"]),
+    # ... and the rule and how to meet it (issue 24)
+    "body2-faces-disagree": (10, 15, "/bodies/0/faces/v1",
+                             ["v1", "w1", "u11", "0.5 apart",
+                              "must be the same curve there at the same parameter",
+                              "the same knots and equal control points along the edge",
+                              "build the faces from the edge curves"]),
     # line 8 `                 "t0": {...}`: 17 spaces + `"t0": ` (6) -> 24; t0(1) and s1(0)
     # (corner X10) are 0.25 apart, t0 comes first
     "patch-corners-apart": (8, 24, "/bodies/0/faces/u0/boundary/t0", ["t0", "s1", "X10", "0.25 apart"]),

@@ -30,7 +30,8 @@ coons2stl, checked by this test's own readers and counts:
   exits 3 naming the problem, the count that --info reports as
   self_intersections_float32 and what to try, writes nothing and leaves an
   existing file as it was; .off is written; a normal model's STL is;
-- COONS2STL_INJECT_CSG_FAILURE: the message says what failed, on which
+- a CGAL failure (a test-only coons2stl, tests/tools/coons2stl_csg_failure.c):
+  the message says what failed, on which
   bodies, and what to try, on one line, without CGAL's raw text (no
   "injected failure (testing)", "Expr:", "File:", "Line:"), which --info's
   solid.error keeps.
@@ -196,8 +197,8 @@ def tri_volume(tris):
     return v / 6.0
 
 
-def info(args, env=None):
-    p = subprocess.run([T.bin, "--info"] + list(args), stdout=subprocess.PIPE,
+def info(args, env=None, binary=None):
+    p = subprocess.run([binary or T.bin, "--info"] + list(args), stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE, text=True, timeout=300,
                        env=dict(os.environ, **(env or {})))
     try:
@@ -206,8 +207,8 @@ def info(args, env=None):
         return p.returncode, None, p.stderr + p.stdout
 
 
-def run(args, env=None):
-    p = subprocess.run([T.bin] + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+def run(args, env=None, binary=None):
+    p = subprocess.run([binary or T.bin] + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                        timeout=300, env=dict(os.environ, **(env or {})))
     return p.returncode, p.stdout, p.stderr.decode("utf-8", "replace")
 
@@ -411,11 +412,14 @@ with open(over, "w") as fh:
         {"type": "body0", "name": "b", "corners": [[.5, .5, .5], [.5, .5, 1.5], [.5, 1.5, .5],
                                                    [.5, 1.5, 1.5], [1.5, .5, .5], [1.5, .5, 1.5],
                                                    [1.5, 1.5, .5], [1.5, 1.5, 1.5]]}]}, fh)
-INJ = {"COONS2STL_INJECT_CSG_FAILURE": "1"}
+# coons2stl with the CGAL step failing: a test-only build of the command
+# (tests/tools/coons2stl_csg_failure.c); the installed one has no such hook.
+INJ = os.path.join(T.build, "tests", "coons2stl_csg_failure")
+T.check("the failing build of coons2stl exists", os.path.exists(INJ), INJ)
 RAW = ("injected failure (testing)", "Expr:", "File:", "Line:", "CGAL ERROR", "assertion")
 for args, who in (([], "bodies 'a', 'b'"), (["--body", "b"], "body 'b'")):
     out = os.path.join(TMP, "inj.stl")
-    rc, _, err = run(args + ["-o", out, over], INJ)
+    rc, _, err = run(args + ["-o", out, over], binary=INJ)
     T.check(f"injected CGAL failure {args}: exit 3, nothing written", rc == 3
             and not os.path.exists(out), err)
     T.check(f"injected CGAL failure {args}: one line: what failed, on {who}, what to try",
@@ -424,7 +428,7 @@ for args, who in (([], "bodies 'a', 'b'"), (["--body", "b"], "body 'b'")):
             and "failed" in err and "nothing was written" in err and "Try" in err
             and "-t" in err, err)
     T.check(f"injected CGAL failure {args}: no raw CGAL text", not any(r in err for r in RAW), err)
-    rc, ji, err = info(args + [over], INJ)
+    rc, ji, err = info(args + [over], binary=INJ)
     e = ji["solid"].get("error", "") if ji else ""
     T.check(f"injected CGAL failure {args}: --info's solid.error keeps CGAL's reason",
             rc == 0 and "injected failure (testing)" in e and "'b'" in e, f"{e} {err}")

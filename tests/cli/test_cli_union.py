@@ -23,7 +23,7 @@ said so):
 - exit status 3, a message naming the body and nothing written (an existing
   file byte-for-byte unchanged, no temporary file) for a body whose repair
   CGAL 5.5 cannot do (tests/data/csg/folded-back-side.json) and for the
-  injected failure (COONS2STL_INJECT_CSG_FAILURE);
+  injected failure (a test-only coons2stl, tests/tools/coons2stl_csg_failure.c);
 - progress: nothing on a pipe, a line on a terminal (pty) or with
   --progress, none with -q; warnings never share its line;
 - usage errors of the new options.
@@ -608,7 +608,7 @@ if T.check("fold --no-repair: exit 0", rc == 0, err):
                 j is not None and j["solid"]["self_intersections_float32"] == self_intersections(sv, sf))
 
 # ---- exit 3: a repair CGAL cannot do, and an injected failure -------------------
-def untouched_failure(name, model, env=None, args=()):
+def untouched_failure(name, model, env=None, args=(), binary=None):
     d = tempfile.mkdtemp(dir=TMP)
     keep = os.path.join(d, "keep.stl")
     with open(keep, "wb") as fh:
@@ -616,14 +616,14 @@ def untouched_failure(name, model, env=None, args=()):
     before = listing(d)
     full = dict(os.environ)
     full.update(env or {})
-    p = subprocess.run([T.bin] + list(args) + ["-o", keep, model], stdout=subprocess.PIPE,
+    p = subprocess.run([binary or T.bin] + list(args) + ["-o", keep, model], stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE, text=True, env=full, timeout=120)
     with open(keep, "rb") as fh:
         same = fh.read() == b"old content\n"
     T.check(f"{name}: exit 3, existing file unchanged, no temporary file left",
             p.returncode == 3 and same and listing(d) == before, f"{p.returncode} {p.stderr}")
     fresh = os.path.join(d, "new.stl")
-    p2 = subprocess.run([T.bin] + list(args) + ["-o", fresh, model], stdout=subprocess.PIPE,
+    p2 = subprocess.run([binary or T.bin] + list(args) + ["-o", fresh, model], stdout=subprocess.PIPE,
                         stderr=subprocess.PIPE, text=True, env=full, timeout=120)
     T.check(f"{name}: a new file is not created", p2.returncode == 3 and not os.path.exists(fresh)
             and listing(d) == before, p2.stderr)
@@ -641,15 +641,19 @@ rc, j, err2 = info([fb])
 T.check("folded-back side: --info exits 0 with solid.error naming the body, and a warning",
         rc == 0 and j is not None and "'folded-back'" in j["solid"].get("error", "")
         and "warning" in err2, err2)
-err = untouched_failure("injected CSG failure", over, {"COONS2STL_INJECT_CSG_FAILURE": "1"})
+# A CGAL failure: coons2stl built for the test with the failure injected
+# (tests/tools/coons2stl_csg_failure.c); the installed command has no hook.
+INJ = os.path.join(T.build, "tests", "coons2stl_csg_failure")
+T.check("the failing build of coons2stl exists", os.path.exists(INJ), INJ)
+err = untouched_failure("injected CSG failure", over, binary=INJ)
 T.check("injected failure: the message names the bodies and what failed",
         "'a'" in err and "'b'" in err and "CGAL could not complete" in err, err)
 p = subprocess.run([T.bin, "-o", os.path.join(TMP, "zero.stl"), over], stdout=subprocess.PIPE,
                    stderr=subprocess.PIPE, text=True, timeout=120,
-                   env=dict(os.environ, COONS2STL_INJECT_CSG_FAILURE="0"))
-T.check("COONS2STL_INJECT_CSG_FAILURE=0 injects nothing", p.returncode == 0, p.stderr)
-err = untouched_failure("injected failure with --body", over, {"COONS2STL_INJECT_CSG_FAILURE": "1"},
-                        ["--body", "b"])
+                   env=dict(os.environ, COONS2STL_INJECT_CSG_FAILURE="1"))
+T.check("the installed coons2stl has no test hook: COONS2STL_INJECT_CSG_FAILURE=1 changes "
+        "nothing", p.returncode == 0, p.stderr)
+err = untouched_failure("injected failure with --body", over, args=["--body", "b"], binary=INJ)
 T.check("injected failure with --body names that body", "'b'" in err, err)
 
 # ---- progress ---------------------------------------------------------------------

@@ -4,7 +4,14 @@
  * statuses, and the entry of each file: options.c (the option table and
  * --help), input.c (the model and --body), progress.c (diagnostics and the
  * progress line), solid.c (the mesh that -o writes and --info describes),
- * eval.c (--eval), info.c (--info) and output.c (-o). main.c dispatches.
+ * eval.c (--eval), info.c (--info), output.c (-o), volume.c (volume
+ * meshes), iso.c (--iso), units.c (units, --scale-to), frames.c (--time,
+ * --frames, the OpenSCAD animation) and deform.c (--deform). main.c
+ * dispatches: the parsed command line (`options`) stays with the parser
+ * and main.c, which hands each mode its own small record (cli_output,
+ * cli_volume, cli_iso, cli_info_options). No variable is shared between
+ * files (the progress line's state and the caught signal are each one
+ * file's own).
  *
  * Exit status: 0 success, 1 bad input (model or --eval lines), 2 bad usage,
  * 3 a geometric operation or writing the output failed.
@@ -21,6 +28,7 @@ enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_GEOMETRY = 3 };
 
 #define PROG "coons2stl"
 
+/* The command line as parsed (options.c). */
 typedef struct options {
     const char *input;    /* "-" = standard input */
     const char *output;   /* NULL = standard output */
@@ -54,9 +62,68 @@ typedef struct options {
     const char *deform;   /* --deform IN (STL or OFF), or NULL */
     const char *frame_arg; /* --frame x0,y0,z0,x1,y1,z1 as given, or NULL */
     double frame[6];      /* --frame's corners (when frame_arg) */
+    const char *scale_to; /* --scale-to UNIT, or NULL */
+    double scale;         /* its factor from the model's units (cli_resolve_units; 1: none) */
+    const char *units_out; /* the units written: --scale-to's, else the model's */
 } options;
-/* -j N as parsed (options.c), for cli_make_solid(); 0 = the number of cores. */
-extern unsigned cli_jobs;
+
+/* Where and how a mesh is written: -o (NULL or "-": standard output), the
+ * format, the model file (never overwritten; names the output on standard
+ * output), and the units: coordinates multiplied by `scale` and labelled
+ * `units` (--scale-to). */
+typedef struct cli_output {
+    const char *path;
+    coons_format format;
+    const char *input;
+    double scale;
+    const char *units;
+    /* OpenSCAD background parts (`%`): the boundaries around iso surfaces */
+    const size_t *background;
+    size_t nbackground;
+} cli_output;
+/* output.c: the cli_output of the options (path -o). */
+cli_output cli_output_of(const options *o);
+
+/* The volume-mesh mode's record: the lattice and the policy on inverted
+ * cells (--element, --resolution, -t, --allow-inverted). */
+typedef struct cli_volume {
+    coons_element element;
+    unsigned resolution[3]; /* intervals along u, v, w; 0s: the sampled lattice */
+    double tolerance;       /* > 0, or 0: the model's */
+    int allow_inverted;
+} cli_volume;
+/* volume.c: the cli_volume of the options. */
+cli_volume cli_volume_of(const options *o);
+
+/* The --iso mode's record: the surfaces D = V and --with-boundary. */
+typedef struct cli_iso {
+    const int *dir;      /* 0 u, 1 v, 2 w, per surface */
+    const double *value; /* per surface */
+    size_t n;
+    int with_boundary;
+} cli_iso;
+
+/* The --info mode's record. */
+typedef struct cli_info_options {
+    int solid;               /* report "solid" (not --no-solid) */
+    int repair;              /* not --no-repair */
+    unsigned jobs;           /* -j (0: the number of cores) */
+    int volume_mesh;         /* report "volume_mesh" (--volume-mesh, or out) */
+    const cli_volume *volume;/* its lattice */
+    const cli_output *out;   /* a volume mesh to write after the report, or NULL */
+} cli_info_options;
+
+/* units.c: the length of one `unit` in millimetres (um, mm, cm, in, ft, m
+ * and their spelled-out names, any case); 0 when unknown. */
+double cli_unit_mm(const char *unit);
+/* units.c: after the model is loaded: --scale-to's factor into o->scale
+ * and o->units_out, and the warning when a mesh not in millimetres goes
+ * to a format without units (once per run); -1 to go on, else the
+ * status (reported). */
+int cli_resolve_units(options *o, const coons_model *m);
+/* units.c: whether `f` is a surface format whose readers take millimetres
+ * (STL, OFF, SCAD: no units a reader honours). */
+int cli_format_unitless(coons_format f);
 
 /* options.c: parses the command line into `o` (zeroed, load.version set);
  * returns -1 to go on, else an exit status (--help, --version, a usage
@@ -74,6 +141,13 @@ int cli_progress_on(void);
 void cli_progress_end(void);
 void cli_progress_sampling(size_t i, size_t n, const char *name);
 void cli_on_progress(void *userdata, const char *stage, double fraction);
+/* coons_sample_options.progress: the body being sampled, with the share
+ * of the current measuring pass ("sampling body 1 of 3 (a)  40%"). */
+void cli_on_measure(void *userdata, const char *stage, double fraction);
+/* coons_write_options.written: "writing NAME: SIZE"; ctx is NAME. */
+void cli_on_written(void *ctx, unsigned long long bytes);
+/* Text put before every progress line ("frame 2 of 5: "); NULL: none. */
+void cli_progress_prefix(const char *prefix);
 /* "coons2stl: [warning: ]message" on standard error, after the standard
  * output so far and on a line of its own; warnings obey -q. */
 #if defined(__GNUC__)
@@ -83,24 +157,25 @@ void cli_message(int warning, const char *fmt, ...);
 
 /* solid.c: all bodies' solid (body < 0), else that body's alone. */
 coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_options *so,
-                            int repair, coons_mesh **out, coons_csg_report *rep,
+                            int repair, unsigned jobs, coons_mesh **out, coons_csg_report *rep,
                             coons_error *err);
 
 /* The modes; each prints its own diagnostics and returns the exit status. */
 int cli_eval(const coons_body *b, int jacobian);
 int cli_info(const coons_model *m, long only, const coons_sample_options *so,
-             const options *o);
+             const cli_info_options *io);
 /* volume.c: the volume mesh of all bodies (body < 0) or of one, with the
  * lattice options of `o`; reports nothing. */
-coons_status cli_volume_mesh(const coons_model *m, long body, const options *o,
+coons_status cli_volume_mesh(const coons_model *m, long body, const cli_volume *v,
                              coons_volume_mesh **out, coons_error *err);
 /* --info's "volume_mesh" object of part `part` (printed after a key). */
 void cli_print_volume_quality(const coons_volume_mesh *vm, size_t part);
 /* -o with a volume format: meshes, refuses inverted cells (unless
  * --allow-inverted), writes atomically; returns the exit status. */
-int cli_write_volume(const coons_model *m, long body, const options *o);
+int cli_write_volume(const coons_model *m, long body, const cli_volume *v,
+                     const cli_output *out);
 /* The same for a mesh already made (--info -o). */
-int cli_write_volume_mesh(const coons_model *m, const coons_volume_mesh *vm, const options *o);
+int cli_write_volume_mesh(coons_volume_mesh *vm, const cli_volume *v, const cli_output *out);
 /* Whether the output format `f` is a volume-mesh format. */
 int cli_is_volume_format(coons_format f);
 
@@ -116,16 +191,17 @@ void cli_die_of_caught_signal(coons_status rc, const char *shown);
 int cli_is_model_file(const char *output, const char *input);
 
 /* iso.c: --iso, the isoparametric surfaces written to -o; the status. */
-int cli_write_iso(const coons_model *m, long body, const options *o,
-                  const coons_sample_options *so);
+int cli_write_iso(const coons_model *m, long body, const cli_iso *iso,
+                  const coons_sample_options *so, const cli_output *out);
 /* output.c: writes a surface mesh made elsewhere (and frees it) as -o
- * writes the solid; `shown` names the output in messages; the parts
- * background[0..nbackground) are OpenSCAD background parts (`%`). */
-int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
-                      const char *shown, const size_t *background, size_t nbackground);
+ * writes the solid; `shown` names the output in messages. */
+int cli_write_surface(coons_mesh *mesh, const cli_output *out, const char *shown);
 
-int cli_write_output(const coons_model *m, long body, coons_format format, const char *output,
-                     const coons_sample_options *so, int repair, const char *input);
+/* output.c: -o of a boundary mesh: the solid of `body` (< 0: all) sampled
+ * with `so`, repaired (`repair`) and united on `jobs` threads (0: the
+ * number of cores), written to `out`; the exit status. */
+int cli_write_output(const coons_model *m, long body, const cli_output *out,
+                     const coons_sample_options *so, int repair, unsigned jobs);
 
 /* options.c: a usage error with its message (status EXIT_USAGE). */
 int cli_usage_error(const char *msg);

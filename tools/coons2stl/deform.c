@@ -214,5 +214,6 @@ int cli_deform(const coons_model *m, long body, const options *o)
         return st;
     }
     coons_mesh_free(in);
-    return cli_write_surface(m, out, o, shown, NULL, 0);
+    cli_output where = cli_output_of(o);
+    return cli_write_surface(out, &where, shown);
 }

@@ -204,9 +204,14 @@ int cli_write_frames(coons_model *m, long body, const options *o,
         }
         frame_name(o->output, k, name, sizeof name);
         fo.output = name;
+        char prefix[64];
+        snprintf(prefix, sizeof prefix, "frame %u of %u: ", k + 1, o->frames);
+        cli_progress_prefix(prefix);
+        cli_output out = cli_output_of(&fo);
+        cli_volume vol = cli_volume_of(o);
         int rc = cli_is_volume_format(o->format)
-                     ? cli_write_volume(m, body, &fo)
-                     : cli_write_output(m, body, o->format, name, so, !o->no_repair, o->input);
+                     ? cli_write_volume(m, body, &vol, &out)
+                     : cli_write_output(m, body, &out, so, !o->no_repair, o->jobs);
         if (rc) {
             if (k)
                 cli_message(0, "frame %u (t = %.17g) failed: frames 0 to %u were written, no "

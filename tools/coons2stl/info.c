@@ -333,13 +333,14 @@ static void print_solid(const coons_mesh_report *r, const coons_csg_report *rep,
 /* "solid": what -o would write (cli_make_solid()) and what repair and union
  * found and did. A failure is reported in the JSON ("error") and warned
  * about, not turned into an exit status: --info describes the model. */
-static int info_solid(const coons_model *m, long only, const coons_sample_options *so, int repair)
+static int info_solid(const coons_model *m, long only, const coons_sample_options *so, int repair,
+                      unsigned jobs)
 {
     coons_error err = COONS_ERROR_INIT;
     coons_mesh *solid = NULL;
     coons_csg_report rep = COONS_CSG_REPORT_INIT;
     int csg = coons_csg_is_available();
-    coons_status rc = cli_make_solid(m, only, so, repair, &solid, &rep, &err);
+    coons_status rc = cli_make_solid(m, only, so, repair, jobs, &solid, &rep, &err);
     coons_mesh_report r = COONS_MESH_REPORT_INIT;
     size_t pairs = 0, pairs32 = 0;
     if (rc == COONS_OK) rc = coons_mesh_check(solid, &r, &err);
@@ -426,7 +427,8 @@ static void print_model(const coons_model *m, double tol, const double clo[3],
     json_box(clo, chi);
 }
 
-int cli_info(const coons_model *m, long only, const coons_sample_options *so, const options *o)
+int cli_info(const coons_model *m, long only, const coons_sample_options *so,
+             const cli_info_options *io)
 {
     size_t n = coons_model_body_count(m);
     double clo[3], chi[3];
@@ -438,13 +440,13 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     double rel = diag > 0 ? tol / diag : 1e-6;
     if (rel > 1e-6) rel = 1e-6;
     if (rel < 1e-12) rel = 1e-12;
-    int checks = !o->no_solid && coons_csg_is_available();
+    int checks = io->solid && coons_csg_is_available();
     double total = 0.0;
     size_t listed = 0;
     coons_volume_mesh *vm = NULL;
-    if (o->volume_mesh || (cli_is_volume_format(o->format) && (o->output || o->format_arg))) {
+    if (io->volume_mesh) {
         coons_error err = COONS_ERROR_INIT;
-        if (cli_volume_mesh(m, only, o, &vm, &err) != COONS_OK) {
+        if (cli_volume_mesh(m, only, io->volume, &vm, &err) != COONS_OK) {
             cli_progress_end();
             cli_message(0, "volume mesh: %s", err.message);
             return EXIT_GEOMETRY;
@@ -470,10 +472,10 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
         coons_volume_mesh_free(vm);
         return EXIT_GEOMETRY;
     }
-    if (o->no_solid) {
+    if (!io->solid) {
         printf(",\n  \"solid\": null");
     } else {
-        int rc = info_solid(m, only, so, !o->no_repair);
+        int rc = info_solid(m, only, so, io->repair, io->jobs);
         if (rc) {
             coons_volume_mesh_free(vm);
             return rc;
@@ -482,7 +484,8 @@ int cli_info(const coons_model *m, long only, const coons_sample_options *so, co
     printf("\n}\n");
     /* --info -o FILE.vtu: the report, then the mesh written as -o alone would. */
     int rc = 0;
-    if (vm && !o->volume_mesh) rc = fflush(stdout) != 0 ? EXIT_GEOMETRY : cli_write_volume_mesh(m, vm, o);
+    if (vm && io->out)
+        rc = fflush(stdout) != 0 ? EXIT_GEOMETRY : cli_write_volume_mesh(vm, io->volume, io->out);
     coons_volume_mesh_free(vm);
     return rc;
 }

@@ -38,24 +38,28 @@ static coons_status one_body(const coons_model *m, size_t body, const coons_iso_
     return COONS_OK;
 }
 
-int cli_write_iso(const coons_model *m, long body, const options *o,
-                  const coons_sample_options *so)
+int cli_write_iso(const coons_model *m, long body, const cli_iso *iso,
+                  const coons_sample_options *so, const cli_output *out)
 {
     coons_error err = COONS_ERROR_INIT;
-    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
-    const char *shown = to_stdout ? "<stdout>" : o->output;
-    coons_iso_request req[sizeof o->iso_value / sizeof o->iso_value[0]];
-    for (size_t i = 0; i < o->niso_surfaces; i++) {
-        req[i].direction = o->iso_dir[i];
-        req[i].value = o->iso_value[i];
+    int to_stdout = !out->path || strcmp(out->path, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : out->path;
+    coons_iso_request *req = malloc((iso->n ? iso->n : 1) * sizeof *req);
+    if (!req) {
+        cli_message(0, "%s: out of memory; nothing was written", shown);
+        return EXIT_GEOMETRY;
+    }
+    for (size_t i = 0; i < iso->n; i++) {
+        req[i].direction = iso->dir[i];
+        req[i].value = iso->value[i];
     }
     coons_mesh *mesh = NULL;
     coons_status rc =
-        body < 0 ? coons_model_iso_surfaces(m, req, o->niso_surfaces, so,
-                                            o->with_boundary ? COONS_ISO_WITH_BOUNDARY : 0u,
+        body < 0 ? coons_model_iso_surfaces(m, req, iso->n, so,
+                                            iso->with_boundary ? COONS_ISO_WITH_BOUNDARY : 0u,
                                             &mesh, &err)
-                 : one_body(m, (size_t)body, req, o->niso_surfaces, so, o->with_boundary,
-                            &mesh, &err);
+                 : one_body(m, (size_t)body, req, iso->n, so, iso->with_boundary, &mesh, &err);
+    free(req);
     cli_progress_end();
     if (rc != COONS_OK) {
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
@@ -63,15 +67,18 @@ int cli_write_iso(const coons_model *m, long body, const options *o,
     }
     /* The boundaries: part 0 of one body; with every body, each body's
      * first part (its boundary, then its surfaces: coons_model_iso_surfaces()). */
-    size_t nb = !o->with_boundary ? 0 : body < 0 ? coons_model_body_count(m) : 1;
+    size_t nb = !iso->with_boundary ? 0 : body < 0 ? coons_model_body_count(m) : 1;
     size_t *bg = nb ? malloc(nb * sizeof *bg) : NULL;
     if (nb && !bg) {
         coons_mesh_free(mesh);
         cli_message(0, "%s: out of memory; nothing was written", shown);
         return EXIT_GEOMETRY;
     }
-    for (size_t k = 0; k < nb; k++) bg[k] = k * (o->niso_surfaces + 1);
-    int rc2 = cli_write_surface(m, mesh, o, shown, bg, nb);
+    for (size_t k = 0; k < nb; k++) bg[k] = k * (iso->n + 1);
+    cli_output where = *out;
+    where.background = bg;
+    where.nbackground = nb;
+    int rc2 = cli_write_surface(mesh, &where, shown);
     free(bg);
     return rc2;
 }

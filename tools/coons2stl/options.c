@@ -52,8 +52,6 @@ static int show_version(void);
 
 #define AT(field) offsetof(options, field)
 
-unsigned cli_jobs; /* -j N; 0: the number of cores (cli.h) */
-
 /* In the order --help lists them (and in which their values are checked). */
 static const option_row OPTIONS[] = {
     {"output", 'o', "FILE", V_TEXT, AT(output),
@@ -104,6 +102,10 @@ static const option_row OPTIONS[] = {
      "... with more than N points in one curve, surface or\n"
      "volume net (default {default})",
      "a whole number from 1 to {max}", COONS_MODEL_MAX_POINTS, SIZE_MAX, NULL},
+    {"scale-to", 0, "UNIT", V_TEXT, AT(scale_to),
+     "write the coordinates converted from the model's units\n"
+     "to UNIT (um, mm, cm, in, ft or m), labelled UNIT",
+     NULL, 0, 0, NULL},
     {"body", 0, "NAME|INDEX", V_TEXT, AT(body),
      "use that body (a 0-based index if all digits, else a\n"
      "name); default: all bodies, or body 0 for --eval",
@@ -442,6 +444,11 @@ static int check_modes(const parse_state *ps, const options *o)
         return usage_error("%s", "--element, --allow-inverted and --resolution NU,NV,NW are "
                                  "for volume meshes (-o FILE.msh, .vtu, .inp, .vtk, or "
                                  "--info --volume-mesh)");
+    if (o->scale_to && cli_unit_mm(o->scale_to) == 0)
+        return usage_error("--scale-to needs um, mm, cm, in, ft or m, not '%s'", o->scale_to);
+    if (o->scale_to && (o->eval || (o->info && !(cli_is_volume_format(o->format) && o->output))))
+        return usage_error("%s", "--scale-to is for -o: --eval and --info report in the "
+                                 "model's units");
     if (o->with_boundary && !o->niso) return usage_error("%s", "--with-boundary is for --iso");
     if (o->niso && (o->eval || o->info))
         return usage_error("%s", "--iso is for -o: --eval and --info write no surfaces");
@@ -563,7 +570,6 @@ int cli_parse_args(int argc, char **argv, options *o)
     if ((rc = check_modes(&ps, o)) >= 0) return rc;
     if ((rc = resolve_element(o)) >= 0) return rc;
     if ((rc = resolve_iso(o)) >= 0) return rc;
-    cli_jobs = o->jobs;
     if ((rc = cli_check_deform_options(o)) >= 0) return rc;
     return cli_check_time_options(o);
 }

@@ -11,6 +11,7 @@
 #define _POSIX_C_SOURCE 200809L /* sigaction */
 
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -75,12 +76,6 @@ int cli_is_model_file(const char *output, const char *input)
 
 static void mesh_warnings(const coons_csg_report *rep, const coons_sample_options *so)
 {
-    if (so->resolution && rep->deviation > rep->tolerance)
-        cli_message(1,
-                    "the fixed resolution %u leaves a deviation of %.3g, more than the "
-                    "tolerance %.3g (raise --resolution, or leave it out to sample to the "
-                    "tolerance)",
-                    so->resolution, rep->deviation, rep->tolerance);
     if (rep->triangles_out > 0 && !rep->closed)
         cli_message(1, "the mesh is not closed");
     else if (rep->nonmanifold_edges)
@@ -88,6 +83,12 @@ static void mesh_warnings(const coons_csg_report *rep, const coons_sample_option
                     "the mesh is closed but not a 2-manifold: %zu edges bound more than two "
                     "triangles (solids touching along a curve)",
                     rep->nonmanifold_edges);
+    if (so->resolution && rep->deviation > rep->tolerance)
+        cli_message(1,
+                    "the fixed resolution %u leaves a deviation of %.3g, more than the "
+                    "tolerance %.3g (raise --resolution, or leave it out to sample to the "
+                    "tolerance)",
+                    so->resolution, rep->deviation, rep->tolerance);
 }
 
 /* Writes `mesh` (a file: with the signals caught) and frees it. */
@@ -133,9 +134,13 @@ void cli_die_of_caught_signal(coons_status rc, const char *shown)
     raise(sig);
 }
 
-static int write_named(const coons_model *m, coons_mesh *mesh, coons_format format,
-                       const char *output, const char *input, const char *shown,
-                       const size_t *background, size_t nbackground);
+static int write_named(coons_mesh *mesh, const cli_output *out, const char *shown);
+
+cli_output cli_output_of(const options *o)
+{
+    cli_output out = {o->output, o->format, o->input, o->scale, o->units_out, NULL, 0};
+    return out;
+}
 
 /*
  * Whether the STL of `mesh` must be refused (reported): its triangles do
@@ -231,23 +236,24 @@ static void csg_failure(const coons_model *m, long body, int repair, const char 
  * sampled with `so` (its tolerance is set: -t or the model's;
  * --resolution, --max-triangles).
  */
-int cli_write_output(const coons_model *m, long body, coons_format format, const char *output,
-                     const coons_sample_options *so, int repair, const char *input)
+int cli_write_output(const coons_model *m, long body, const cli_output *out,
+                     const coons_sample_options *so, int repair, unsigned jobs)
 {
     coons_error err = COONS_ERROR_INIT;
-    int to_stdout = !output || strcmp(output, "-") == 0;
-    const char *shown = to_stdout ? "<stdout>" : output;
-    int from_file = input && strcmp(input, "-") != 0;
-    if (!to_stdout && from_file && cli_is_model_file(output, input)) {
+    int to_stdout = !out->path || strcmp(out->path, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : out->path;
+    int from_file = out->input && strcmp(out->input, "-") != 0;
+    if (!to_stdout && from_file && cli_is_model_file(out->path, out->input)) {
         fprintf(stderr, "%s: the output '%s' is the model file '%s'; refusing to overwrite it\n",
-                PROG, output, input);
+                PROG, out->path, out->input);
         return EXIT_USAGE;
     }
 
     coons_mesh *mesh = NULL;
     coons_csg_report rep = COONS_CSG_REPORT_INIT;
-    coons_status rc = cli_make_solid(m, body, so, repair, &mesh, &rep, &err);
-    cli_progress_end();
+    coons_status rc = cli_make_solid(m, body, so, repair, jobs, &mesh, &rep, &err);
+    /* The progress line stays: the writing stage replaces it (a message
+     * ends it first). */
     if (rc == COONS_E_CSG) {
         csg_failure(m, body, repair, shown, err.message);
         coons_mesh_free(mesh);
@@ -259,41 +265,45 @@ int cli_write_output(const coons_model *m, long body, coons_format format, const
         return EXIT_GEOMETRY;
     }
     mesh_warnings(&rep, so);
-    return write_named(m, mesh, format, to_stdout ? NULL : output, input, shown, NULL, 0);
+    return write_named(mesh, out, shown);
 }
 
-int cli_write_surface(const coons_model *m, coons_mesh *mesh, const options *o,
-                      const char *shown, const size_t *background, size_t nbackground)
+int cli_write_surface(coons_mesh *mesh, const cli_output *out, const char *shown)
 {
-    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
-    return write_named(m, mesh, o->format, to_stdout ? NULL : o->output, o->input, shown,
-                       background, nbackground);
+    return write_named(mesh, out, shown);
 }
 
-/* Writes `mesh` (and frees it) to `output` (NULL: standard output), named
- * after the output file or else the model file. */
-static int write_named(const coons_model *m, coons_mesh *mesh, coons_format format,
-                       const char *output, const char *input, const char *shown,
-                       const size_t *background, size_t nbackground)
+/* Writes `mesh` (and frees it) to out->path (NULL or "-": standard
+ * output), scaled to out's units, named after the output file or else the
+ * model file. */
+static int write_named(coons_mesh *mesh, const cli_output *out, const char *shown)
 {
     coons_error err = COONS_ERROR_INIT;
-    int to_stdout = output == NULL;
-    int from_file = input && strcmp(input, "-") != 0;
+    int to_stdout = !out->path || strcmp(out->path, "-") == 0;
+    int from_file = out->input && strcmp(out->input, "-") != 0;
     coons_status rc;
     char name[256];
-    model_name(to_stdout ? input : output, name, sizeof name);
+    model_name(to_stdout ? out->input : out->path, name, sizeof name);
     coons_write_options wopts = COONS_WRITE_OPTIONS_INIT;
-    wopts.units = coons_model_units(m);
+    wopts.units = out->units;
     wopts.name = name[0] ? name : NULL;
-    wopts.protect_path = from_file ? input : NULL;
+    wopts.protect_path = from_file ? out->input : NULL;
     wopts.cancel = write_cancelled;
-    wopts.background = background;
-    wopts.nbackground = nbackground;
-    if (stl_rounding_refused(mesh, format, shown)) {
+    wopts.background = out->background;
+    wopts.nbackground = out->nbackground;
+    wopts.written = cli_progress_on() ? cli_on_written : NULL;
+    wopts.written_ctx = (void *)(uintptr_t)shown;
+    if (out->scale != 1.0 && coons_mesh_scale(mesh, out->scale, &err) != COONS_OK) {
+        cli_message(0, "%s: %s; nothing was written", shown, err.message);
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }
-    rc = write_mesh(mesh, to_stdout ? NULL : output, format, &wopts, &err);
+    if (stl_rounding_refused(mesh, out->format, shown)) {
+        coons_mesh_free(mesh);
+        return EXIT_GEOMETRY;
+    }
+    rc = write_mesh(mesh, to_stdout ? NULL : out->path, out->format, &wopts, &err);
+    cli_progress_end();
     if (caught_signal) cli_die_of_caught_signal(rc, shown);
     if (rc != COONS_OK) {
         fprintf(stderr, "%s: %s\n", PROG, err.message);

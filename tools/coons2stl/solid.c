@@ -5,29 +5,24 @@
  * (repaired and united as the model's "operation" says); else that body's
  * shell alone, repaired if it crosses itself (coons_model_solidify_body()).
  * Without CGAL the shells are as sampled (coons_model_solidify() refuses a
- * union that needs it). The environment variable
- * COONS2STL_INJECT_CSG_FAILURE (testing aid, read here and nowhere in the
- * library) makes the CGAL step fail.
+ * union that needs it).
  */
 #define _DEFAULT_SOURCE /* sysconf(_SC_NPROCESSORS_ONLN) */
-#include <stdlib.h>
-#include <string.h>
+#include <stdint.h>
 #include <unistd.h>
 
 #include "cli.h"
-#include "coons_test_hooks.h" /* coons__csg_inject_failure (coons_static) */
 
 coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_options *so,
-                            int repair, coons_mesh **out, coons_csg_report *rep,
+                            int repair, unsigned jobs, coons_mesh **out, coons_csg_report *rep,
                             coons_error *err)
 {
     coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
     copts.repair = repair;
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    copts.threads = cli_jobs ? cli_jobs : (cores > 0 ? (unsigned)cores : 1u);
+    copts.threads = jobs ? jobs : (cores > 0 ? (unsigned)cores : 1u);
     copts.progress = cli_progress_on() ? cli_on_progress : NULL;
-    const char *inject = getenv("COONS2STL_INJECT_CSG_FAILURE");
-    coons__csg_inject_failure(inject && *inject && strcmp(inject, "0") != 0);
+    copts.userdata = (void *)(uintptr_t)"repair and union";
     coons_csg_report_init(rep);
     if (body < 0) return coons_model_solidify(m, so, &copts, out, rep, err);
     return coons_model_solidify_body(m, (size_t)body, so, &copts, out, rep, err);

@@ -10,18 +10,28 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli.h"
 
-coons_status cli_volume_mesh(const coons_model *m, long body, const options *o,
+cli_volume cli_volume_of(const options *o)
+{
+    cli_volume v = {o->element, {o->resolution3[0], o->resolution3[1], o->resolution3[2]},
+                    o->tolerance, o->allow_inverted};
+    return v;
+}
+
+coons_status cli_volume_mesh(const coons_model *m, long body, const cli_volume *v,
                              coons_volume_mesh **out, coons_error *err)
 {
     coons_volume_options vo = COONS_VOLUME_OPTIONS_INIT;
-    vo.element = o->element;
-    for (int d = 0; d < 3; d++) vo.resolution[d] = o->resolution3[d];
-    vo.tolerance = o->tolerance > 0 ? o->tolerance : coons_model_tolerance(m);
+    vo.element = v->element;
+    for (int d = 0; d < 3; d++) vo.resolution[d] = v->resolution[d];
+    vo.tolerance = v->tolerance > 0 ? v->tolerance : coons_model_tolerance(m);
+    vo.progress = cli_progress_on() ? cli_on_progress : NULL;
+    vo.userdata = (void *)(uintptr_t)"volume mesh";
     if (body < 0) return coons_model_volume_mesh(m, &vo, out, err);
     return coons_body_volume_mesh(coons_model_body(m, (size_t)body), &vo,
                                   coons_model_body_name(m, (size_t)body), out, err);
@@ -111,40 +121,47 @@ static void base_name(const char *path, char *out, size_t cap)
     if (dot && dot != out) *dot = '\0';
 }
 
-int cli_write_volume(const coons_model *m, long body, const options *o)
+int cli_write_volume(const coons_model *m, long body, const cli_volume *v,
+                     const cli_output *out)
 {
     coons_error err = COONS_ERROR_INIT;
-    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
-    const char *shown = to_stdout ? "<stdout>" : o->output;
+    int to_stdout = !out->path || strcmp(out->path, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : out->path;
     coons_volume_mesh *vm = NULL;
-    coons_status rc = cli_volume_mesh(m, body, o, &vm, &err);
-    cli_progress_end();
+    coons_status rc = cli_volume_mesh(m, body, v, &vm, &err);
     if (rc != COONS_OK) {
         cli_message(0, "%s: %s; nothing was written", shown, err.message);
         return EXIT_GEOMETRY;
     }
-    int status = cli_write_volume_mesh(m, vm, o);
+    int status = cli_write_volume_mesh(vm, v, out);
     coons_volume_mesh_free(vm);
     return status;
 }
 
-int cli_write_volume_mesh(const coons_model *m, const coons_volume_mesh *vm, const options *o)
+int cli_write_volume_mesh(coons_volume_mesh *vm, const cli_volume *v, const cli_output *out)
 {
     coons_error err = COONS_ERROR_INIT;
-    int to_stdout = !o->output || strcmp(o->output, "-") == 0;
-    const char *shown = to_stdout ? "<stdout>" : o->output;
-    int status = o->allow_inverted ? 0 : refuse_inverted(vm, shown);
+    int to_stdout = !out->path || strcmp(out->path, "-") == 0;
+    const char *shown = to_stdout ? "<stdout>" : out->path;
+    int status = v->allow_inverted ? 0 : refuse_inverted(vm, shown);
     if (status) return status;
+    if (out->scale != 1.0 && coons_volume_mesh_scale(vm, out->scale, &err) != COONS_OK) {
+        cli_message(0, "%s: %s; nothing was written", shown, err.message);
+        return EXIT_GEOMETRY;
+    }
     coons_status rc;
     char name[256];
-    base_name(to_stdout ? o->input : o->output, name, sizeof name);
+    base_name(to_stdout ? out->input : out->path, name, sizeof name);
     coons_write_options wopts = COONS_WRITE_OPTIONS_INIT;
-    wopts.units = coons_model_units(m);
+    wopts.units = out->units;
     wopts.name = name[0] ? name : NULL;
-    int from_file = o->input && strcmp(o->input, "-") != 0;
-    wopts.protect_path = from_file ? o->input : NULL;
-    rc = to_stdout ? coons_volume_mesh_write_stream(vm, stdout, o->format, &wopts, &err)
-                   : cli_write_volume_file(vm, o->output, o->format, &wopts, &err);
+    int from_file = out->input && strcmp(out->input, "-") != 0;
+    wopts.protect_path = from_file ? out->input : NULL;
+    wopts.written = cli_progress_on() ? cli_on_written : NULL;
+    wopts.written_ctx = (void *)(uintptr_t)shown;
+    rc = to_stdout ? coons_volume_mesh_write_stream(vm, stdout, out->format, &wopts, &err)
+                   : cli_write_volume_file(vm, out->path, out->format, &wopts, &err);
+    cli_progress_end();
     if (cli_caught_signal()) cli_die_of_caught_signal(rc, shown);
     if (rc != COONS_OK) {
         cli_message(0, "%s", err.message);
