@@ -55,7 +55,7 @@ run_step() {
 # (exhaustive float formatting, fine sampling of every example, every
 # allocation failing in turn over every example), which
 # valgrind slows down 50-fold without reaching code the others do not.
-skip=" ${MEMCHECK_SKIP-test_io_fmt test_sample_examples test_alloc_failures} "
+skip=" ${MEMCHECK_SKIP-toolkit/test_fmt sample/test_examples model/test_alloc_failures} "
 steps=()
 for t in "$build"/tests/test_*; do
   [ -x "$t" ] && [ -f "$t" ] || continue
@@ -71,7 +71,7 @@ if [ -x "$build/tools/coons2stl" ]; then
   done
   # The volume-mesh command paths (mesher, every volume writer through
   # VTK's reader), with Debian's Python, which sees python3-vtk9.
-  steps+=("cli_test_vol_cli|env COONS_TEST_UNDER_VALGRIND=1 /usr/bin/python3 $here/tests/cli/test_vol_cli.py --bin $wrap --src $here --build $build")
+  steps+=("cli_test_vol_cli|env COONS_TEST_UNDER_VALGRIND=1 /usr/bin/python3 $here/tests/cli/test_volume.py --bin $wrap --src $here --build $build")
 fi
 
 run_one() {

@@ -27,7 +27,7 @@ computed here, not by libcoons:
   line:column in the message, an existing output byte-for-byte unchanged
   and nothing else created.
 
-Usage: test_deform_cli.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_deform.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import math

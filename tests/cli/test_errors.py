@@ -8,7 +8,7 @@ file that already exists at -o is left byte-for-byte unchanged, with no
 other file created next to it. The same through standard input names
 <stdin>.
 
-Usage: test_cli_errors.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_errors.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import os
 import shutil

@@ -17,7 +17,7 @@
 - the line rules: comments, blank lines, clamping within 1e-12, errors that
   name the line.
 
-Usage: test_cli_eval.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_eval.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import glob
 import json

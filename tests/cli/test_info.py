@@ -6,7 +6,7 @@ the trilinear Jacobian written out here, a NURBS tube = pi (r1^2 - r0^2) h),
 boxes, the default tolerance (1/1000 of the control box diagonal), the
 model settings, --body, and the warning for det J < 0.
 
-Usage: test_cli_info.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_info.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import math

@@ -19,7 +19,7 @@ written by tests/tools/iso_sample.c until coons2stl has --iso:
   calls the boundary with `%`, and `xvfb-run -a openscad --preview` writes
   a PNG (read back by VTK's vtkPNGReader: the right size, not blank).
 
-Usage: test_vol_iso.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_iso.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import os

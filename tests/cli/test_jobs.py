@@ -10,7 +10,7 @@ and the default (the number of cores) are compared byte for byte; the STL
 is also checked to hold the expected number of triangles. -j 0 and -j x are
 usage errors (exit 2) that write nothing.
 
-Usage: test_cli_jobs.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_jobs.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import os

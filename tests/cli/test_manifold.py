@@ -37,7 +37,7 @@ coons2stl, checked by this test's own readers and counts:
 Without CGAL (no repair, no exact test): the STL of the crossing boxes is
 written, as documented; the rest needs CGAL and is not run.
 
-Usage: test_cli_manifold.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_manifold.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import math

@@ -11,7 +11,7 @@ apex vertex; every example body's mesh is closed, manifold,
 oriented, with the Euler characteristic expected and a measured deviation
 within the tolerance (or the tolerance given with -t).
 
-Usage: test_cli_mesh_info.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_mesh_info.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import glob
 import json

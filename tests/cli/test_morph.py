@@ -20,7 +20,7 @@
   handedness give a sign change of det J between sampled times bracketing
   the time where det J = 0, and a warning.
 
-Usage: test_morph_cli.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_morph.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import os

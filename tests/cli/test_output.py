@@ -18,7 +18,7 @@
   says nothing was written, the previous output is unchanged and no
   temporary file remains.
 
-Usage: test_cli_output.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_output.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import os
 import re

@@ -17,7 +17,7 @@ references") through coons2stl:
   with the limit named (exit status 1), and so is a chain of references
   nested too deep.
 
-Usage: test_cli_refs.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_refs.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import os

@@ -30,7 +30,7 @@ said so):
 Without CGAL: the union of overlapping bodies is refused (exit 3), "none"
 and disjoint bodies still work; the rest is skipped.
 
-Usage: test_cli_union.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_union.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import math
@@ -563,7 +563,7 @@ if ok:
     s = j["solid"]
     # Where t = 0 the two sheets of the covered region touch along a curve:
     # the pinch (edges of four triangles) is split: closed and 2-manifold
-    # (test_cli_manifold.py checks the split itself).
+    # (test_manifold.py checks the split itself).
     T.check("fold: --info solid repaired (pairs found, none left, no border edge, pinch split)",
             s["csg"]["intersecting_pairs"] > 0 and s["self_intersections"] == 0
             and s["boundary_edges"] == 0 and s["csg"]["closed"] and s["nonmanifold_edges"] == 0

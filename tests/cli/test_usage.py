@@ -6,7 +6,7 @@ no output file touched), option spellings, and the mesh writer's promise:
 whatever it does, a run that fails leaves an existing output file as it
 was.
 
-Usage: test_cli_usage.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_usage.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import os
 import re

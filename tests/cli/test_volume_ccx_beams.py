@@ -33,7 +33,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from clitest import Runner  # noqa: E402
-from test_vol_ccx import read_dat, read_inp  # noqa: E402
+from test_volume_ccx import read_dat, read_inp  # noqa: E402
 
 E, NU = 210000.0, 0.3
 HEADER = ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{E}, {NU}",

@@ -44,7 +44,7 @@ gmsh.open() in a fresh process:
 - a physical name of 252 bytes (Gmsh 4.8's most) reads back whole, one of
   253 is refused with nothing written.
 
-Usage: test_vol_gmsh.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_volume_gmsh.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import os

@@ -37,7 +37,7 @@ the triquadratic basis at VTK's parametric node positions) within 1e-4
 relative of --info's exact volume at --resolution 6 on body1-density.json
 and volume-nurbs.json.
 
-Usage: test_vol_vtu.py --bin <coons2stl> --src <source dir> --build <build dir>
+Usage: test_volume_vtu.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
 import json
 import os

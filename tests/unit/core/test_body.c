@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * Bodies of seed 000 section 2: body 0 (T), body 1 (C1), the tensor
- * volumes; body 2 lives in test_body2.c. Expected values are computed here
+ * volumes; body 2 lives in core/test_body2.c. Expected values are computed here
  * independently: affine maps and their exact volumes, trilinear and Coons
  * formulas written out, Cox-de Boor recursion, closed forms of a NURBS
  * cylinder, central finite differences for Jacobians.

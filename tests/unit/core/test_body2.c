@@ -5,7 +5,7 @@
  * boundary interpolation, the seed's equivalences (Coons faces give body 1,
  * flat faces give body 0, linear blend), exact volumes of a box and a
  * pyramid with a collapsed face. Jacobians, grids, copies and failing
- * allocations of body 2 run with the other types in test_body.c.
+ * allocations of body 2 run with the other types in core/test_body.c.
  */
 #include <math.h>
 #include <stdio.h>

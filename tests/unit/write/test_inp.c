@@ -8,7 +8,7 @@
  * the C3D20 node order and the face labels S1..S6 against the two
  * projects' own statements of them (transcribed below, not taken from the
  * writer), wedges as C3D6, and the refusals (hex27, colliding names) that
- * write nothing. tests/cli/test_vol_ccx.py runs the decks through ccx. */
+ * write nothing. tests/cli/test_volume_ccx.py runs the decks through ccx. */
 #define _XOPEN_SOURCE 700
 #include "io_test_util.h"
 

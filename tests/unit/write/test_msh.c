@@ -11,7 +11,7 @@
  * and triangle nodes must be the corners of one face, counter-clockwise
  * seen from outside, then the midpoints of consecutive corners, then the
  * face centre (quad9). gmsh itself reads the same files in
- * tests/cli/test_vol_gmsh.py. */
+ * tests/cli/test_volume_gmsh.py. */
 #define _XOPEN_SOURCE 700
 #include <sys/stat.h>
 

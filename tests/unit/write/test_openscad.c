@@ -8,7 +8,7 @@
  * `include <f.scad>` must render the model.
  *
  * Note: OpenSCAD 2021.01 re-orients a closed polyhedron given inside out,
- * so a globally reversed winding does not show here; test_io_scad.c checks
+ * so a globally reversed winding does not show here; write/test_scad.c checks
  * the winding itself. An inconsistently wound one fails ("not closed"). */
 #define _XOPEN_SOURCE 700
 #include <sys/wait.h>
@@ -16,16 +16,11 @@
 #include "io_test_util.h"
 
 /* OpenSCAD is a real client of the .scad output: a missing openscad fails
- * the test (tools/setup.sh installs it), unless COONS_ALLOW_MISSING names it
- * (a developer's machine without it). */
-static int have_openscad(void)
+ * the test, never skips it (tools/setup.sh installs it). */
+static void need_openscad(void)
 {
-    if (system("openscad --version >/dev/null 2>&1") == 0) return 1;
-    const char *allow = getenv("COONS_ALLOW_MISSING");
-    if (!(allow && strstr(allow, "openscad")))
-        fail_msg("openscad is not installed (tools/setup.sh installs it; "
-                 "COONS_ALLOW_MISSING=openscad skips this test)");
-    return 0;
+    if (system("openscad --version >/dev/null 2>&1") != 0)
+        fail_msg("openscad is not installed (tools/setup.sh installs it)");
 }
 
 /* Runs openscad -o out in, stderr into errf; returns the exit status. */
@@ -101,7 +96,7 @@ static void assert_volume(double got, double want)
 static void test_single_parts(void **state)
 {
     (void)state;
-    if (!have_openscad()) skip();
+    need_openscad();
     char dir[64], p[128];
     io_tmpdir(dir, sizeof dir);
     snprintf(p, sizeof p, "%s/part.scad", dir);
@@ -129,7 +124,7 @@ static void test_single_parts(void **state)
 static void test_union_and_use(void **state)
 {
     (void)state;
-    if (!have_openscad()) skip();
+    need_openscad();
     char dir[64], p[128], q[128];
     io_tmpdir(dir, sizeof dir);
     snprintf(p, sizeof p, "%s/model.scad", dir);

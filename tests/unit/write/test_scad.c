@@ -5,7 +5,7 @@
  * Checks: exact doubles, each triangle reversed (clockwise from outside),
  * one module per part with a valid, unique, non-built-in name, a module for
  * the whole model and a top-level call. Rendering by the real openscad is
- * in test_io_openscad.c. */
+ * in write/test_openscad.c. */
 #define _XOPEN_SOURCE 700
 #include <ctype.h>
 #include <float.h>

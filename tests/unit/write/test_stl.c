@@ -196,11 +196,12 @@ static void test_empty(void **state)
 }
 
 /* Given a mesh record claiming 2^32 triangles, when written as binary STL,
- * then COONS_E_LIMIT comes back before anything is read or created. */
+ * then COONS_E_LIMIT comes back before anything is read or created. Only
+ * where size_t can hold 2^32 (elsewhere the limit cannot be reached). */
+#if SIZE_MAX > UINT32_MAX
 static void test_triangle_limit(void **state)
 {
     (void)state;
-    if (sizeof(size_t) <= 4) skip();
     struct coons_mesh fake;
     memset(&fake, 0, sizeof fake);
     fake.nt = (size_t)UINT32_MAX + 1;
@@ -215,6 +216,8 @@ static void test_triangle_limit(void **state)
     assert_int_equal(io_dir_count(dir), 0);
     io_rmdir(dir);
 }
+
+#endif
 
 /* The same mesh always gives the same bytes. */
 static void test_deterministic(void **state)
@@ -292,7 +295,10 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_binary_matches_mesh), cmocka_unit_test(test_header_never_solid),
         cmocka_unit_test(test_ascii_matches_binary), cmocka_unit_test(test_empty),
-        cmocka_unit_test(test_triangle_limit),      cmocka_unit_test(test_deterministic),
+#if SIZE_MAX > UINT32_MAX
+        cmocka_unit_test(test_triangle_limit),
+#endif
+        cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_normal_of_float_vertices),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

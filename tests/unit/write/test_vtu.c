@@ -6,12 +6,12 @@
  * every value to the bit, each appended array's UInt64 byte count and
  * encoded length, offsets that tile the appended section; VTK's node order
  * for 8, 20 and 27 nodes (tables transcribed from VTK's cell
- * documentation, as in test_io_vtk), hex8 cells at collapsed edges and
+ * documentation, as in write/test_vtk), hex8 cells at collapsed edges and
  * faces as wedges and pyramids oriented as VTK defines them; base64
  * padding for every length modulo 3 and across the writer's buffers; and
  * the atomic file protocol (size limit, cancellation, allocation failures,
  * a full stream). The real VTK and meshio read the files in
- * tests/cli/test_vol_vtu.py. */
+ * tests/cli/test_volume_vtu.py. */
 #define _XOPEN_SOURCE 700
 #include <signal.h>
 #include <sys/resource.h>

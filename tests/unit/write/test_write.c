@@ -313,7 +313,7 @@ static void test_stream_errors(void **state)
     coons_mesh *m = torus_mesh(40);
     for (int f = COONS_FORMAT_STL_BINARY; f <= COONS_FORMAT_SCAD; f++) {
         FILE *fp = fopen("/dev/full", "wb");
-        if (!fp) skip();
+        assert_non_null(fp); /* Linux has it: its absence fails, never skips */
         coons_error e = COONS_ERROR_INIT;
         assert_int_equal(coons_mesh_write_stream(m, fp, (coons_format)f, NULL, &e), COONS_E_IO);
         assert_non_null(strstr(e.message, "space"));
@@ -471,7 +471,7 @@ static void test_locale_independent(void **state)
     if (system(cmd) != 0) {
         snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
         (void)system(cmd);
-        skip();
+        fail_msg("localedef cannot compile de_DE.UTF-8 (tools/setup.sh installs `locales`)");
     }
     coons_mesh *m;
     coons_error e = COONS_ERROR_INIT;
