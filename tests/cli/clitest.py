@@ -47,6 +47,15 @@ class Runner:
         return self.check(f"{program} is installed (tools/setup.sh installs it)",
                           shutil.which(program) is not None)
 
+    def has_cgal(self):
+        """Whether this build has the Boolean (CGAL) layer, from its CMake
+        cache: only without it may a union be refused (exit 3, naming CGAL)."""
+        try:
+            with open(os.path.join(self.build, "CMakeCache.txt")) as f:
+                return "COONS_WITH_CGAL:BOOL=ON" in f.read()
+        except OSError:
+            return True  # unknown: nothing is excused
+
     def examples(self):
         """The example models to run (see examples())."""
         return examples(self.src)

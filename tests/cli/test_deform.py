@@ -405,7 +405,7 @@ def test_spool(t):
     r.check(f"sphere through the spool: {len(Tout)} triangles, closed, oriented, Euler 2, "
             f"outward (volume {vol:.6g})", ok and euler == 2 and vol > 0, f"{ok} {euler}")
     # admesh
-    if shutil.which("admesh") or "admesh" not in os.environ.get("COONS_ALLOW_MISSING", ""):
+    if r.need("admesh"):
         p = run_tool(["admesh", out])
         rep = p.stdout
         bad = [ln for ln in rep.splitlines() if any(
@@ -417,8 +417,7 @@ def test_spool(t):
                 ("Number of facets     :  %5d  %5d" % (len(Tout), len(Tout))) in rep
                 or (p.returncode == 0 and not bad and "%d" % len(Tout) in rep), rep)
     # PrusaSlicer --info
-    if shutil.which("prusa-slicer") or "prusa-slicer" not in os.environ.get(
-            "COONS_ALLOW_MISSING", ""):
+    if r.need("prusa-slicer"):
         p = subprocess.run(["prusa-slicer", "--info", "--loglevel", "1", out],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                            timeout=600)
@@ -435,7 +434,7 @@ def test_spool(t):
                 and kv.get("number_of_facets") == str(len(Tout)) and abs(pv - vol) <= 1e-4 * vol,
                 p.stdout + p.stderr)
     # OpenSCAD: import() of the STL, and the .scad output, each rendered to STL
-    if shutil.which("openscad") or "openscad" not in os.environ.get("COONS_ALLOW_MISSING", ""):
+    if r.need("openscad"):
         scad_in = t.path("import.scad")
         with open(scad_in, "w") as fh:
             fh.write('import("ball-spool.stl");\n')

@@ -143,8 +143,7 @@ for sel in ("1", lid["name"]):
             f"{rows} {err}")
 
 # --- corners of every model -------------------------------------------------------------
-models = sorted(glob.glob(os.path.join(T.src, "examples", "*.json"))) + \
-    sorted(glob.glob(os.path.join(OK, "*.json")))
+models = T.examples() + sorted(glob.glob(os.path.join(OK, "*.json")))
 corner_params = [[n >> 2, (n >> 1) & 1, n & 1] for n in range(8)]
 count = 0
 for path in models:

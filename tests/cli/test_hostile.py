@@ -170,7 +170,7 @@ def main():
 
         # ---- every example cut short --------------------------------------------
         examples = os.path.join(T.src, "examples")
-        for ex in sorted(f for f in os.listdir(examples) if f.endswith(".json")):
+        for ex in (os.path.basename(p) for p in T.examples()):
             with open(os.path.join(examples, ex), "rb") as f:
                 full = f.read()
             cuts = sorted({len(full) * k // 5 for k in range(1, 5)} | {1, len(full) - 2})

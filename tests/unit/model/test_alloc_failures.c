@@ -10,6 +10,11 @@
  * message, produce no object, and leave no block allocated (the test
  * allocator counts them). ALLOC_VERBOSE=1 prints each operation's count
  * and time.
+ *
+ * Under a sanitizer (COONS_TEST_REPRESENTATIVE=1, tools/test.sh's asan
+ * stage) the examples are the representative subset of
+ * tests/data/representative-examples.txt (every kind of curve, patch and
+ * body of the examples); the release and core stages take every example.
  */
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <dirent.h>
@@ -40,16 +45,35 @@ static char *read_file(const char *path, size_t *len)
     return buf;
 }
 
-/* Model files of a directory, sorted; returns the count. */
-static size_t list_models(const char *dir, char names[][256], size_t max)
+/* Whether a file name is listed in tests/data/representative-examples.txt. */
+static int representative(const char *name)
 {
+    FILE *f = fopen(COONS_SOURCE_DIR "/tests/data/representative-examples.txt", "r");
+    if (!f) fail_msg("cannot read tests/data/representative-examples.txt");
+    char line[256];
+    int found = 0;
+    while (!found && fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\r\n")] = '\0';
+        found = line[0] != '#' && line[0] != '\0' && strcmp(line, name) == 0;
+    }
+    fclose(f);
+    return found;
+}
+
+/* Model files of a directory, sorted; returns the count. With subset set
+ * and COONS_TEST_REPRESENTATIVE in the environment, only the
+ * representative ones. */
+static size_t list_models(const char *dir, char names[][256], size_t max, int subset)
+{
+    subset = subset && getenv("COONS_TEST_REPRESENTATIVE") && *getenv("COONS_TEST_REPRESENTATIVE");
     DIR *d = opendir(dir);
     if (!d) return 0;
     size_t n = 0;
     struct dirent *e;
     while ((e = readdir(d)) && n < max) {
         size_t l = strlen(e->d_name);
-        if (l > 5 && l < 200 && strcmp(e->d_name + l - 5, ".json") == 0) {
+        if (l > 5 && l < 200 && strcmp(e->d_name + l - 5, ".json") == 0 &&
+            (!subset || representative(e->d_name))) {
             int w = snprintf(names[n], 256, "%s/%s", dir, e->d_name);
             if (w > 0 && w < 256) n++;
         }
@@ -168,10 +192,10 @@ static void every_failure(const char *name, const char *what, op_fn op, const ch
                       (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
 }
 
-static void run_dir(const char *dir, size_t min_count)
+static void run_dir(const char *dir, size_t min_count, int subset)
 {
     static char names[128][256];
-    size_t n = list_models(dir, names, 128);
+    size_t n = list_models(dir, names, 128, subset);
     assert_true(n >= min_count);
     g_points = 0;
     for (size_t i = 0; i < n; i++) {
@@ -199,14 +223,14 @@ static void run_dir(const char *dir, size_t min_count)
 static void test_examples(void **state)
 {
     (void)state;
-    run_dir(COONS_SOURCE_DIR "/examples", 20);
+    run_dir(COONS_SOURCE_DIR "/examples", getenv("COONS_TEST_REPRESENTATIVE") ? 10 : 20, 1);
 }
 
 /* The same for the valid models of the test data. */
 static void test_data_ok(void **state)
 {
     (void)state;
-    run_dir(COONS_SOURCE_DIR "/tests/data/ok", 1);
+    run_dir(COONS_SOURCE_DIR "/tests/data/ok", 1, 0);
 }
 
 /* The same for models with references (coons-model(5), "Definitions and
@@ -214,7 +238,7 @@ static void test_data_ok(void **state)
 static void test_data_refs(void **state)
 {
     (void)state;
-    run_dir(COONS_SOURCE_DIR "/tests/data/refs", 1);
+    run_dir(COONS_SOURCE_DIR "/tests/data/refs", 1, 0);
 }
 
 int main(void)
