@@ -915,7 +915,7 @@ def m_volume_nurbs():
 
 
 # Models for the CalculiX validation of the .inp volume meshes
-# (tests/cli/test_vol_ccx_beams.py compares ccx with closed forms).
+# (tests/cli/test_volume_ccx_beams.py compares ccx with closed forms).
 CANTILEVER = {"L": 100.0, "h": 10.0, "b": 10.0}
 TUBE = {"a": 10.0, "b": 20.0, "H": 5.0}
 

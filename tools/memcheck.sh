@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Runs a C-only build's tests under valgrind memcheck: every cmocka test,
-# the fuzz target over its regression inputs, the examples and the test
-# models, and every command-line test with coons2stl under valgrind (the
-# paths that need no CGAL: --eval, --info, meshing without repair or union).
-# Any memcheck error or definite leak fails.
+# Runs a C-only build's tests under valgrind memcheck: every cmocka test
+# (tests/unit/<stage>/), the fuzz target over its regression inputs and the
+# malformed models, and the command-line tests of the paths that need no
+# CGAL (--eval, --info, meshing without repair or union, volume meshes) with
+# coons2stl under valgrind. Any memcheck error or definite leak fails.
+# The tests that repeat the same work over every example take the
+# representative subset (COONS_TEST_REPRESENTATIVE=1,
+# tests/data/representative-examples.txt: every kind of curve, patch and
+# body that any example uses); the release stage runs them over all.
 #
 #   tools/memcheck.sh BUILD_DIR
 #
@@ -55,23 +59,27 @@ run_step() {
 # (exhaustive float formatting, fine sampling of every example, every
 # allocation failing in turn over every example), which
 # valgrind slows down 50-fold without reaching code the others do not.
-skip=" ${MEMCHECK_SKIP-test_io_fmt test_sample_examples test_alloc_failures} "
+export COONS_TEST_REPRESENTATIVE=1
+skip=" ${MEMCHECK_SKIP-toolkit/test_fmt sample/test_examples model/test_alloc_failures} "
 steps=()
-for t in "$build"/tests/test_*; do
+for t in "$build"/tests/unit/*/test_*; do
   [ -x "$t" ] && [ -f "$t" ] || continue
-  case $skip in *" $(basename "$t") "*) echo "memcheck: skip $(basename "$t")"; continue ;; esac
-  steps+=("$(basename "$t")|${VG[*]} $t")
+  name=$(basename "$(dirname "$t")")/$(basename "$t")
+  case $skip in *" $name "*) echo "memcheck: left to ASan $name"; continue ;; esac
+  steps+=("${name/\//_}|${VG[*]} $t")
 done
 # The fuzz target on its regression inputs and the malformed models (the
 # examples, which are large, go through the CLI tests).
 steps+=("fuzz_regressions|${VG[*]} $build/tests/fuzz_replay $here/tests/fuzz/regressions $here/tests/data/bad $here/tests/data/hostile")
 if [ -x "$build/tools/coons2stl" ]; then
-  for t in "$here"/tests/cli/test_cli_*.py; do
-    steps+=("cli_$(basename "$t" .py)|env COONS_TEST_UNDER_VALGRIND=1 python3 $t --bin $wrap --src $here --build $build")
+  # The command-line tests of the paths without CGAL: argument and model
+  # errors, --eval, hostile input, --info, -j, limits, the manifold split,
+  # --info's mesh, outputs, references, union refusals, usage, and the
+  # volume-mesh paths (mesher, every volume writer through VTK's reader).
+  # Debian's Python, which sees python3-vtk9.
+  for t in errors eval hostile info jobs limits manifold mesh_info output refs union usage volume; do
+    steps+=("cli_test_$t|env COONS_TEST_UNDER_VALGRIND=1 /usr/bin/python3 $here/tests/cli/test_$t.py --bin $wrap --src $here --build $build")
   done
-  # The volume-mesh command paths (mesher, every volume writer through
-  # VTK's reader), with Debian's Python, which sees python3-vtk9.
-  steps+=("cli_test_vol_cli|env COONS_TEST_UNDER_VALGRIND=1 /usr/bin/python3 $here/tests/cli/test_vol_cli.py --bin $wrap --src $here --build $build")
 fi
 
 run_one() {

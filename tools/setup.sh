@@ -11,6 +11,8 @@ PKGS=(
   openscad mandoc groff-base valgrind
   clang libclang-rt-14-dev
   python3
+  # test_write and test_json compile a de_DE locale to check locale independence.
+  locales
   # Volume meshes are checked by the programs that read them (issue 10):
   # Gmsh (binary and Python module), CalculiX, meshio, VTK's Python module,
   # and an X server for OpenSCAD's preview renders (xvfb-run).

@@ -10,7 +10,7 @@
 #define SURFACE COONS_MESH_KIND_SURFACE
 #define VOLUME COONS_MESH_KIND_VOLUME
 
-/* In enum order; test_io_write checks that every row maps back to itself. */
+/* In enum order; write/test_write checks that every row maps back to itself. */
 static const coons__format_row ROWS[] = {
     {.format = COONS_FORMAT_STL_BINARY, .name = "stl-binary", .title = "binary STL",
      .aliases = {"stl"}, .extensions = {".stl"}, .kind = SURFACE, .max_triangles = UINT32_MAX,

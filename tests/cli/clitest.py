@@ -1,24 +1,38 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Shared helpers of the coons2stl command-line tests (not a test itself).
+"""The one harness of the command-line tests, tests/cli/test_<concept>.py
+(not a test itself).
 
-- Runner: parses --bin/--src/--build, runs the binary, counts checks.
+- Runner: parses --bin/--src/--build, runs the binary, counts checks;
+  need() fails (never skips) when a client program is missing.
+- examples(): every example, or under a sanitizer or valgrind
+  (COONS_TEST_REPRESENTATIVE=1 or COONS_TEST_UNDER_VALGRIND=1) the
+  representative subset of tests/data/representative-examples.txt;
+  model_kinds() is what that subset must cover.
 - An independent reference of the model format (coons-model(5)) written
   from the format's definitions, not from libcoons: every curve type at any
   t (Cox-de Boor, Bernstein, Coons polynomials of seed 002, cubic Hermite),
   and the 8 corners of every body type.
 """
 import argparse
+import glob
+import json
 import os
+import shutil
 import subprocess
 import sys
+
+# Under a sanitizer or valgrind: tests that repeat the same work over every
+# example take the representative subset (release and core take all).
+REPRESENTATIVE = bool(os.environ.get("COONS_TEST_REPRESENTATIVE")
+                      or os.environ.get("COONS_TEST_UNDER_VALGRIND"))
 
 
 class Runner:
     def __init__(self, doc=""):
         ap = argparse.ArgumentParser(description=doc)
-        ap.add_argument("--bin", required=True)
+        ap.add_argument("--bin", default="")  # empty for test_man, test_install
         ap.add_argument("--src", required=True)
-        ap.add_argument("--build", required=True)
+        ap.add_argument("--build", default="")
         a = ap.parse_args()
         self.bin, self.src, self.build = a.bin, a.src, a.build
         self.data = os.path.join(self.src, "tests", "data")
@@ -26,6 +40,25 @@ class Runner:
         # A hung run fails instead of stalling CI; valgrind (tools/memcheck.sh)
         # slows coons2stl 50-fold.
         self.timeout = 900 if os.environ.get("COONS_TEST_UNDER_VALGRIND") else 120
+
+    def need(self, program):
+        """A client program the test runs: missing, it is a failed check,
+        never a skip (tools/setup.sh installs every one)."""
+        return self.check(f"{program} is installed (tools/setup.sh installs it)",
+                          shutil.which(program) is not None)
+
+    def has_cgal(self):
+        """Whether this build has the Boolean (CGAL) layer, from its CMake
+        cache: only without it may a union be refused (exit 3, naming CGAL)."""
+        try:
+            with open(os.path.join(self.build, "CMakeCache.txt")) as f:
+                return "COONS_WITH_CGAL:BOOL=ON" in f.read()
+        except OSError:
+            return True  # unknown: nothing is excused
+
+    def examples(self):
+        """The example models to run (see examples())."""
+        return examples(self.src)
 
     def check(self, name, ok, detail=""):
         if ok:
@@ -46,6 +79,43 @@ class Runner:
     def finish(self):
         print(f"{self.passed} passed, {self.failed} failed")
         sys.exit(1 if self.failed or not self.passed else 0)
+
+
+# ---- which examples ------------------------------------------------------------
+
+def representative_names(src):
+    """The names listed in tests/data/representative-examples.txt."""
+    with open(os.path.join(src, "tests", "data", "representative-examples.txt")) as f:
+        return [ln.strip() for ln in f if ln.strip() and not ln.startswith("#")]
+
+
+def examples(src, every=False):
+    """Paths of examples/*.json, sorted; the representative subset instead
+    under a sanitizer or valgrind unless every is set."""
+    if REPRESENTATIVE and not every:
+        return [os.path.join(src, "examples", n) for n in representative_names(src)]
+    return sorted(glob.glob(os.path.join(src, "examples", "*.json")))
+
+
+def model_kinds(node, key=None, out=None):
+    """What a model file exercises: every "type" value (curve, patch, body,
+    ...), every key, and the values of the keys that choose a method
+    (twist, blend, path, operation, closed)."""
+    if out is None:
+        out = set()
+    if isinstance(node, dict):
+        for k, v in node.items():
+            out.add(("key", k))
+            model_kinds(v, k, out)
+        if isinstance(node.get("type"), str):
+            out.add(("type", node["type"]))
+    elif isinstance(node, list):
+        for v in node:
+            model_kinds(v, key, out)
+    elif key in ("twist", "blend", "path", "operation", "closed") and \
+            isinstance(node, (str, bool)):  # a method's name, not a number
+        out.add(("value", key, json.dumps(node)))
+    return out
 
 
 # ---- small vector helpers ---------------------------------------------------

@@ -26,7 +26,6 @@ CMake's find_package and run, and the packaged coons2stl meshes the spool.
 
 Usage: test_install.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
-import argparse
 import glob
 import os
 import re
@@ -35,19 +34,11 @@ import subprocess
 import sys
 import tempfile
 
-PASSED = 0
-FAILED = 0
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import clitest  # noqa: E402
 
-
-def check(name, ok, detail=""):
-    global PASSED, FAILED
-    if ok:
-        PASSED += 1
-        print(f"ok   {name}")
-    else:
-        FAILED += 1
-        print(f"FAIL {name}" + (f"\n{detail}" if detail else ""))
-    return ok
+T = clitest.Runner(__doc__)
+check = T.check
 
 
 def run(cmd, env=None, cwd=None):
@@ -100,12 +91,7 @@ def man_programs(src):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--bin", default="")
-    ap.add_argument("--src", required=True)
-    ap.add_argument("--build", required=True)
-    args = ap.parse_args()
-    src, build = os.path.abspath(args.src), os.path.abspath(args.build)
+    src, build = os.path.abspath(T.src), os.path.abspath(T.build)
     consumer = os.path.join(src, "tests", "api", "consumer.c")
     cc = os.environ.get("CC", "cc")
     cflags = ["-std=c11", "-Wall", "-Wextra", "-Wpedantic", "-Werror"]
@@ -397,5 +383,4 @@ target_link_libraries(consumer_shared PRIVATE coons::coons)
 
 if __name__ == "__main__":
     main()
-    print(f"{PASSED} passed, {FAILED} failed")
-    sys.exit(1 if FAILED else 0)
+    T.finish()

@@ -21,7 +21,6 @@
 
 Usage: test_man.py --bin <coons2stl or ""> --src <source dir> --build <build dir>
 """
-import argparse
 import glob
 import json
 import os
@@ -30,19 +29,11 @@ import shutil
 import subprocess
 import sys
 
-PASSED = 0
-FAILED = 0
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import clitest  # noqa: E402
 
-
-def check(name, ok, detail=""):
-    global PASSED, FAILED
-    if ok:
-        PASSED += 1
-        print(f"ok   {name}")
-    else:
-        FAILED += 1
-        print(f"FAIL {name}" + (f"\n{detail}" if detail else ""))
-    return ok
+T = clitest.Runner(__doc__)
+check = T.check
 
 
 def run(cmd):
@@ -131,12 +122,8 @@ def model_examples(page):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--bin", default="")
-    ap.add_argument("--src", required=True)
-    ap.add_argument("--build", default="")
-    args = ap.parse_args()
-    src = os.path.abspath(args.src)
+    args = T
+    src = os.path.abspath(T.src)
 
     pages = sorted(glob.glob(os.path.join(src, "man", "man[0-9]", "*.[0-9]")))
     check("man pages found", len(pages) >= 3, str(pages))
@@ -318,5 +305,4 @@ def check_option_table(binary, help_text, page):
 
 if __name__ == "__main__":
     main()
-    print(f"{PASSED} passed, {FAILED} failed")
-    sys.exit(1 if FAILED else 0)
+    T.finish()

@@ -38,7 +38,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from clitest import Runner, clamped_knots, tensor_eval  # noqa: E402
-from test_vol_ccx import read_dat, read_inp  # noqa: E402
+from test_volume_ccx import read_dat, read_inp  # noqa: E402
 
 
 # ---- closed meshes (OFF) -----------------------------------------------------

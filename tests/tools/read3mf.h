@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* A 3MF package read back with lib3mf's own reader (tests/tools/read3mf.cpp,
- * C++ behind this C interface), for tests/test_io_3mf.c: the unit, the
+ * C++ behind this C interface), for tests/unit/write/test_3mf.c: the unit, the
  * Title metadata, every mesh object in resource order and every build
  * item. Shares no code with the library's writer. */
 #ifndef COONS_TEST_READ3MF_H
