@@ -16,7 +16,7 @@
 - the 0.1 names are gone in 0.3 (0.2 announced it): 0.1 code no longer
   compiles, and none of the 0.1 names is exported;
 - libcoons.so exports exactly the functions the public headers declare
-  COONS_EXPORT (the count is printed: 169 in 0.3).
+  COONS_EXPORT (the count is printed: 171 in 0.3).
 
 In a sanitizer build the programs are compiled only, and linked and run with
 gcc and the same sanitizers.
