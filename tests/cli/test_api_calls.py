@@ -157,6 +157,12 @@ def main():
                 f"({len(fns)} exported)", fns == declared,
                 "exported, not declared: " + " ".join(sorted(fns - declared)) +
                 "\ndeclared, not exported: " + " ".join(sorted(declared - fns)))
+        # The README states the count (issue 25): it must be this one.
+        with open(os.path.join(r.src, "README.md"), encoding="utf-8") as f:
+            m = re.search(r"libcoons exports (\d+) functions", f.read())
+        r.check(f"README states the number of exported functions ({len(fns)})",
+                m is not None and int(m.group(1)) == len(fns),
+                m.group(0) if m else "no 'libcoons exports N functions' in README.md")
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     r.finish()
