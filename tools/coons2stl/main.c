@@ -118,7 +118,8 @@ int main(int argc, char **argv)
         if (!coons_model_morph_count(m))
             cli_message(1, "the model has no morph bodies: --time changes nothing");
     }
-    cli_progress_start(o.force_progress || (!o.quiet && isatty(STDERR_FILENO)), o.quiet, m);
+    /* -q silences progress too, even with --progress (issue 24) */
+    cli_progress_start(!o.quiet && (o.force_progress || isatty(STDERR_FILENO)), o.quiet, m);
     if ((rc = cli_resolve_units(&o, m)) >= 0) {
         coons_model_free(m);
         return rc;

@@ -136,7 +136,7 @@ static const option_row OPTIONS[] = {
      "a whole number from 1 to {max}", 0, 1024, NULL},
     {"progress", 0, NULL, V_FLAG, AT(force_progress),
      "report progress on standard error even when it is not\n"
-     "a terminal",
+     "a terminal (never with -q)",
      NULL, 0, 0, NULL},
     {"quiet", 'q', NULL, V_FLAG, AT(quiet), "no warnings and no progress report", NULL, 0, 0,
      NULL},
