@@ -19,7 +19,7 @@ class Handle:
     def __init__(self, ptr, free, what):
         self._ptr = ptr
         self._free = free
-        self._lock = threading.Lock()
+        self._lock = threading.RLock()  # re-entered when GC runs __del__ under it
         self._users = 0
         self._closed = False
         self.what = what
@@ -39,19 +39,23 @@ class Handle:
             return self._ptr
 
     def _release(self):
+        ptr = None
         with self._lock:
             self._users -= 1
-            free_now = self._closed and self._users == 0 and self._ptr is not None
-            ptr, self._ptr = (self._ptr, None) if free_now else (None, self._ptr)
-        if free_now:
+            if self._closed and self._users == 0:
+                ptr = self._ptr
+                self._ptr = None
+        if ptr is not None:
             self._free(ptr)
 
     def close(self):
+        ptr = None
         with self._lock:
             self._closed = True
-            free_now = self._users == 0 and self._ptr is not None
-            ptr, self._ptr = (self._ptr, None) if free_now else (None, self._ptr)
-        if free_now:
+            if self._users == 0:
+                ptr = self._ptr
+                self._ptr = None
+        if ptr is not None:
             self._free(ptr)
 
     def __del__(self):

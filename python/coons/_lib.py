@@ -22,6 +22,15 @@ ffi = FFI()
 with open(os.path.join(_here, "_cdef.h"), encoding="utf-8") as _f:
     ffi.cdef(_f.read())
 lib = ffi.dlopen(os.path.join(_here, "libcoons.so"))
+# Resolve every declared name now: cffi's ABI-mode `lib` creates each
+# accessor on first use under a non-reentrant lock, and a garbage
+# collection inside that lock that frees a model (Handle.__del__ ->
+# coons_model_free, first use) would wait for the lock forever.
+for _name in dir(lib):
+    try:
+        getattr(lib, _name)
+    except Exception:  # a declared function the library does not export
+        pass
 
 FACE_NAMES = ("u0", "u1", "v0", "v1", "w0", "w1")
 
@@ -344,12 +353,11 @@ def format_is_scad(fmt):
 
 
 def _write_options(name, units, protect):
-    keep = [_enc(name) if name else ffi.NULL, _enc(units) if units else ffi.NULL,
-            _enc(protect) if protect else ffi.NULL]
+    """The options and the C strings they point to (keep both alive)."""
+    keep = [ffi.new("char[]", _enc(s)) if s else ffi.NULL for s in (name, units, protect)]
     o = ffi.new("coons_write_options *")
     lib.coons_write_options_init(o)
-    o.name, o.units, o.protect_path = [ffi.new("char[]", k) if k != ffi.NULL else ffi.NULL
-                                       for k in keep]
+    o.name, o.units, o.protect_path = keep
     return o, keep
 
 
