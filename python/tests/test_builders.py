@@ -48,9 +48,13 @@ def test_bezier_volume_equals_example():
 def test_bspline_volume_equals_example(name):
     path = example(name)
     spec = _json_body(path)
-    ku, kv, kw = spec["knots"]
-    b = coons.bspline_volume(np.array(spec["points"], float), ku, kv, kw,
-                             weights=spec.get("weights"))
+    pts = np.array(spec["points"], float)
+    if "knots" in spec:
+        ku, kv, kw = spec["knots"]
+    else:  # the format's default: clamped uniform
+        ku, kv, kw = [[0.0] * p + list(np.linspace(0, 1, n - p + 1)) + [1.0] * p
+                      for n, p in zip(pts.shape[:3], spec["degree"])]
+    b = coons.bspline_volume(pts, ku, kv, kw, weights=spec.get("weights"))
     ref = coons.load(path).bodies[0]
     q = points(5)
     assert np.array_equal(b.eval(q), ref.eval(q))
