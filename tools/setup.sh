@@ -21,6 +21,9 @@ PKGS=(
   # For the people who print (issue 16): slicing and mesh checks by the
   # programs users run, the 3MF library, and ccache for faster rebuilds.
   prusa-slicer admesh lib3mf-dev ccache
+  # The Python package (issue 28): test.sh's python stage makes a venv;
+  # scikit-build-core, cffi and pytest come from PyPI into it.
+  python3-venv
 )
 
 missing=()

@@ -17,6 +17,9 @@
 #            valgrind memcheck, representative examples (tools/memcheck.sh)
 #   fuzz     the loader fuzz target for COONS_FUZZ_SECONDS (default 60) s
 #            (tools/fuzz.sh)
+#   python   the Python package (python/, issue 28): a wheel built from the
+#            tree (the C core), installed into a fresh virtual environment,
+#            its pytest suite (python/tests) run there
 # The tests: tests/unit/<stage>/test_<concept>.c (cmocka; ctest name
 # <stage>/test_<concept>, e.g. ctest -R '^csg/'), tests/cli/test_<concept>.py
 # (one harness, tests/cli/clitest.py; ctest name cli/test_<concept>), the fuzz
@@ -39,7 +42,7 @@ cd "$here"
 bash tools/setup.sh
 build=${COONS_BUILD_DIR:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
-stages=" ${COONS_TEST_STAGES:-release core asan memcheck fuzz} "
+stages=" ${COONS_TEST_STAGES:-release core asan memcheck fuzz python} "
 t_all=$SECONDS
 times=()
 
@@ -112,6 +115,32 @@ if want fuzz; then
   begin "fuzzing for ${COONS_FUZZ_SECONDS:-60} s"
   COONS_FUZZ_BUILD="$build-fuzz" COONS_JOBS=$jobs bash tools/fuzz.sh "${COONS_FUZZ_SECONDS:-60}"
   end fuzz
+fi
+
+# 6. The Python package: `pip wheel ./python` builds the C core (the union
+#    tests then check that a union says it needs CGAL), the wheel goes into
+#    a fresh venv (Debian's numpy and meshio through --system-site-packages;
+#    cffi and pytest from PyPI), pytest runs from outside the tree so that
+#    the installed package is the one tested. Exit 5 (no tests ran) fails.
+if want python; then
+  begin "Python package"
+  pyenv_dir=$(mktemp -d)
+  trap 'rm -rf "$pyenv_dir"' EXIT
+  /usr/bin/python3 -m venv --system-site-packages "$pyenv_dir/venv"
+  py="$pyenv_dir/venv/bin/python"
+  "$py" -m pip install -q "scikit-build-core>=0.8" "cffi>=1.15" "pytest>=7"
+  CMAKE_C_COMPILER_LAUNCHER=$(command -v ccache || true) \
+    "$py" -m pip wheel -q --no-deps --no-build-isolation -w "$pyenv_dir/wheels" \
+      --config-settings=cmake.define.COONS_WITH_OPENMESH=OFF \
+      --config-settings=cmake.define.COONS_WITH_CGAL=OFF \
+      --config-settings=build-dir="$here/$build-python" ./python
+  "$py" -m pip install -q --no-deps "$pyenv_dir"/wheels/coons-*.whl
+  rc=0
+  (cd "$pyenv_dir" && COONS_EXAMPLES="$here/examples" \
+     "$py" -m pytest -q -p no:cacheprovider "$here/python/tests") || rc=$?
+  if [ "$rc" -eq 5 ]; then echo "test.sh: python: pytest collected no tests" >&2; fi
+  [ "$rc" -eq 0 ] || exit 1
+  end python
 fi
 
 echo "==== test.sh: all passed in $((SECONDS - t_all)) s (${times[*]/%/;})" >&2
