@@ -166,7 +166,7 @@ def body_free(b):
 
 
 def body_type(b):
-    return _str(lib.coons_body_type_name(lib.coons_body_get_type(b)))
+    return _str(lib.coons_body_type_name(lib.coons_body_kind(b)))
 
 
 def body_at_time(b, t):
