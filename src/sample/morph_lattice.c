@@ -100,48 +100,6 @@ static size_t check_times(const coons_body *m, double *t, size_t cap)
     return n;
 }
 
-/* Squared distance from p to triangle (a, b, c) (Ericson, "Real-Time
- * Collision Detection", 5.1.5). */
-static double tri_dist2(const double p[3], const double a[3], const double b[3],
-                        const double c[3])
-{
-    double ab[3], ac[3], ap[3], q[3];
-    v3_sub(ab, b, a);
-    v3_sub(ac, c, a);
-    v3_sub(ap, p, a);
-    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return v3_dot(ap, ap);
-    double bp[3];
-    v3_sub(bp, p, b);
-    double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return v3_dot(bp, bp);
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double v = d1 / (d1 - d3);
-        for (int i = 0; i < 3; i++) q[i] = a[i] + v * ab[i] - p[i];
-        return v3_dot(q, q);
-    }
-    double cp[3];
-    v3_sub(cp, p, c);
-    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return v3_dot(cp, cp);
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double w = d2 / (d2 - d6);
-        for (int i = 0; i < 3; i++) q[i] = a[i] + w * ac[i] - p[i];
-        return v3_dot(q, q);
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        for (int i = 0; i < 3; i++) q[i] = b[i] + w * (c[i] - b[i]) - p[i];
-        return v3_dot(q, q);
-    }
-    double den = 1.0 / (va + vb + vc), v = vb * den, w = vc * den;
-    for (int i = 0; i < 3; i++) q[i] = a[i] + ab[i] * v + ac[i] * w - p[i];
-    return v3_dot(q, q);
-}
-
 /* The 7 points of a triangle at which it is measured, as barycentric
  * weights in sixths: edge midpoints, centroid, halfway from the centroid
  * to each corner. */
@@ -152,7 +110,7 @@ static const int SIXTHS[7][3] = {{3, 3, 0}, {0, 3, 3}, {3, 0, 3}, {2, 2, 2},
 static double tri_worst(double P[3][3], double x[7][3])
 {
     double worst = 0;
-    for (int s = 0; s < 7; s++) worst = fmax(worst, tri_dist2(x[s], P[0], P[1], P[2]));
+    for (int s = 0; s < 7; s++) worst = fmax(worst, coons__tri_dist2(x[s], P[0], P[1], P[2]));
     return worst;
 }
 

@@ -158,33 +158,10 @@ static coons_status ruled_lines(ruled *r, size_t segs_min, size_t *q, size_t *m)
     return COONS_OK;
 }
 
-/* Distance from p to triangle abc. */
+/* Distance from p to triangle abc (the toolkit's, geom.h). */
 static double tri_dist(const double p[3], const double *a, const double *b, const double *c)
 {
-    double ab[3], ac[3], ap[3], n[3];
-    v3_sub(ab, b, a);
-    v3_sub(ac, c, a);
-    v3_sub(ap, p, a);
-    v3_cross(n, ab, ac);
-    double nn = v3_dot(n, n);
-    if (nn > 0) { /* the foot of the perpendicular, when inside */
-        double x[3], y[3];
-        v3_cross(x, ap, ac);
-        v3_cross(y, ab, ap);
-        double l1 = v3_dot(x, n) / nn, l2 = v3_dot(y, n) / nn;
-        if (l1 >= 0 && l2 >= 0 && l1 + l2 <= 1) return fabs(v3_dot(ap, n)) / sqrt(nn);
-    }
-    const double *e[3][2] = {{a, b}, {b, c}, {c, a}};
-    double best = INFINITY;
-    for (int k = 0; k < 3; k++) {
-        double d[3], q[3];
-        v3_sub(d, e[k][1], e[k][0]);
-        v3_sub(q, p, e[k][0]);
-        double l2 = v3_dot(d, d), t = l2 > 0 ? fmin(1, fmax(0, v3_dot(q, d) / l2)) : 0;
-        v3_axpy(q, -t, d);
-        best = fmin(best, v3_norm(q));
-    }
-    return best;
+    return sqrt(coons__tri_dist2(p, a, b, c));
 }
 
 /* Evaluates face f at (a, b) for a in av[0..na-1], b in bv[0..nb-1]:

@@ -532,9 +532,7 @@ static coons_status build(sampler *s)
     coons_status st = alloc_mesh(s);
     if (!st) st = eval_lattice(s, lo, hi);
     if (st) return st;
-    double maxabs = 0;
-    for (int d = 0; d < 3; d++) maxabs = fmax(maxabs, fmax(fabs(lo[d]), fabs(hi[d])));
-    s->merge_tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
+    s->merge_tol = coons__same_place_tol(lo, hi);
     for (uint32_t i = 0; i < (uint32_t)s->nv; i++) s->uf[i] = i;
     glue_opposite_faces(s);
     merge_lattice_lines(s);

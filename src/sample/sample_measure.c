@@ -14,73 +14,6 @@
 #include "sampler.h"
 #include "union_find.h"
 
-/* |o - t dir|^2: the squared distance of a point, o from a base point,
- * to the point at t along dir. */
-static double off_dist2(const double o[3], double t, const double dir[3])
-{
-    double q[3];
-    v3_copy(q, o);
-    v3_axpy(q, -t, dir);
-    return v3_dot(q, q);
-}
-
-/* Squared distance from p to segment ab. */
-static double seg_dist2(const double p[3], const double a[3], const double b[3])
-{
-    double ab[3], ap[3];
-    v3_sub(ab, b, a);
-    v3_sub(ap, p, a);
-    double l2 = v3_dot(ab, ab), t = l2 > 0 ? v3_dot(ap, ab) / l2 : 0;
-    return off_dist2(ap, clamp01(t), ab);
-}
-
-/* Squared distance from p to triangle abc (closest point by Voronoi
- * regions: Ericson, Real-Time Collision Detection, 5.1.5); also right for
- * degenerate triangles, whose regions reduce to sides and corners. */
-static double tri_dist2(const double p[3], const double a[3], const double b[3],
-                        const double c[3])
-{
-    double ab[3], ac[3], ap[3], q[3];
-    v3_sub(ab, b, a);
-    v3_sub(ac, c, a);
-    v3_sub(ap, p, a);
-    double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return v3_dot(ap, ap);
-    double bp[3];
-    v3_sub(bp, p, b);
-    double d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return v3_dot(bp, bp);
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double v = d1 / (d1 - d3);
-        return off_dist2(ap, v, ab);
-    }
-    double cp[3];
-    v3_sub(cp, p, c);
-    double d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return v3_dot(cp, cp);
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double w = d2 / (d2 - d6);
-        return off_dist2(ap, w, ac);
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        double bc[3];
-        v3_sub(bc, c, b);
-        return off_dist2(bp, w, bc);
-    }
-    double den = va + vb + vc;
-    if (!(den > 0)) /* degenerate (collinear): the nearest side */
-        return dmin(seg_dist2(p, a, b), dmin(seg_dist2(p, b, c), seg_dist2(p, c, a)));
-    double v = vb / den, w = vc / den;
-    v3_copy(q, ap);
-    v3_axpy(q, -v, ab);
-    v3_axpy(q, -w, ac);
-    return v3_dot(q, q);
-}
-
 /* Distance from p to the cell's two triangles (diagonal dg): an upper bound
  * of the distance from p to the mesh. Both count: on a twisted cell the
  * tilted neighbour of the triangle that holds p's parameters is often the
@@ -89,8 +22,9 @@ static double tri_dist2(const double p[3], const double a[3], const double b[3],
 static double cell_dist(const double p[3], const double *P00, const double *P10,
                         const double *P01, const double *P11, int dg)
 {
-    if (!dg) return sqrt(dmin(tri_dist2(p, P00, P10, P11), tri_dist2(p, P00, P11, P01)));
-    return sqrt(dmin(tri_dist2(p, P00, P10, P01), tri_dist2(p, P10, P11, P01)));
+    if (!dg)
+        return sqrt(dmin(coons__tri_dist2(p, P00, P10, P11), coons__tri_dist2(p, P00, P11, P01)));
+    return sqrt(dmin(coons__tri_dist2(p, P00, P10, P01), coons__tri_dist2(p, P10, P11, P01)));
 }
 
 static void mark(sampler *s, int d, size_t i)

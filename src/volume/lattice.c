@@ -220,7 +220,7 @@ static int is_boundary(const vbody *B, size_t a, size_t b, size_t c)
 
 static coons_status merge(vbuild *v)
 {
-    double lo[3], hi[3], maxabs = 0;
+    double lo[3], hi[3];
     bbox_empty(lo, hi);
     size_t nbnd = 0;
     for (size_t i = 0; i < v->nb; i++) {
@@ -231,8 +231,7 @@ static coons_status merge(vbuild *v)
         for (int d = 0; d < 3; d++) inner *= B->m[d] > 2 ? B->m[d] - 2 : 0;
         nbnd += B->m[0] * B->m[1] * B->m[2] - inner;
     }
-    for (int d = 0; d < 3; d++) maxabs = fmax(maxabs, fmax(fabs(lo[d]), fabs(hi[d])));
-    double tol = 1e-9 * bbox_diag(lo, hi) + 64 * DBL_EPSILON * maxabs;
+    double tol = coons__same_place_tol(lo, hi);
     if (!(tol > 0)) tol = DBL_MIN;
     for (size_t r = 0; r < v->nraw; r++) v->uf[r] = (uint32_t)r;
     hgrid h = {NULL, NULL, NULL, 16};
