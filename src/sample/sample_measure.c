@@ -108,9 +108,16 @@ coons_status coons__sampler_scan(sampler *s, int r, double thr)
                     double la = dmax(v3_dist(P00, P10), v3_dist(P01, P11));
                     double lb = dmax(v3_dist(P00, P01), v3_dist(P10, P11));
                     int ma = ea > thr, mb = eb > thr;
+                    /* Only the interior is off: halve the longer side, both
+                     * when the sides are equal. Sides equal by symmetry come
+                     * out a few ulps apart, which way depending on the
+                     * rounding of the coordinates (a model scaled by 1e100
+                     * halved one side of the Bezier volume's symmetric cells
+                     * where the unscaled one halved both): within
+                     * COONS__REL_TOL of each other they are equal. */
                     if (ec > thr && !ma && !mb) {
-                        ma = la >= lb;
-                        mb = lb >= la;
+                        ma = la >= lb * (1 - COONS__REL_TOL);
+                        mb = lb >= la * (1 - COONS__REL_TOL);
                     }
                     if (ma) mark(s, F->a, p);
                     if (mb) mark(s, F->b, q);
