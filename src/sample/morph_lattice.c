@@ -154,6 +154,14 @@ static coons_status deviation(const coons_body *b, const coons__morph_lattice *p
         return coons__error_nomem(err);
     }
     for (size_t i = 0; grids && i < ng; i++) par[i] = (double)i / (double)G;
+    /* Measured at a power of two near 1 / the body's size (exact: the same
+     * figure at every scale), as the sampler does: the distance's products
+     * of four coordinates overflowed at 1e100 (and underflowed at 1e-100),
+     * so a scaled morph refined without end. */
+    double lo[3], hi[3], ext = 0;
+    coons_body_control_bbox(b, lo, hi);
+    for (int d = 0; d < 3; d++) ext = fmax(ext, hi[d] - lo[d]);
+    const double scale = ext > 0 && isfinite(ext) ? ldexp(1.0, -ilogb(ext)) : 1.0;
     double worst = 0;
     coons_status st = COONS_OK;
     for (int f = grids ? 0 : 6; f <= 6 && !st; f++) {
@@ -199,12 +207,14 @@ static coons_status deviation(const coons_body *b, const coons__morph_lattice *p
                     coons_body_eval(b, q[0], q[1], q[2], x[s]);
                 }
             }
+            for (int c = 0; c < 3; c++) v3_scale(P[c], P[c], scale);
+            for (int q = 0; q < 7; q++) v3_scale(x[q], x[q], scale);
             worst = fmax(worst, tri_worst(P, x));
         }
     }
     coons__free(par);
     coons__free(pts);
-    *out = sqrt(worst);
+    *out = sqrt(worst) / scale;
     return st;
 }
 

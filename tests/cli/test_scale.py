@@ -10,7 +10,8 @@ size would show). A box scaled by powers of ten (10^e, e = -148..147:
 not exact in binary) keeps its triangle count, and so do the spool
 (flat faces meshed in a frame that rounding must not turn), the Bezier
 volume and the cubic blend body (cell sides equal by symmetry, which
-rounding must not make unequal when choosing the side to halve). --info describes each
+rounding must not make unequal when choosing the side to halve) and a
+B-spline morph (its whole-path lattice measured relative to its size). --info describes each
 model at the extreme scales. Sizes outside 1e-150..1e150 are refused at once with the
 size named; STL refuses a mesh too small or too large for its 32-bit
 floats. Every run is bounded by the subprocess timeout (120 s), far above
@@ -102,8 +103,12 @@ def main():
         # came out a few ulps apart one way or the other with the rounding:
         # 1e100 gave the Bezier volume a 22 x 21 x 4 lattice (1,524 triangles
         # instead of 1,584), the blend body varied at every decimal scale.
+        # A morph's whole-path lattice is measured at a power of two near
+        # 1 / its size: at 1e100 the distance's products overflowed (424,128
+        # triangles instead of 2,700), at 1e-100 it refined without end.
         for name, exps in (("deformed-cube.json", DECIMAL), ("spool.json", DECIMAL_SPOOL),
-                           ("volume-bezier.json", DECIMAL), ("body-blend-cubic.json", DECIMAL)):
+                           ("volume-bezier.json", DECIMAL), ("body-blend-cubic.json", DECIMAL),
+                           ("morph-bspline.json", DECIMAL)):
             with open(os.path.join(r.src, "examples", name)) as f:
                 base = json.load(f)
             counts = {}
