@@ -297,7 +297,8 @@ static void test_options_progress(void **state)
     size_t nv = coons_mesh_vertex_count(old), nt = coons_mesh_triangle_count(old);
     assert_int_equal(coons_mesh_vertex_count(out), nv);
     assert_int_equal(coons_mesh_triangle_count(out), nt);
-    assert_memory_equal(coons_mesh_vertices(out), coons_mesh_vertices(old), nv * 3 * sizeof(double));
+    assert_memory_equal(coons_mesh_vertices(out), coons_mesh_vertices(old),
+                        nv * 3 * sizeof(double));
     assert_memory_equal(coons_mesh_triangles(out), coons_mesh_triangles(old),
                         nt * 3 * sizeof(uint32_t));
     assert_memory_equal(&r_new, &r_old, sizeof r_new);
