@@ -5,7 +5,8 @@
  *
  * coons_body_deform_mesh() maps a mesh through a Coons body as a
  * free-form deformation, refining it to a tolerance
- * (::coons_deform_report says what it did).
+ * (::coons_deform_report says what it did); coons_body_deform() does the
+ * same from a ::coons_deform_options record, with a progress report.
  */
 #ifndef COONS_DEFORM_H
 #define COONS_DEFORM_H
@@ -83,6 +84,62 @@ COONS_EXPORT coons_status coons_body_deform_mesh_report(const coons_body *b, con
                                                         coons_mesh **out,
                                                         coons_deform_report *report,
                                                         coons_error *err);
+
+/** Version of ::coons_deform_options this header describes. */
+#define COONS_DEFORM_OPTIONS_VERSION 1
+
+/** How coons_body_deform() deforms a mesh. */
+typedef struct coons_deform_options {
+    /** ::COONS_DEFORM_OPTIONS_VERSION, set by the caller (use
+     *  ::COONS_DEFORM_OPTIONS_INIT or coons_deform_options_init()). */
+    unsigned int version;
+    /** Largest distance of the result from the exact image; must be > 0
+     *  (the initialiser leaves it 0: the caller chooses). */
+    double tolerance;
+    /** The budget of output triangles; 0: ::COONS_MESH_MAX_TRIANGLES. */
+    size_t max_triangles;
+    /** The frame's corners (3 doubles each); unless both are given, the
+     *  bounding box of the input's vertices. */
+    const double *lo, *hi;
+    /**
+     * Called (when not NULL) on the calling thread with the stage
+     * "deform" and the fraction done: 0 at the start, then as the
+     * triangles of each refinement round are measured and split (round r,
+     * from 0, covers the fractions 1 - 2^-r to 1 - 2^-(r+1) in proportion
+     * to its triangles done), never decreasing within one call, and 1 at
+     * the end when the call succeeds.
+     */
+    coons_progress_fn progress;
+    /** Passed to `progress`. */
+    void *userdata;
+} coons_deform_options;
+
+#ifndef __cplusplus
+#define COONS_DEFORM_OPTIONS_INIT {.version = COONS_DEFORM_OPTIONS_VERSION}
+#else
+#define COONS_DEFORM_OPTIONS_INIT COONS_RECORD_INIT_CXX_(coons_deform_options, r_.version = COONS_DEFORM_OPTIONS_VERSION)
+#endif
+
+/** Sets `*o` to ::COONS_DEFORM_OPTIONS_INIT (o NULL: nothing). */
+COONS_EXPORT void coons_deform_options_init(coons_deform_options *o);
+
+/**
+ * coons_body_deform_mesh_report() with an options record, which adds a
+ * progress report: the same mesh, triangle for triangle, for the same
+ * body, input, frame, tolerance and budget.
+ * @param[in] opts   version ::COONS_DEFORM_OPTIONS_VERSION (else
+ *                   ::COONS_E_INVALID); not NULL
+ * @param[out] report NULL: none; its version must be
+ *                   ::COONS_DEFORM_REPORT_VERSION
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL body, mesh, options or out;
+ *         an options record or report of another version; tolerance not
+ *         > 0; a flat frame),
+ *         ::COONS_E_DOMAIN (vertices outside the frame), ::COONS_E_LIMIT
+ *         (more than max_triangles needed), ::COONS_E_NOMEM.
+ */
+COONS_EXPORT coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
+                                            const coons_deform_options *opts, coons_mesh **out,
+                                            coons_deform_report *report, coons_error *err);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,11 @@
  * split depends on the edge alone, so a closed 2-manifold input stays
  * closed and 2-manifold, and with unchanged winding outward; through a
  * left-handed body (det J < 0) the winding is reversed at the end.
+ *
+ * Progress (coons_deform_options.progress, stage "deform"): round r (from
+ * 0, at most 64) spans the fractions 1 - 2^-r to 1 - 2^-(r+1), its first
+ * half the triangles measured, its second half the triangles split, so the
+ * fraction never goes back; 1 at the end.
  */
 #include <string.h>
 
@@ -41,7 +46,23 @@ typedef struct work {
     const coons_body *b;
     double tol, limit; /* limit = 0.9 * tol */
     coons_error *err;
+    /* the progress report: round r spans [base, base + span) */
+    coons_progress_fn progress;
+    void *userdata;
+    double base, span, shown;
 } work;
+
+/* Reports the share `done` of the current round (0 to 1), every
+ * PROGRESS_EVERY triangles; never backwards. */
+#define PROGRESS_EVERY 4096
+static void report_round(work *w, double done)
+{
+    if (!w->progress) return;
+    double f = w->base + w->span * done;
+    if (f < w->shown) return;
+    w->shown = f;
+    w->progress(w->userdata, "deform", f);
+}
 
 static uint64_t edge_key(uint32_t a, uint32_t b)
 {
@@ -182,7 +203,10 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
 {
     coons_status st = reset_edges(w, w->nt * 3 / 2 + 16);
     double lim2 = w->limit * w->limit;
+    /* measuring is the first half of the round's share, splitting the second */
+    double per = w->nt ? 0.5 / (double)w->nt : 0;
     for (size_t t = 0; t < w->nt && !st; t++) {
+        if (t % PROGRESS_EVERY == 0) report_round(w, per * (double)t);
         if (w->dev[t] >= 0) continue; /* measured and left whole before */
         const uint32_t *v = w->tri + 3 * t;
         double worst = face_dev2(w, v);
@@ -209,6 +233,7 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
     }
     *changed = 0;
     for (size_t t = 0; t < w->nt; t++) {
+        if (t % PROGRESS_EVERY == 0) report_round(w, 0.5 + per * (double)t);
         const uint32_t *v = w->tri + 3 * t;
         uint32_t m[3];
         int k = 0, first = -1;
@@ -267,16 +292,40 @@ coons_status coons_body_deform_mesh(const coons_body *b, const coons_mesh *in, c
     return coons_body_deform_mesh_report(b, in, lo, hi, tolerance, max_triangles, out, NULL, err);
 }
 
+void coons_deform_options_init(coons_deform_options *o)
+{
+    const coons_deform_options d = COONS_DEFORM_OPTIONS_INIT;
+    if (o) *o = d;
+}
+
 coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh *in,
                                            const double *lo, const double *hi, double tolerance,
                                            size_t max_triangles, coons_mesh **out,
                                            coons_deform_report *report, coons_error *err)
 {
+    coons_deform_options o = COONS_DEFORM_OPTIONS_INIT;
+    o.tolerance = tolerance;
+    o.max_triangles = max_triangles;
+    o.lo = lo;
+    o.hi = hi;
+    return coons_body_deform(b, in, &o, out, report, err);
+}
+
+coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
+                               const coons_deform_options *opts, coons_mesh **out,
+                               coons_deform_report *report, coons_error *err)
+{
     if (!out) return coons__error_set(err, COONS_E_INVALID, "deform: out is NULL");
     *out = NULL;
     if (report && COONS__RECORD_CHECK(err, "deform report", report->version, COONS_DEFORM_REPORT))
         return COONS_E_INVALID;
+    if (!opts) return coons__error_set(err, COONS_E_INVALID, "deform: options is NULL");
+    if (COONS__RECORD_CHECK(err, "deform options", opts->version, COONS_DEFORM_OPTIONS))
+        return COONS_E_INVALID;
     if (!b || !in) return coons__error_set(err, COONS_E_INVALID, "deform: NULL body or mesh");
+    const double *lo = opts->lo, *hi = opts->hi;
+    double tolerance = opts->tolerance;
+    size_t max_triangles = opts->max_triangles;
     if (!(tolerance > 0) || !isfinite(tolerance))
         return coons__error_set(err, COONS_E_INVALID, "deform: the tolerance must be > 0");
     if (!max_triangles) max_triangles = COONS_MESH_MAX_TRIANGLES;
@@ -319,6 +368,10 @@ coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh
     w.tol = tolerance;
     w.limit = 0.9 * tolerance;
     w.err = err;
+    w.progress = opts->progress;
+    w.userdata = opts->userdata;
+    w.span = 0.5;
+    report_round(&w, 0);
     coons_status st = COONS_OK;
     for (size_t i = 0; i < nv && !st; i++) {
         double q[3];
@@ -338,6 +391,9 @@ coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh
     for (int changed = 1; !st && changed && rounds < 64;) {
         st = round_once(&w, max_triangles, &changed);
         rounds += !st && changed;
+        /* round r (from 0) spans [1 - 2^-r, 1 - 2^-(r+1)) */
+        w.base += w.span;
+        w.span *= 0.5;
     }
     /* after 64 rounds that all split something, the last parts are measured */
     for (size_t t = 0; t < w.nt && !st; t++)
@@ -365,6 +421,7 @@ coons_status coons_body_deform_mesh_report(const coons_body *b, const coons_mesh
             *out = NULL;
         }
     }
+    if (!st && w.progress) w.progress(w.userdata, "deform", 1.0);
     if (!st && report) {
         v3_copy(report->lo, L);
         v3_copy(report->hi, H);

@@ -13,6 +13,8 @@ moves"), read from standard error with --progress:
 - --frames: "frame k of N: " before the stages of frame k, for every k;
 - sampling on threads (-j 2) still names each body in order, and the
   output is the same bytes as with -j 1;
+- --deform: "deforming: N%" with N never decreasing and ending at 100,
+  before the writing stage; nothing with -q, even with --progress;
 - nothing with -q alone, nothing when standard error is not a terminal.
 
 Usage: test_progress.py --bin <coons2stl> --src <source dir> --build <build dir>
@@ -21,6 +23,7 @@ import json
 import os
 import re
 import shutil
+import struct
 import sys
 import tempfile
 
@@ -112,6 +115,32 @@ for j in ("1", "2"):
             repr(err))
     outs.append(open(out, "rb").read() if os.path.exists(out) else None)
 T.check("-j 1 and -j 2 write the same bytes", outs[0] is not None and outs[0] == outs[1])
+
+# --deform: a cube (12 triangles, binary STL) through body "a", whose moved
+# corner makes it trilinear, not affine: refined over several rounds
+CUBE = os.path.join(TMP, "cube.stl")
+with open(CUBE, "wb") as fh:
+    V = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    F = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
+         (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    fh.write(b"\0" * 80 + struct.pack("<I", len(F)))
+    for f in F:
+        fh.write(struct.pack("<3f", 0, 0, 0))
+        for i in f:
+            fh.write(struct.pack("<3f", *V[i]))
+        fh.write(b"\0\0")
+DEFORMED = os.path.join(TMP, "deformed.stl")
+rc, _, err = run(["--progress", "--deform", CUBE, "--body", "a", "-t", "1e-4", "-o", DEFORMED,
+                  MODEL])
+pcts = [int(x) for x in re.findall(r"coons2stl: deforming: +(\d+)%", err)]
+T.check("--deform: 'deforming: N%', N never decreasing, ending at 100, then writing",
+        rc == 0 and len(pcts) >= 2 and pcts == sorted(pcts) and pcts[-1] == 100
+        and err.rfind("deforming: 100%") < err.find("coons2stl: writing ")
+        and err.count("\n") == 1, repr(err[-300:]))
+for args in (["-q"], ["-q", "--progress"]):
+    rc, _, err = run(args + ["--deform", CUBE, "--body", "a", "-t", "1e-4", "-o", DEFORMED, MODEL])
+    T.check(f"--deform {' '.join(args)}: nothing on standard error", rc == 0 and err == "",
+            repr(err))
 
 rc, _, err = run(["-q", "-o", os.path.join(TMP, "q.stl"), MODEL])
 T.check("-q: nothing on standard error", rc == 0 and err == "", repr(err))

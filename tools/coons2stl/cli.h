@@ -141,6 +141,7 @@ int cli_progress_on(void);
 void cli_progress_end(void);
 void cli_progress_sampling(size_t i, size_t n, const char *name);
 void cli_on_progress(void *userdata, const char *stage, double fraction);
+void cli_on_deform(void *userdata, const char *stage, double fraction);
 /* coons_sample_options.progress: the body being sampled, with the share
  * of the current measuring pass ("sampling body 1 of 3 (a)  40%"). */
 void cli_on_measure(void *userdata, const char *stage, double fraction);

@@ -5,8 +5,9 @@
  * is mapped through one body, a point p going to B((p - lo) / (hi - lo))
  * with lo, hi the corners of --frame (default: IN's bounding box), its
  * triangles split until the result lies within the tolerance of the exact
- * image (coons_body_deform_mesh_report()); the result is written to -o like
- * any surface (atomically, any surface format), or --info describes it.
+ * image (coons_body_deform(), its progress shown as "deforming: N%"); the
+ * result is written to -o like any surface (atomically, any surface
+ * format), or --info describes it.
  * The tolerance: -t, else 1/1000 of the diagonal of the box of IN's
  * vertices' images (the output's box, up to what splitting adds).
  */
@@ -198,8 +199,13 @@ int cli_deform(const coons_model *m, long body, const options *o)
         }
     double tol = o->tolerance > 0 ? o->tolerance : default_tolerance(b, in, lo, hi);
     coons_deform_report rep = COONS_DEFORM_REPORT_INIT;
-    coons_status rc =
-        coons_body_deform_mesh_report(b, in, lo, hi, tol, o->max_triangles, &out, &rep, &err);
+    coons_deform_options dopts = COONS_DEFORM_OPTIONS_INIT;
+    dopts.tolerance = tol;
+    dopts.max_triangles = o->max_triangles;
+    dopts.lo = lo;
+    dopts.hi = hi;
+    dopts.progress = cli_progress_on() ? cli_on_deform : NULL;
+    coons_status rc = coons_body_deform(b, in, &dopts, &out, &rep, &err);
     if (rc != COONS_OK) {
         cli_message(0, "%s: %s%s; nothing was written", rc == COONS_E_DOMAIN ? o->deform : shown,
                     err.message,
@@ -208,6 +214,7 @@ int cli_deform(const coons_model *m, long body, const options *o)
         return rc == COONS_E_DOMAIN ? EXIT_INPUT : EXIT_GEOMETRY;
     }
     if (o->info) {
+        cli_progress_end();
         int st = print_info(o, m, bi, in, out, &rep, tol);
         coons_mesh_free(in);
         coons_mesh_free(out);

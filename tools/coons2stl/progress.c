@@ -8,7 +8,8 @@
  * only when standard error is a terminal (a log file would fill up with
  * rewrites); --progress forces it, -q turns it off. The library never
  * prints: it reports through coons_csg_options.progress (stage names and
- * the fraction done) and coons_write_options.written (bytes written), and
+ * the fraction done; likewise the sample, volume and deform options) and
+ * coons_write_options.written (bytes written), and
  * the CLI prints. A report that only moves a percentage or a byte count is
  * drawn at most every RATE seconds (the callbacks stay cheap); a new stage,
  * its start (0) and its end (1) are always drawn. --frames puts "frame k
@@ -153,6 +154,17 @@ void cli_on_measure(void *userdata, const char *stage, double fraction)
     if (!ui.on || !ui.body[0] || !due("measure", 0.5)) return;
     char text[160];
     snprintf(text, sizeof text, "%s %3d%%", ui.body, (int)(100 * fraction));
+    progress_line(text);
+}
+
+/* coons_deform_options.progress: the stage "deform", its fraction the
+ * share of the refinement done ("deforming: 40%"). */
+void cli_on_deform(void *userdata, const char *stage, double fraction)
+{
+    (void)userdata;
+    if (!ui.on || !due(stage, fraction)) return;
+    char text[64];
+    snprintf(text, sizeof text, "deforming: %3d%%", (int)(100 * fraction));
     progress_line(text);
 }
 

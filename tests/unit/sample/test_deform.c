@@ -242,6 +242,79 @@ static void test_report(void **state)
     coons_body_free(b);
 }
 
+/* What the progress callback saw. */
+typedef struct seen {
+    size_t calls, wrong_stage, backwards;
+    double first, last;
+} seen;
+
+static void on_progress(void *userdata, const char *stage, double fraction)
+{
+    seen *s = userdata;
+    if (strcmp(stage, "deform") != 0) s->wrong_stage++;
+    if (!s->calls) s->first = fraction;
+    if (s->calls && fraction < s->last) s->backwards++;
+    s->last = fraction;
+    s->calls++;
+}
+
+/* coons_body_deform(): the progress callback sees the stage "deform" with
+ * fractions from 0 that never decrease, more than one per refinement round
+ * (a round reports as it measures and as it splits), ending at 1; the mesh
+ * is the one of coons_body_deform_mesh_report() for the same arguments,
+ * vertex for vertex and triangle for triangle; a record of another version
+ * is refused with the common wording. */
+static void test_options_progress(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_patch *f[6];
+    coons_body *b;
+    assert_coons_ok(tb_bspline_faces(5, f, &err), &err);
+    assert_coons_ok(coons_body_new_body2(f, COONS_BLEND_LINEAR, 1e-9, &b, &err), &err);
+    for (int k = 0; k < 6; k++) coons_patch_free(f[k]);
+    coons_mesh *in = unit_cube(), *old = NULL, *out = NULL;
+    const double lo[3] = {-0.5, 0, 0}, hi[3] = {1, 1, 1.5};
+    coons_deform_report r_old = COONS_DEFORM_REPORT_INIT, r_new = COONS_DEFORM_REPORT_INIT;
+    assert_coons_ok(coons_body_deform_mesh_report(b, in, lo, hi, 5e-4, 0, &old, &r_old, &err),
+                    &err);
+    coons_deform_options o;
+    coons_deform_options_init(&o);
+    assert_int_equal(o.version, COONS_DEFORM_OPTIONS_VERSION);
+    seen s = {0};
+    o.tolerance = 5e-4;
+    o.lo = lo;
+    o.hi = hi;
+    o.progress = on_progress;
+    o.userdata = &s;
+    assert_coons_ok(coons_body_deform(b, in, &o, &out, &r_new, &err), &err);
+    assert_true(r_new.rounds >= 3);
+    assert_int_equal(s.wrong_stage, 0);
+    assert_int_equal(s.backwards, 0);
+    assert_true(s.first == 0.0);
+    assert_true(s.last == 1.0);
+    assert_true(s.calls >= 2 * (size_t)r_new.rounds + 2);
+    size_t nv = coons_mesh_vertex_count(old), nt = coons_mesh_triangle_count(old);
+    assert_int_equal(coons_mesh_vertex_count(out), nv);
+    assert_int_equal(coons_mesh_triangle_count(out), nt);
+    assert_memory_equal(coons_mesh_vertices(out), coons_mesh_vertices(old),
+                        nv * 3 * sizeof(double));
+    assert_memory_equal(coons_mesh_triangles(out), coons_mesh_triangles(old),
+                        nt * 3 * sizeof(uint32_t));
+    assert_memory_equal(&r_new, &r_old, sizeof r_new);
+    coons_mesh_free(out);
+    out = NULL;
+    o.version = 7;
+    assert_int_equal(coons_body_deform(b, in, &o, &out, NULL, &err), COONS_E_INVALID);
+    assert_null(out);
+    assert_string_equal(err.message,
+                        "deform options version 7, expected 1 (use COONS_DEFORM_OPTIONS_INIT)");
+    assert_int_equal(coons_body_deform(b, in, NULL, &out, NULL, &err), COONS_E_INVALID);
+    coons_mesh_free(old);
+    coons_mesh_free(in);
+    coons_body_free(b);
+}
+
 static void test_outside_and_invalid(void **state)
 {
     (void)state;
@@ -300,6 +373,7 @@ int main(void)
         cmocka_unit_test(test_affine_exact),
         cmocka_unit_test(test_curved_body2),
         cmocka_unit_test(test_report),
+        cmocka_unit_test(test_options_progress),
         cmocka_unit_test(test_outside_and_invalid),
         cmocka_unit_test(test_budget_and_alloc),
     };
