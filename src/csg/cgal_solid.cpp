@@ -627,8 +627,14 @@ class GroupSolidifier {
     bool count_crossings()
     {
         bool clean = true;
+        // The checks take the first tenth of the group's share, one part
+        // after another, weighted by their triangles.
+        size_t total = 0, done = 0;
+        for (size_t id : ids_) total += parts_[id].tri_count;
         for (size_t k = 0; k < ids_.size(); k++) {
             const Part &p = parts_[ids_[k]];
+            prog_("check", p0_ + 0.1 * (p1_ - p0_) * (double)done / (double)(total ? total : 1));
+            done += p.tri_count;
             std::vector<uint32_t> local = local_triangles(tri_, p);
             crossing_[k] = o_.repair || ids_.size() > 1
                                ? count_self_intersections(xyz_ + 3 * p.vert_first, p.vert_count,
@@ -638,6 +644,7 @@ class GroupSolidifier {
             rep_.intersecting_pairs += crossing_[k];
             if (crossing_[k]) clean = false;
         }
+        prog_("check", p0_ + 0.1 * (p1_ - p0_));
         return clean;
     }
 

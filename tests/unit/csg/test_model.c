@@ -9,12 +9,23 @@
 
 #include "test_util.h"
 
+/* Every report is in [0, 1]; the input checks ("check") report one figure
+ * per body checked, never going back, so the stage moves. */
+typedef struct heard {
+    int calls, checks;
+    double check_lo, check_hi;
+} heard;
+
 static void progress(void *ud, const char *stage, double f)
 {
-    int *calls = ud;
-    (void)stage;
+    heard *h = ud;
     assert_true(f >= 0.0 && f <= 1.0);
-    (*calls)++;
+    if (strcmp(stage, "check") == 0) {
+        if (!h->checks++) h->check_lo = f;
+        assert_true(f >= h->check_hi);
+        h->check_hi = f;
+    }
+    h->calls++;
 }
 
 static void check_union(const char *rel, double tol)
@@ -36,13 +47,16 @@ static void check_union(const char *rel, double tol)
     coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
     so.tolerance = tol;
     coons_csg_options co = COONS_CSG_OPTIONS_INIT;
-    int calls = 0;
+    heard h = {0, 0, 0.0, 0.0};
     co.progress = progress;
-    co.userdata = &calls;
+    co.userdata = &h;
     coons_csg_report rep = COONS_CSG_REPORT_INIT;
     coons_mesh *solid = NULL;
     assert_coons_ok(coons_model_solidify(m, &so, &co, &solid, &rep, &err), &err);
-    assert_true(calls > 0);
+    assert_true(h.calls > 0);
+    /* one body after another (co.threads is 1): the check stage moves */
+    assert_true(h.checks >= (int)coons_model_body_count(m));
+    assert_true(h.check_hi > h.check_lo);
     assert_int_equal(coons_mesh_part_count(solid), 1);
     coons_mesh_report mr = COONS_MESH_REPORT_INIT;
     assert_coons_ok(coons_mesh_check(solid, &mr, &err), &err);
