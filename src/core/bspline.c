@@ -6,6 +6,7 @@
  * non-decreasing, multiplicity <= p+1, half-open spans, the right end in the
  * last non-empty span, domain [k_p, k_{n+1}] mapped linearly onto [0,1]).
  */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -50,6 +51,20 @@ coons_status coons__knots_make(int p, size_t ncp, const double *given, const cha
                                     "%s: knots must be non-decreasing, but knot %zu (%.17g) < "
                                     "knot %zu (%.17g)",
                                     what, i, given[i], i - 1, given[i - 1]);
+        }
+        /* A non-empty span narrower than the smallest normal double (or
+         * wider than the largest) leaves the basis recurrence dividing by a
+         * denormal: 1/5e-324 overflows and the basis comes out NaN. */
+        double gap = i > 0 ? given[i] - given[i - 1] : 0.0;
+        if (gap != 0.0 && !(gap >= DBL_MIN && gap <= DBL_MAX)) {
+            coons__free(k);
+            return coons__error_set(err, COONS_E_INVALID,
+                                    "%s: knots %zu and %zu (%.17g, %.17g) are %s: a non-empty "
+                                    "knot span must lie between the smallest normal double "
+                                    "(%.3g) and the largest; scale the knot vector",
+                                    what, i - 1, i, given[i - 1], given[i],
+                                    gap >= DBL_MIN ? "too far apart" : "too close together",
+                                    DBL_MIN);
         }
         k[i] = given[i];
     }
