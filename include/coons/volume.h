@@ -24,7 +24,9 @@
  * TYPE=`, a Gmsh element type, a VTK cell type), a lattice mesher produces
  * one kind, and a fixed stride keeps the cell array flat (no offsets) and
  * the writers simple. A collapsed cell (an apex) is a hexahedron whose
- * corners repeat a node, not another element kind.
+ * corners repeat a node, not another element kind; the writers make
+ * wedges and pyramids of them, and coons_volume_mesh_cell_shape() tells
+ * which.
  *
  * **Node order within a cell** is Gmsh's (Gmsh reference manual, "Node
  * ordering"), in the cell's own parameters (r, s, t) in [0,1]^3, which for
@@ -246,6 +248,45 @@ COONS_EXPORT coons_status coons_volume_mesh_scale(coons_volume_mesh *vm, double 
 COONS_EXPORT const uint32_t *coons_volume_mesh_cells(const coons_volume_mesh *vm);
 /** Borrowed view: the part index of each cell. */
 COONS_EXPORT const uint32_t *coons_volume_mesh_cell_parts(const coons_volume_mesh *vm);
+/** What a cell is where its body collapses: coons_volume_mesh_cell_shape(). */
+typedef enum coons_cell_shape {
+    /** A hexahedron: 8 distinct corners, or repeated corners that make no
+     *  wedge or pyramid; every ::COONS_ELEMENT_HEX20 and HEX27 cell. */
+    COONS_CELL_HEXAHEDRON = 0,
+    /** Two parallel edges of one face collapsed (6 distinct corners). */
+    COONS_CELL_WEDGE = 1,
+    /** One face collapsed to a node (5 distinct corners). */
+    COONS_CELL_PYRAMID = 2
+} coons_cell_shape;
+
+/** Most nodes coons_volume_mesh_cell_shape() writes: 27. */
+#define COONS_VOLUME_CELL_NODES_MAX 27
+
+/**
+ * What cell i is, as the writers write it (Gmsh, VTK, CalculiX): a
+ * ::COONS_ELEMENT_HEX8 cell whose corners repeat nodes at a collapsed edge
+ * is a wedge, at a face collapsed to a node a pyramid; any other cell is a
+ * hexahedron (with its repeated nodes, if any). The rule is combinatorial
+ * (which corner nodes coincide) and uses the cell's right-handed reference
+ * frame, so valid cells give positively oriented shapes.
+ * @param[out] shape  the shape
+ * @param[out] nodes  COONS_VOLUME_CELL_NODES_MAX entries; receives
+ *                    `*count` node indices in Gmsh's order (Gmsh reference
+ *                    manual, "Node ordering"): a hexahedron as
+ *                    coons_volume_mesh_cells() (8, 20 or 27 nodes); a wedge
+ *                    6 nodes, triangle 0 1 2 counter-clockwise seen from
+ *                    triangle 3 4 5, node k + 3 across from node k; a
+ *                    pyramid 5 nodes, the base 0 1 2 3 counter-clockwise
+ *                    seen from the apex 4 (also VTK's pyramid order; VTK's
+ *                    wedge is Gmsh's 0 2 1 3 5 4)
+ * @param[out] count  number of nodes written: 8, 20 or 27, 6, 5
+ * @return ::COONS_OK; ::COONS_E_INVALID: no mesh, no cell i (the message
+ *         gives the cell count), or `shape`, `nodes` or `count` NULL
+ *         (outputs untouched).
+ */
+COONS_EXPORT coons_status coons_volume_mesh_cell_shape(const coons_volume_mesh *vm, size_t i,
+                                                       coons_cell_shape *shape, uint32_t *nodes,
+                                                       size_t *count, coons_error *err);
 /** Name of part i (borrowed), or NULL when i is out of range. */
 COONS_EXPORT const char *coons_volume_mesh_part_name(const coons_volume_mesh *vm, size_t i);
 

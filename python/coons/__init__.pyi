@@ -45,6 +45,7 @@ class Mesh:
 class VolumeMesh:
     points: npt.NDArray[np.float64]                 # (n, 3)
     cells: Dict[str, npt.NDArray[np.int64]]         # meshio type -> (m, k), VTK order
+    blocks: List[Tuple[str, npt.NDArray[np.int64]]] # runs of one type, mesh order
     point_data: Dict[str, npt.NDArray[Any]]         # u, v, w, det_j: (n,)
     cell_data: Dict[str, npt.NDArray[Any]]          # body, scaled_jacobian: (m,)
     parts: List[str]

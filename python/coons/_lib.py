@@ -453,6 +453,21 @@ def volume_mesh_arrays(p):
     return pts, cells, parts, names, fields[0], fields[1]
 
 
+def volume_mesh_cell_shapes(p, which):
+    """(shape, nodes) of each cell index in `which`, by
+    coons_volume_mesh_cell_shape(): shape 0 hexahedron, 1 wedge, 2 pyramid,
+    nodes in the library's (Gmsh) order (6 for a wedge, 5 for a pyramid)."""
+    shape = ffi.new("coons_cell_shape *")
+    nodes = ffi.new("uint32_t[]", lib.COONS_VOLUME_CELL_NODES_MAX)
+    count = ffi.new("size_t *")
+    err = new_error()
+    out = []
+    for i in which:
+        check(lib.coons_volume_mesh_cell_shape(p, int(i), shape, nodes, count, err), err)
+        out.append((int(shape[0]), list(nodes[0:count[0]])))
+    return out
+
+
 def volume_mesh_inverted(p):
     """(part name, inverted cells, worst value, worst uvw) of the first part
     with inverted cells, or None (coons2stl refuses such a mesh)."""

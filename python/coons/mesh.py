@@ -21,7 +21,46 @@ _VTK_ORDER = {
                           22, 23, 21, 24, 20, 25, 26],
 }
 _MESHIO_TYPE = {8: "hexahedron", 20: "hexahedron20", 27: "hexahedron27"}
-_VTK_TYPE = {8: 12, 20: 25, 27: 29}
+_VTK_TYPE = {8: 12, 20: 25, 27: 29, 6: 13, 5: 14}
+#: Gmsh prism order (coons_volume_mesh_cell_shape()) -> VTK wedge order:
+#: VTK's triangle 0 1 2 faces away from 3 4 5, Gmsh's towards it.
+_VTK_WEDGE = [0, 2, 1, 3, 5, 4]
+
+
+def _cell_blocks(ptr, cells):
+    """The cells as the writers write them: runs of one meshio type, in the
+    mesh's order, each (type, (m, k) int64 VTK order). A hex8 cell whose
+    corners repeat a node is what coons_volume_mesh_cell_shape() says (a
+    wedge, a pyramid, or a hexahedron with repeated nodes)."""
+    k = cells.shape[1]
+    kind = np.zeros(len(cells), dtype=np.int8)  # 0 hexahedron, 1 wedge, 2 pyramid
+    shaped = {}
+    if len(cells):
+        c = np.sort(cells[:, :8], axis=1)
+        repeated = np.flatnonzero((c[:, 1:] == c[:, :-1]).any(axis=1))
+        for i, (sh, nodes) in zip(repeated, _lib.volume_mesh_cell_shapes(ptr, repeated)):
+            kind[i] = sh
+            if sh == 1:
+                shaped[i] = [nodes[j] for j in _VTK_WEDGE]
+            elif sh == 2:
+                shaped[i] = nodes
+    hexa = cells[:, _VTK_ORDER[k]]
+    blocks = []
+    start = 0
+    edges = np.flatnonzero(kind[1:] != kind[:-1]) + 1
+    for end in list(edges) + [len(cells)]:
+        if end == start:
+            continue
+        sh = int(kind[start])
+        if sh == 0:
+            data = np.ascontiguousarray(hexa[start:end])
+            name = _MESHIO_TYPE[k]
+        else:
+            data = np.array([shaped[i] for i in range(start, end)], dtype=np.int64)
+            name = "wedge" if sh == 1 else "pyramid"
+        blocks.append((name, data))
+        start = end
+    return blocks
 
 
 def output_name(path):
@@ -88,10 +127,14 @@ class Mesh:
 
 class VolumeMesh:
     """A hexahedral volume mesh: ``points`` (n, 3) float64; ``cells`` a dict
-    from the meshio cell type ("hexahedron", "hexahedron20", "hexahedron27")
-    to an (m, k) int64 array in VTK node order; ``point_data`` (u, v, w,
-    det_j: (n,) each); ``cell_data`` (body: (m,) int, the body index;
-    scaled_jacobian: (m,)); ``parts`` (body names)."""
+    from the meshio cell type ("hexahedron", "hexahedron20", "hexahedron27";
+    "wedge" and "pyramid" where a hex8 body collapses, as the writers write
+    them: coons_volume_mesh_cell_shape()) to an (m, k) int64 array in VTK
+    node order, each type's cells in the mesh's order; ``blocks`` the same
+    cells as runs of one type in the mesh's order, (type, array) each (the
+    blocks meshio reads from the .vtu); ``point_data`` (u, v, w, det_j: (n,)
+    each); ``cell_data`` (body: (m,) int, the body index; scaled_jacobian:
+    (m,)) in the mesh's order; ``parts`` (body names)."""
 
     @classmethod
     def _wrap(cls, ptr):
@@ -101,7 +144,14 @@ class VolumeMesh:
         k = cells.shape[1]
         self.points = pts
         self.element = {8: "hex8", 20: "hex20", 27: "hex27"}[k]
-        self.cells = {_MESHIO_TYPE[k]: np.ascontiguousarray(cells[:, _VTK_ORDER[k]])}
+        self.blocks = _cell_blocks(ptr, cells)
+        self.cells = {}
+        for t, c in self.blocks:
+            self.cells.setdefault(t, []).append(c)
+        self.cells = {t: c[0] if len(c) == 1 else np.concatenate(c)
+                      for t, c in self.cells.items()}
+        if not self.cells:
+            self.cells = {_MESHIO_TYPE[k]: np.zeros((0, k), dtype=np.int64)}
         self.point_data = nodef
         self.cell_data = {"body": parts}
         self.cell_data.update(cellf)
@@ -111,15 +161,21 @@ class VolumeMesh:
     def to_meshio(self):
         """A meshio.Mesh of the same points, cells and data."""
         import meshio
-        return meshio.Mesh(self.points, [(t, c) for t, c in self.cells.items()],
+        ends = np.cumsum([len(c) for _, c in self.blocks])[:-1]
+        return meshio.Mesh(self.points, list(self.blocks),
                            point_data=dict(self.point_data),
-                           cell_data={k: [v] for k, v in self.cell_data.items()})
+                           cell_data={k: np.split(np.asarray(v), ends)
+                                      for k, v in self.cell_data.items()})
 
     def to_pyvista(self):
         """A pyvista.UnstructuredGrid (needs PyVista)."""
         import pyvista
-        (k, cells), = [(c.shape[1], c) for c in self.cells.values()]
-        grid = pyvista.UnstructuredGrid({_VTK_TYPE[k]: cells}, self.points)
+        conn = [np.hstack([np.full((len(c), 1), c.shape[1], dtype=np.int64), c]).ravel()
+                for _, c in self.blocks]
+        types = [np.full(len(c), _VTK_TYPE[c.shape[1]], dtype=np.uint8) for _, c in self.blocks]
+        grid = pyvista.UnstructuredGrid(np.concatenate(conn) if conn else np.zeros(0, np.int64),
+                                        np.concatenate(types) if types else np.zeros(0, np.uint8),
+                                        self.points)
         for n, v in self.point_data.items():
             grid.point_data[n] = v
         for n, v in self.cell_data.items():
@@ -150,5 +206,5 @@ class VolumeMesh:
         self._h.close()
 
     def __repr__(self):
-        (t, c), = self.cells.items()
-        return "<coons.VolumeMesh %d points, %d %s>" % (len(self.points), len(c), t)
+        return "<coons.VolumeMesh %d points, %s>" % (
+            len(self.points), ", ".join("%d %s" % (len(c), t) for t, c in self.cells.items()))

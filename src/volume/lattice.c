@@ -42,6 +42,7 @@
 #include <string.h>
 
 #include "body_impl.h"
+#include "cell_shape.h"
 #include "lattice_impl.h"
 #include "sampling.h"
 
@@ -383,39 +384,15 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
     return COONS_OK;
 }
 
-/* Corner pairs of the 12 edges of a hexahedron (Gmsh corners), with the
- * axis each runs along, and each Gmsh corner's reference bits (r, s, t). */
-static const unsigned char HEX_EDGE[12][3] = {{0, 1, 0}, {3, 2, 0}, {4, 5, 0}, {7, 6, 0},
-                                              {0, 3, 1}, {1, 2, 1}, {4, 7, 1}, {5, 6, 1},
-                                              {0, 4, 2}, {1, 5, 2}, {2, 6, 2}, {3, 7, 2}};
-static const unsigned char HEX_BITS[8] = {0, 1, 3, 2, 4, 5, 7, 6};
-
-/* The block a hex8 cell goes to within its body: 1 wedges (two parallel
- * edges of one face collapsed, 6 distinct corners), 2 pyramids (one face
- * collapsed to a node, 5 distinct corners), 0 the rest (hexahedra, and the
- * cells that stay hexahedra with repeated nodes). The writers' own
- * classification (src/io/write/cellshape.c) decides the same way from the
- * same corners, so each body's cells of one written type are consecutive.
- * Hex20 and hex27 cells are always written as hexahedra: block 0. */
+/* The block a cell goes to within its body: 0 hexahedra (with or without
+ * repeated nodes), 1 wedges, 2 pyramids, by the one classification the
+ * writers and coons_volume_mesh_cell_shape() use (cell_shape.c), so each
+ * body's cells of one written type are consecutive. */
 static int cell_block(const vbuild *v, const uint32_t *h)
 {
-    if (v->npc != 8) return 0;
-    int e[12], n = 0;
-    for (int i = 0; i < 12; i++)
-        if (h[HEX_EDGE[i][0]] == h[HEX_EDGE[i][1]]) e[n++] = i;
-    size_t d = distinct_corners(h);
-    if (n == 2 && d == 6 && HEX_EDGE[e[0]][2] == HEX_EDGE[e[1]][2]) {
-        int b = HEX_EDGE[e[0]][2];
-        unsigned x = HEX_BITS[HEX_EDGE[e[0]][0]] ^ HEX_BITS[HEX_EDGE[e[1]][0]];
-        /* The two edges differ in exactly one of the other two axes. */
-        return (x & ~(1u << b)) == (1u << (b + 1) % 3) || (x & ~(1u << b)) == (1u << (b + 2) % 3);
-    }
-    if (n == 4 && d == 5)
-        for (int f = 0; f < 6; f++) {
-            const unsigned char *c = FACE_CORNERS[f];
-            if (h[c[0]] == h[c[1]] && h[c[0]] == h[c[2]] && h[c[0]] == h[c[3]]) return 2;
-        }
-    return 0;
+    uint32_t out[27];
+    coons__cell_shape sh = coons__cell_shape_of(h, v->npc, out);
+    return sh == COONS__SHAPE_WEDGE ? 1 : sh == COONS__SHAPE_PYRAMID ? 2 : 0;
 }
 
 /* Adds each body's cells as one part, grouped by block (cell_block()) and

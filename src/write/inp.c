@@ -14,7 +14,7 @@
  * element library", CalculiX "C3D20"), permuted from Gmsh's order by
  * GMSH_OF_ABQ. Face labels S1 = 1-2-3-4, S2 = 5-8-7-6, S3 = 1-5-6-2,
  * S4 = 2-6-7-3, S5 = 3-7-8-4, S6 = 4-8-5-1 (CalculiX *SURFACE); C3D6 wedges
- * (hex8 cells with two collapsed parallel edges, cellshape.c) use Gmsh's
+ * (hex8 cells with two collapsed parallel edges, src/volume/cell_shape.c) use Gmsh's
  * prism order, which is CalculiX's positive orientation (ccx rejects the
  * mirrored one with "nonpositive jacobian"), with faces S1 = 1-2-3,
  * S2 = 4-5-6, S3 = 1-2-5-4, S4 = 2-3-6-5, S5 = 3-1-4-6.

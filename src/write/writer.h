@@ -14,6 +14,7 @@
 
 #include "coons_internal.h"
 #include "coons/io.h"
+#include "cell_shape.h"
 #include "fmt.h"
 
 /* Bytes buffered before each write(2)/fwrite: large enough that system
@@ -152,24 +153,6 @@ void coons__scad_part_identifier(char *out, size_t cap, const char *model, const
 /* The first lines of every .scad file: "// " and the header option's text,
  * then "// units: " and the units when the options name them. */
 void coons__scad_header(coons__sink *s, const coons__wopts *o);
-
-/* ---- cells at collapsed edges and faces (cellshape.c) ------------------ */
-
-/* What a hex8 cell with repeated corner nodes is. */
-typedef enum coons__cell_shape {
-    COONS__SHAPE_HEX = 8,     /* 8 distinct corners: out = the cell */
-    COONS__SHAPE_WEDGE = 6,   /* two parallel edges of one face collapsed: out[0..5] in
-                               * Gmsh's prism order, triangle (0,1,2) counter-clockwise
-                               * seen from its partner (3,4,5), node i+3 across from i */
-    COONS__SHAPE_PYRAMID = 5, /* one face collapsed to a node: out[0..3] the base,
-                               * counter-clockwise seen from the apex out[4] (Gmsh's and
-                               * VTK's pyramid order) */
-    COONS__SHAPE_DEGENERATE = 0 /* any other repetition: out = the cell as given */
-} coons__cell_shape;
-
-/* Classifies a hex8 cell (Gmsh corner order, right-handed reference frame)
- * by which corner nodes coincide and writes the nodes of its shape. */
-coons__cell_shape coons__hex8_shape(const uint32_t h[8], uint32_t out[8]);
 
 /* ---- output (atomic.c) ------------------------------------------------- */
 

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* What a trilinear hexahedron of a lattice becomes where its body
- * collapses (coons/volume.h: "A collapsed cell ... repeats a node").
+ * collapses (coons/volume.h: "A collapsed cell ... repeats a node", and
+ * coons_volume_mesh_cell_shape()).
  *
  * The mesher merges lattice nodes that evaluate to the same point, so a
  * cell at a collapsed edge of the body (a wedge-shaped tip) has two of its
@@ -13,7 +14,11 @@
  * cell's reference corners (r, s, t) in {0,1}^3, which the mesher keeps
  * right-handed (a left-handed body's cells are mirrored), so the
  * orientation of the result follows from the reference frame alone. */
-#include "writer.h"
+#include "cell_shape.h"
+
+#include "volume_impl.h"
+
+#include <string.h>
 
 /* Reference corner of each Gmsh corner: bit 0 r, bit 1 s, bit 2 t. */
 static const unsigned char BITS[8] = {0, 1, 3, 2, 4, 5, 7, 6};
@@ -134,4 +139,30 @@ coons__cell_shape coons__hex8_shape(const uint32_t h[8], uint32_t out[8])
         shape = pyramid(h, out);
     if (shape == COONS__SHAPE_HEX || shape == COONS__SHAPE_DEGENERATE) memcpy(out, h, 8 * sizeof *h);
     return shape;
+}
+
+coons__cell_shape coons__cell_shape_of(const uint32_t *h, size_t npc, uint32_t out[27])
+{
+    if (npc == 8) return coons__hex8_shape(h, out);
+    memcpy(out, h, npc * sizeof *h);
+    return distinct(h, 8) ? COONS__SHAPE_HEX : COONS__SHAPE_DEGENERATE;
+}
+
+coons_status coons_volume_mesh_cell_shape(const coons_volume_mesh *vm, size_t i,
+                                          coons_cell_shape *shape, uint32_t *nodes,
+                                          size_t *count, coons_error *err)
+{
+    if (!vm || !shape || !nodes || !count)
+        return coons__error_set(err, COONS_E_INVALID, "no mesh or no output given");
+    if (i >= vm->nc)
+        return coons__error_set(err, COONS_E_INVALID, "no cell %zu (the mesh has %zu)", i, vm->nc);
+    uint32_t out[COONS_VOLUME_CELL_NODES_MAX];
+    coons__cell_shape sh = coons__cell_shape_of(vm->cell + vm->npc * i, vm->npc, out);
+    size_t n = sh == COONS__SHAPE_WEDGE ? 6 : sh == COONS__SHAPE_PYRAMID ? 5 : vm->npc;
+    memcpy(nodes, out, n * sizeof *out);
+    *shape = sh == COONS__SHAPE_WEDGE     ? COONS_CELL_WEDGE
+             : sh == COONS__SHAPE_PYRAMID ? COONS_CELL_PYRAMID
+                                          : COONS_CELL_HEXAHEDRON;
+    *count = n;
+    return COONS_OK;
 }
