@@ -1,0 +1,238 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/*
+ * The WebAssembly module's entry points (issue 29): a thin client of
+ * <coons.h>, like coons2stl, whose outputs it reproduces byte for byte
+ * with coons2stl's default options: the model loaded from memory, its
+ * solid (coons_model_solidify(), the model's tolerance) written as binary
+ * STL, OFF or OpenSCAD (the animation when the model has morphs, as
+ * coons2stl writes it without --time), its volume mesh (hex8) as VTU, MSH
+ * or INP, refused like coons2stl when a cell is inverted. Outputs go to a
+ * memory stream; the page reads them with cw_out_data()/cw_out_size().
+ * Without CGAL (the C core alone) a union that needs it is refused with the
+ * library's message, as coons2stl refuses it.
+ */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <coons.h>
+
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+#define CW_EXPORT EMSCRIPTEN_KEEPALIVE
+#else
+#define CW_EXPORT
+#endif
+
+static coons_error last_error;
+static char *out_data;
+static size_t out_size;
+/* the preview mesh: vertices (xyz doubles) and triangles (3 uint32 each) */
+static coons_mesh *preview;
+
+static void clear_output(void)
+{
+    free(out_data);
+    out_data = NULL;
+    out_size = 0;
+}
+
+CW_EXPORT const char *cw_error_message(void) { return last_error.message; }
+CW_EXPORT const char *cw_error_path(void) { return last_error.path; }
+CW_EXPORT int cw_error_line(void) { return last_error.line; }
+CW_EXPORT int cw_error_column(void) { return last_error.column; }
+CW_EXPORT const char *cw_out_data(void) { return out_data; }
+CW_EXPORT size_t cw_out_size(void) { return out_size; }
+CW_EXPORT void cw_out_free(void) { clear_output(); }
+CW_EXPORT const char *cw_version(void) { return coons_version_string(); }
+
+static void set_error(const char *message)
+{
+    memset(&last_error, 0, sizeof last_error);
+    last_error.code = COONS_E_INVALID;
+    snprintf(last_error.message, sizeof last_error.message, "%s", message);
+}
+
+/* The model from `size` bytes of JSON; NULL on error (cw_error_*()). */
+CW_EXPORT coons_model *cw_load(const char *data, size_t size, const char *name)
+{
+    coons_model *m = NULL;
+    memset(&last_error, 0, sizeof last_error);
+    if (coons_model_load_memory(data, size, name && name[0] ? name : NULL, NULL, &m,
+                                &last_error) != COONS_OK)
+        return NULL;
+    return m;
+}
+
+CW_EXPORT void cw_free(coons_model *m) { coons_model_free(m); }
+CW_EXPORT double cw_tolerance(const coons_model *m) { return coons_model_tolerance(m); }
+CW_EXPORT size_t cw_body_count(const coons_model *m) { return coons_model_body_count(m); }
+CW_EXPORT size_t cw_morph_count(const coons_model *m) { return coons_model_morph_count(m); }
+CW_EXPORT const char *cw_units(const coons_model *m) { return coons_model_units(m); }
+
+CW_EXPORT int cw_set_time(coons_model *m, double t)
+{
+    memset(&last_error, 0, sizeof last_error);
+    return coons_model_set_time(m, t, &last_error);
+}
+
+/* The solid of coons2stl -o: every body, repaired and united as the model
+ * says, sampled at `tolerance` (<= 0: the model's). */
+static coons_status make_solid(const coons_model *m, double tolerance, coons_mesh **out)
+{
+    coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+    so.tolerance = tolerance > 0 ? tolerance : coons_model_tolerance(m);
+    coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
+    copts.repair = 1;
+    copts.threads = 1;
+    coons_csg_report rep = COONS_CSG_REPORT_INIT;
+    memset(&last_error, 0, sizeof last_error);
+    return coons_model_solidify(m, &so, &copts, out, &rep, &last_error);
+}
+
+typedef struct sink {
+    FILE *fp;
+    char *buf;
+    size_t size;
+} sink;
+
+static int sink_open(sink *s)
+{
+    clear_output();
+    s->buf = NULL;
+    s->size = 0;
+    s->fp = open_memstream(&s->buf, &s->size);
+    if (!s->fp) set_error("out of memory");
+    return s->fp != NULL;
+}
+
+/* Keeps the output when rc is COONS_OK, else drops it. */
+static int sink_close(sink *s, coons_status rc)
+{
+    if (fclose(s->fp) != 0 && rc == COONS_OK) {
+        set_error("out of memory writing the output");
+        rc = COONS_E_NOMEM;
+    }
+    if (rc != COONS_OK) {
+        free(s->buf);
+        return rc;
+    }
+    out_data = s->buf;
+    out_size = s->size;
+    return COONS_OK;
+}
+
+static coons_write_options write_options(const coons_model *m, const char *name)
+{
+    coons_write_options w = COONS_WRITE_OPTIONS_INIT;
+    w.units = coons_model_units(m);
+    w.name = name && name[0] ? name : NULL;
+    return w;
+}
+
+/*
+ * A surface format (COONS_FORMAT_STL_BINARY, _OFF, _SCAD) into the output
+ * buffer; `name` is what coons2stl takes from the output file's name
+ * ("dir/part.scad" -> "part"). 0 or the error's status.
+ */
+CW_EXPORT int cw_write_surface(const coons_model *m, int format, const char *name,
+                               double tolerance)
+{
+    coons_write_options w = write_options(m, name);
+    sink s;
+    if (format == COONS_FORMAT_SCAD && coons_model_morph_count(m)) {
+        coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+        so.tolerance = tolerance > 0 ? tolerance : coons_model_tolerance(m);
+        if (!sink_open(&s)) return COONS_E_NOMEM;
+        memset(&last_error, 0, sizeof last_error);
+        coons_status rc =
+            coons_model_write_scad_animation_stream(m, -1, &so, s.fp, &w, &last_error);
+        return sink_close(&s, rc);
+    }
+    coons_mesh *mesh = NULL;
+    coons_status rc = make_solid(m, tolerance, &mesh);
+    if (rc != COONS_OK) {
+        coons_mesh_free(mesh);
+        return rc;
+    }
+    if (!sink_open(&s)) {
+        coons_mesh_free(mesh);
+        return COONS_E_NOMEM;
+    }
+    rc = coons_mesh_write_stream(mesh, s.fp, (coons_format)format, &w, &last_error);
+    coons_mesh_free(mesh);
+    return sink_close(&s, rc);
+}
+
+/* Whether a part has an inverted cell: coons2stl refuses to write it
+ * without --allow-inverted (the message names the body and where). */
+static int refuse_inverted(const coons_volume_mesh *vm)
+{
+    for (size_t p = 0; p < coons_volume_mesh_part_count(vm); p++) {
+        coons_volume_quality q = COONS_VOLUME_QUALITY_INIT;
+        if (coons_volume_mesh_quality(vm, p, &q, NULL) != COONS_OK || !q.inverted) continue;
+        memset(&last_error, 0, sizeof last_error);
+        last_error.code = COONS_E_INVALID;
+        snprintf(last_error.message, sizeof last_error.message,
+                 "body '%s' has %zu inverted cell%s (scaled Jacobian <= 0; the worst, %.6g, at "
+                 "(u, v, w) = (%.6g, %.6g, %.6g)): the body folds there",
+                 coons_volume_mesh_part_name(vm, p), q.inverted, q.inverted == 1 ? "" : "s",
+                 q.min_scaled_jacobian, q.worst_uvw[0], q.worst_uvw[1], q.worst_uvw[2]);
+        return 1;
+    }
+    return 0;
+}
+
+/* A volume format (COONS_FORMAT_VTU, _MSH2, _INP) of the hex8 volume mesh
+ * at the model's tolerance into the output buffer. 0 or the status. */
+CW_EXPORT int cw_write_volume(const coons_model *m, int format, const char *name)
+{
+    coons_volume_options vo = COONS_VOLUME_OPTIONS_INIT;
+    vo.element = COONS_ELEMENT_HEX8;
+    vo.tolerance = coons_model_tolerance(m);
+    coons_volume_mesh *vm = NULL;
+    memset(&last_error, 0, sizeof last_error);
+    coons_status rc = coons_model_volume_mesh(m, &vo, &vm, &last_error);
+    if (rc != COONS_OK) return rc;
+    if (refuse_inverted(vm)) {
+        coons_volume_mesh_free(vm);
+        return COONS_E_INVALID;
+    }
+    coons_write_options w = write_options(m, name);
+    sink s;
+    if (!sink_open(&s)) {
+        coons_volume_mesh_free(vm);
+        return COONS_E_NOMEM;
+    }
+    rc = coons_volume_mesh_write_stream(vm, s.fp, (coons_format)format, &w, &last_error);
+    coons_volume_mesh_free(vm);
+    return sink_close(&s, rc);
+}
+
+/* The mesh the page shows: the solid at `tolerance` (<= 0: the model's),
+ * kept until the next call; its arrays through cw_preview_*(). */
+CW_EXPORT int cw_preview(const coons_model *m, double tolerance)
+{
+    coons_mesh_free(preview);
+    preview = NULL;
+    return make_solid(m, tolerance, &preview);
+}
+
+CW_EXPORT size_t cw_preview_vertex_count(void)
+{
+    return preview ? coons_mesh_vertex_count(preview) : 0;
+}
+CW_EXPORT size_t cw_preview_triangle_count(void)
+{
+    return preview ? coons_mesh_triangle_count(preview) : 0;
+}
+CW_EXPORT const double *cw_preview_vertices(void)
+{
+    return preview ? coons_mesh_vertices(preview) : NULL;
+}
+CW_EXPORT const uint32_t *cw_preview_triangles(void)
+{
+    return preview ? coons_mesh_triangles(preview) : NULL;
+}
