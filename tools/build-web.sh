@@ -52,7 +52,7 @@ emcc -O2 -std=c11 -Wall -Wextra -Werror \
   -sEXPORTED_RUNTIME_METHODS=UTF8ToString,stringToUTF8,lengthBytesUTF8,HEAPU8,HEAPU32,HEAPF64
 
 # The page, three.js and the examples (with their list, examples/index.json).
-cp web/index.html web/app.js web/links.js web/style.css "$out/"
+cp web/index.html web/app.js web/coons-api.js web/links.js web/style.css "$out/"
 mkdir -p "$out/three" "$out/examples"
 cp web/node_modules/three/build/three.module.js web/node_modules/three/build/three.core.js \
    web/node_modules/three/examples/jsm/controls/OrbitControls.js web/node_modules/three/LICENSE \

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Issue 29: every example through the WebAssembly build (build-web/coons.js)
+// against the native C-only coons2stl, which writes each output to a file
+// (binary STL, OFF, SCAD, VTU, MSH, INP, default options): the bytes must be
+// equal, and what coons2stl refuses (the unions, which need CGAL) the module
+// refuses with the same message. Also the page's control-point links
+// (web/links.js): moving a point of every example moves all JSON locations
+// linked to it and the moved model still loads.
+//   node tests/web/test_wasm.js BUILD_WEB COONS2STL EXAMPLES_DIR OUT_DIR
+'use strict';
+const fs = require('fs');
+const path = require('path');
+const { execFile } = require('child_process');
+
+const [buildWeb, coons2stl, examplesDir, outDir] = process.argv.slice(2);
+if (!outDir) {
+  console.error('usage: test_wasm.js BUILD_WEB COONS2STL EXAMPLES_DIR OUT_DIR');
+  process.exit(2);
+}
+const FORMATS = ['stl', 'off', 'scad', 'vtu', 'msh', 'inp'];
+let passed = 0, failed = 0;
+function check(ok, what) {
+  if (ok) passed++;
+  else { failed++; console.log('FAIL ' + what); }
+}
+
+function runNative(input, output) {
+  return new Promise((resolve) => {
+    execFile(coons2stl, ['-q', '-o', output, input], { maxBuffer: 1 << 24 },
+      (err, stdout, stderr) => resolve({ code: err ? err.code : 0, stderr }));
+  });
+}
+
+async function pool(tasks, n) {
+  const results = new Array(tasks.length);
+  let next = 0;
+  async function worker() {
+    while (next < tasks.length) { const i = next++; results[i] = await tasks[i](); }
+  }
+  await Promise.all(Array.from({ length: n }, worker));
+  return results;
+}
+
+async function main() {
+  const createCoons = require(path.resolve(buildWeb, 'coons.js'));
+  const M = await createCoons({ wasmBinary: fs.readFileSync(path.join(buildWeb, 'coons.wasm')) });
+  const api = require(path.resolve(buildWeb, 'coons-api.js')).wrap(M);
+  const links = require(path.resolve(buildWeb, 'links.js'));
+  const names = fs.readdirSync(examplesDir).filter((f) => f.endsWith('.json')).sort();
+  const nat = path.join(outDir, 'native');
+  fs.mkdirSync(nat, { recursive: true });
+
+  let t = Date.now();
+  const jobs = [];
+  for (const f of names)
+    for (const fmt of FORMATS) {
+      const base = f.replace(/\.json$/, '');
+      jobs.push(() => runNative(path.join(examplesDir, f), path.join(nat, base + '.' + fmt))
+        .then((r) => ({ f, fmt, base, ...r })));
+    }
+  const native = await pool(jobs, Number(process.env.COONS_JOBS || 2));
+  const tNative = (Date.now() - t) / 1000;
+
+  t = Date.now();
+  let same = 0, refused = 0;
+  for (const r of native) {
+    const text = fs.readFileSync(path.join(examplesDir, r.f), 'utf8');
+    const model = api.load(text, r.f);
+    let bytes = null, error = null;
+    try { bytes = api.write(model, r.fmt, r.base); } catch (e) { error = e; }
+    model.free();
+    const what = `${r.f} -> ${r.fmt}`;
+    if (r.code === 0) {
+      const want = fs.readFileSync(path.join(nat, r.base + '.' + r.fmt));
+      const ok = bytes !== null && Buffer.compare(Buffer.from(bytes), want) === 0;
+      check(ok, `${what}: ${error ? 'refused: ' + error.message
+                                 : `differs (${bytes.length} vs ${want.length} bytes)`}`);
+      if (ok) same++;
+    } else {
+      // refused alike: the module's message is the one coons2stl printed
+      const ok = error !== null && r.stderr.includes(error.message);
+      check(ok, `${what}: coons2stl refused (${r.stderr.trim()}), the module ` +
+                (error ? `said '${error.message}'` : 'wrote it'));
+      if (ok) refused++;
+    }
+  }
+  const tWasm = (Date.now() - t) / 1000;
+
+  // A broken model: the loader's error carries the file, line, column and path.
+  try {
+    api.load('{"coons": 1,\n "bodies": [{"type": "body0", "corners": [[0,0,0]]}]}', 'bad.json');
+    check(false, 'a body0 with one corner loaded');
+  } catch (e) {
+    check(e.path === '/bodies/0/corners' && e.line === 2 && e.column > 1 &&
+          e.message.startsWith('bad.json:2:'), `load error: ${e.message} (${e.path})`);
+  }
+
+  // Control-point links: for every example, move one point of each link
+  // group (the first few groups) and check that every linked location
+  // moved with it, and that the moved model still loads.
+  let moved = 0, reloaded = 0;
+  for (const f of names) {
+    const doc = JSON.parse(fs.readFileSync(path.join(examplesDir, f), 'utf8'));
+    const cps = links.controlPoints(doc);
+    check(cps.points.length > 0, `${f}: no control points`);
+    const diag = links.diagonal(cps);
+    const picks = [0, Math.floor(cps.points.length / 2), cps.points.length - 1];
+    for (const k of picks) {
+      const p = cps.points[k];
+      const target = [p.xyz[0] + 0.01 * diag, p.xyz[1] - 0.005 * diag, p.xyz[2] + 0.003 * diag];
+      const doc2 = JSON.parse(JSON.stringify(doc));
+      const res = links.move(doc2, p.id, target);
+      const after = links.controlPoints(doc2);
+      const q = after.points.find((x) => x.id === p.id);
+      const d = Math.hypot(q.xyz[0] - target[0], q.xyz[1] - target[1], q.xyz[2] - target[2]);
+      check(d <= 1e-9 * diag, `${f}: point ${p.id} is ${d} from where it was moved`);
+      // every location of the group holds the same world point
+      for (const loc of res.locations) {
+        const w = links.worldAt(doc2, loc);
+        const e = Math.hypot(w[0] - target[0], w[1] - target[1], w[2] - target[2]);
+        check(e <= 1e-9 * diag, `${f}: linked location ${loc.path.join('/')} is ${e} away`);
+      }
+      moved++;
+      try {
+        api.load(JSON.stringify(doc2), f).free();
+        reloaded++;
+      } catch (e) {
+        // a move that breaks a constraint the links do not keep (a network
+        // node between control points) is refused with a path, never crashes
+        check(typeof e.path === 'string' && e.line > 0, `${f}: moved model: ${e.message}`);
+        console.log(`note ${f}: moving ${p.id} is refused: ${e.message}`);
+      }
+    }
+  }
+  console.log(`wasm vs native: ${same} outputs equal, ${refused} refused alike, over ` +
+              `${names.length} examples x ${FORMATS.length} formats; native ${tNative.toFixed(1)} s, ` +
+              `wasm ${tWasm.toFixed(1)} s; control points: ${moved} moves, ${reloaded} reload`);
+  console.log(`${passed} passed, ${failed} failed`);
+  process.exit(failed ? 1 : 0);
+}
+main().catch((e) => { console.error(e); process.exit(1); });
