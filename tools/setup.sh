@@ -24,7 +24,14 @@ PKGS=(
   # The Python package (issue 28): test.sh's python stage makes a venv;
   # scikit-build-core, cffi and pytest come from PyPI into it.
   python3-venv
+  # The page in the browser (issue 29): the C core in WebAssembly (emscripten),
+  # node for its tests, Debian's chromium driven headless by puppeteer-core
+  # (web/package.json; no browser is downloaded).
+  emscripten chromium nodejs
 )
+# npm: Debian's package, unless the installed nodejs brings its own (the
+# NodeSource build provides npm and conflicts with Debian's).
+command -v npm >/dev/null 2>&1 || PKGS+=(npm)
 
 missing=()
 for p in "${PKGS[@]}"; do

@@ -20,6 +20,13 @@
 #   python   the Python package (python/, issue 28): a wheel built from the
 #            tree (the C core), installed into a fresh virtual environment,
 #            its pytest suite (python/tests) run there
+#   web      the page (issue 29): tools/build-web.sh builds the C core to
+#            WebAssembly into build-web; tests/web/test_wasm.js checks every
+#            example's outputs against the C-only coons2stl (the core
+#            build's, built here if the core stage did not run), byte for
+#            byte; tests/web/test_page.js drives the page in Debian's
+#            headless chromium (puppeteer-core): render, a mouse drag, the
+#            exported STL (screenshots in build-web/test-output)
 # The tests: tests/unit/<stage>/test_<concept>.c (cmocka; ctest name
 # <stage>/test_<concept>, e.g. ctest -R '^csg/'), tests/cli/test_<concept>.py
 # (one harness, tests/cli/clitest.py; ctest name cli/test_<concept>), the fuzz
@@ -42,7 +49,7 @@ cd "$here"
 bash tools/setup.sh
 build=${COONS_BUILD_DIR:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
-stages=" ${COONS_TEST_STAGES:-release core asan memcheck fuzz python} "
+stages=" ${COONS_TEST_STAGES:-release core asan memcheck fuzz python web} "
 t_all=$SECONDS
 times=()
 
@@ -141,6 +148,25 @@ if want python; then
   if [ "$rc" -eq 5 ]; then echo "test.sh: python: pytest collected no tests" >&2; fi
   [ "$rc" -eq 0 ] || exit 1
   end python
+fi
+
+# 7. The page: the WebAssembly module against the C-only coons2stl, in node
+#    and in headless chromium. Debian's node needs its acorn (NODE_PATH)
+#    for emscripten; the tests load the module from its file (no fetch).
+if want web; then
+  begin "WebAssembly module and page"
+  if [ ! -x "$build-core/tools/coons2stl" ]; then
+    cmake -S . -B "$build-core" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOONS_WERROR=ON \
+      -DCOONS_WITH_OPENMESH=OFF -DCOONS_WITH_CGAL=OFF
+    cmake --build "$build-core" -j "$jobs" --target coons2stl
+  fi
+  COONS_WEB_DIR="$build-web" COONS_JOBS=$jobs bash tools/build-web.sh
+  rm -rf "$build-web/test-output"
+  COONS_JOBS=$jobs node tests/web/test_wasm.js "$build-web" "$build-core/tools/coons2stl" examples \
+    "$build-web/test-output/wasm"
+  node tests/web/test_page.js "$build-web" "$build-core/tools/coons2stl" examples \
+    "$build-web/test-output/page"
+  end web
 fi
 
 echo "==== test.sh: all passed in $((SECONDS - t_all)) s (${times[*]/%/;})" >&2

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Issue 29: the page (build-web/) in headless Chromium (Debian's, driven by
+// puppeteer-core; no browser is downloaded), served by a static server on
+// 127.0.0.1 that this test starts. For every example the C core writes (the
+// unions need CGAL): the page loads it and renders a non-blank view (the
+// screenshot is kept in OUT_DIR), a real mouse drag on a control point
+// (pressed where the page's camera projects it) changes the model and the
+// mesh, and export("stl") equals the binary STL that the native coons2stl
+// writes from the same JSON (window.coons.model()), byte for byte.
+//   node tests/web/test_page.js BUILD_WEB COONS2STL EXAMPLES_DIR OUT_DIR
+'use strict';
+const fs = require('fs');
+const path = require('path');
+const http = require('http');
+const { execFileSync } = require('child_process');
+
+const [buildWeb, coons2stl, examplesDir, outDir] = process.argv.slice(2);
+if (!outDir) {
+  console.error('usage: test_page.js BUILD_WEB COONS2STL EXAMPLES_DIR OUT_DIR');
+  process.exit(2);
+}
+const puppeteer = require(require.resolve('puppeteer-core', {
+  paths: [path.resolve(__dirname, '../../web/node_modules')] }));
+const CHROMIUM = process.env.COONS_CHROMIUM || '/usr/bin/chromium';
+let passed = 0, failed = 0;
+function check(ok, what) {
+  if (ok) passed++;
+  else { failed++; console.log('FAIL ' + what); }
+  return ok;
+}
+
+const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css',
+                '.json': 'application/json', '.wasm': 'application/wasm' };
+function serve(root) {
+  const server = http.createServer((req, res) => {
+    const url = decodeURIComponent(req.url.split('?')[0]);
+    const file = path.join(root, url === '/' ? 'index.html' : url);
+    if (!file.startsWith(path.resolve(root)) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
+      res.writeHead(404);
+      res.end();
+      return;
+    }
+    res.writeHead(200, { 'Content-Type': TYPES[path.extname(file)] || 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
+}
+
+// coons2stl's binary STL of `text` (null when it refuses)
+function nativeStl(text, base) {
+  const json = path.join(outDir, base + '.json'), stl = path.join(outDir, base + '.stl');
+  fs.writeFileSync(json, text);
+  try {
+    execFileSync(coons2stl, ['-q', '-o', stl, json], { stdio: ['ignore', 'ignore', 'pipe'] });
+  } catch (e) {
+    return null;
+  }
+  return fs.readFileSync(stl);
+}
+
+async function main() {
+  fs.mkdirSync(outDir, { recursive: true });
+  const server = await serve(path.resolve(buildWeb));
+  const port = server.address().port;
+  const browser = await puppeteer.launch({
+    executablePath: CHROMIUM, headless: true,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+           '--disable-gpu-sandbox', '--no-first-run', '--window-size=1100,760'],
+  });
+  const t0 = Date.now();
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1100, height: 760 });
+  const pageErrors = [];
+  page.on('pageerror', (e) => pageErrors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error') pageErrors.push(m.text()); });
+  await page.goto(`http://127.0.0.1:${port}/`, { waitUntil: 'load' });
+  await page.evaluate(() => window.coons.ready);
+  check(await page.$('canvas#view') !== null, 'the page has canvas#view');
+  check(await page.evaluate(() => !!document.querySelector('footer a[href="libcoons-source.tar.gz"]')) &&
+        fs.existsSync(path.join(buildWeb, 'libcoons-source.tar.gz')), 'the footer offers the source');
+
+  const names = fs.readdirSync(examplesDir).filter((f) => f.endsWith('.json')).sort();
+  const times = [];
+  let examples = 0;
+  for (const f of names) {
+    const base = f.replace(/\.json$/, '');
+    const text = fs.readFileSync(path.join(examplesDir, f), 'utf8');
+    const want0 = nativeStl(text, base);
+    if (!want0) { console.log(`skip ${f}: coons2stl refuses it (a union without CGAL)`); continue; }
+    examples++;
+    await page.evaluate((t, n) => window.coons.load(t, n), text, f);
+    await page.evaluate(() => window.coons.rendered());
+    check(await page.evaluate(() => window.coons.model()) === text, `${f}: model() is the text loaded`);
+
+    // a non-blank view: the screenshot, decoded by the browser's own PNG
+    // decoder on a 2-D canvas, has many pixels off the white background
+    // and several shades (a shaded solid, not a flat silhouette)
+    const view = await page.$('#view');
+    const png = await view.screenshot({ path: path.join(outDir, base + '.png') });
+    const seen = await page.evaluate(async (b64) => {
+      const img = new Image();
+      img.src = 'data:image/png;base64,' + b64;
+      await img.decode();
+      const c = document.createElement('canvas');
+      c.width = img.width; c.height = img.height;
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      const d = g.getImageData(0, 0, c.width, c.height).data;
+      let off = 0;
+      const shades = new Set();
+      for (let i = 0; i < d.length; i += 4) {
+        if (d[i] < 245 || d[i + 1] < 245 || d[i + 2] < 245) off++;
+        shades.add((d[i] >> 3) << 10 | (d[i + 1] >> 3) << 5 | (d[i + 2] >> 3));
+      }
+      return { off: off / (d.length / 4), shades: shades.size };
+    }, Buffer.from(png).toString('base64'));
+    check(seen.off > 0.02 && seen.shades > 8, `${f}: the view is blank (${(100 * seen.off).toFixed(1)}% ` +
+          `drawn, ${seen.shades} shades)`);
+
+    // export("stl") of the loaded model equals coons2stl's
+    const stl0 = Buffer.from(await page.evaluate(async () => Array.from(await window.coons.export('stl'))));
+    check(Buffer.compare(stl0, want0) === 0, `${f}: export("stl") differs from coons2stl's before the drag`);
+
+    // a real drag: press on a control point where the camera shows it
+    // (apart from its neighbours on the screen), move, release
+    const cps = await page.evaluate(() => window.coons.controlPoints());
+    const screen = await page.evaluate((n) => Array.from({ length: n }, (_, i) => window.coons.screen(i)), cps.length);
+    const box = await view.boundingBox();
+    const inside = (s) => s.visible && s.x > box.x + 20 && s.x < box.x + box.width - 60 &&
+                          s.y > box.y + 60 && s.y < box.y + box.height - 20;
+    const apart = (i) => screen.every((s, j) => j === i || Math.hypot(s.x - screen[i].x, s.y - screen[i].y) > 26);
+    const candidates = cps.map((p) => p.id).filter((i) => inside(screen[i]) && apart(i));
+    let dragged = false;
+    const before = await page.evaluate(() => window.coons.stats().remesh.length);
+    for (const id of candidates.slice(0, 6)) {
+      const s = screen[id];
+      await page.mouse.move(s.x, s.y);
+      await page.mouse.down();
+      for (let k = 1; k <= 6; k++) {
+        await page.mouse.move(s.x + 5 * k, s.y - 4 * k);
+        await page.evaluate(() => window.coons.rendered());
+      }
+      await page.mouse.up();
+      await page.evaluate(() => window.coons.rendered());
+      const after = await page.evaluate(() => window.coons.model());
+      if (after === text) continue; // refused (the moved model did not load): next point
+      const moved = (await page.evaluate(() => window.coons.controlPoints()))
+        .reduce((m, p) => Math.min(m, Math.hypot(p.xyz[0] - cps[id].xyz[0], p.xyz[1] - cps[id].xyz[1],
+                                                  p.xyz[2] - cps[id].xyz[2])), Infinity);
+      const stl1 = Buffer.from(await page.evaluate(async () => Array.from(await window.coons.export('stl'))));
+      const want1 = nativeStl(after, base + '-dragged');
+      check(moved > 0, `${f}: control point ${id} is still where it was`);
+      check(Buffer.compare(stl1, stl0) !== 0, `${f}: the drag of point ${id} left the mesh unchanged`);
+      check(want1 !== null && Buffer.compare(stl1, want1) === 0,
+            `${f}: export("stl") after the drag differs from coons2stl's of model()`);
+      await view.screenshot({ path: path.join(outDir, base + '-dragged.png') });
+      dragged = true;
+      break;
+    }
+    check(dragged, `${f}: no drag of ${candidates.length} candidate points changed the model`);
+    const st = await page.evaluate(() => window.coons.stats());
+    const ms = st.remesh.slice(before);
+    if (ms.length) times.push({ f, n: ms.length, max: Math.max(...ms), mean: ms.reduce((a, b) => a + b, 0) / ms.length, full: st.lastFull });
+  }
+  check(pageErrors.length === 0, 'page errors: ' + pageErrors.join(' | '));
+  await browser.close();
+  server.close();
+  for (const t of times)
+    console.log(`drag remesh ${t.f}: ${t.n} previews, mean ${t.mean.toFixed(1)} ms, max ${t.max.toFixed(1)} ms; full tolerance ${t.full.toFixed(0)} ms`);
+  console.log(`page: ${examples} examples in ${((Date.now() - t0) / 1000).toFixed(1)} s; screenshots in ${outDir}`);
+  console.log(`${passed} passed, ${failed} failed`);
+  process.exit(failed ? 1 : 0);
+}
+main().catch((e) => { console.error(e); process.exit(1); });
