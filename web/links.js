@@ -142,10 +142,219 @@
   }
   function worldAt(doc, loc) { return apply(loc.A, get(doc, loc.path)); }
 
+  // ---- curves as linear maps of their points (for network nodes) ----
+  // The weights phi_k(t) with c(t) = sum phi_k(t) P_k + (terms that do not
+  // depend on the points: Hermite tangents), coons-model(5)'s definitions.
+  function bsplineBasis(p, knots, n1, t) { // n1 points; t in [0,1]
+    const k = knots || (() => {
+      const m = n1 - 1, inner = m - p, out = [];
+      for (let i = 0; i <= p; i++) out.push(0);
+      for (let i = 1; i <= inner; i++) out.push(i / (inner + 1));
+      for (let i = 0; i <= p; i++) out.push(1);
+      return out;
+    })();
+    const lo = k[p], hi = k[n1];
+    const x = lo + t * (hi - lo);
+    let span = p;
+    for (let i = p; i < n1; i++) if (k[i] < k[i + 1] && x >= k[i]) span = i; // last non-empty span at or left of x
+    const N = [1], left = [], right = [];
+    for (let j = 1; j <= p; j++) {
+      left[j] = x - k[span + 1 - j];
+      right[j] = k[span + j] - x;
+      let saved = 0;
+      for (let r = 0; r < j; r++) {
+        const tmp = N[r] / (right[r + 1] + left[j - r]);
+        N[r] = saved + right[r + 1] * tmp;
+        saved = left[j - r] * tmp;
+      }
+      N[j] = saved;
+    }
+    const phi = new Array(n1).fill(0);
+    for (let j = 0; j <= p; j++) phi[span - p + j] = N[j];
+    return phi;
+  }
+  function curveBasis(c, t) {
+    const n1 = c.points.length, phi = new Array(n1).fill(0);
+    switch (c.type) {
+      case 'line': return [1 - t, t];
+      case 'hermite': return [1 - 3 * t * t + 2 * t * t * t, 3 * t * t - 2 * t * t * t];
+      case 'polyline': {
+        const n = n1 - 1, i = Math.min(Math.floor(t * n), n - 1), u = t * n - i;
+        phi[i] = 1 - u;
+        phi[i + 1] = u;
+        return phi;
+      }
+      case 'bezier': {
+        const n = n1 - 1;
+        let b = 1;
+        for (let i = 0; i <= n; i++) {
+          phi[i] = b * Math.pow(t, i) * Math.pow(1 - t, n - i);
+          b = b * (n - i) / (i + 1);
+        }
+        return phi;
+      }
+      case 'coons-cubic': {
+        const closed = c.closed === true, segs = closed ? n1 : n1 - 3;
+        const s = Math.min(Math.floor(t * segs), segs - 1), u = t * segs - s;
+        const C = [(1 - u) ** 3 / 6, (3 * u ** 3 - 6 * u * u + 4) / 6, (-3 * u ** 3 + 3 * u * u + 3 * u + 1) / 6, u ** 3 / 6];
+        for (let k = 0; k < 4; k++) phi[(s + k) % n1] += C[k];
+        return phi;
+      }
+      case 'clamped-cubic': {
+        const n = n1 - 1, k = [0, 0, 0, 0];
+        for (let i = 1; i <= n - 3; i++) k.push(i);
+        k.push(n - 2, n - 2, n - 2, n - 2);
+        return bsplineBasis(3, k, n1, t);
+      }
+      case 'bspline': {
+        const N = bsplineBasis(c.degree, c.knots, n1, t);
+        if (!c.weights) return N;
+        const den = N.reduce((a, v, i) => a + v * c.weights[i], 0);
+        return N.map((v, i) => v * c.weights[i] / den);
+      }
+      default: return null;
+    }
+  }
+  // the change of curve c (old: co) at t, from the change of its points
+  function curveDelta(c, co, t) {
+    if (!c || !co || !Array.isArray(c.points) || !Array.isArray(co.points)) return [0, 0, 0];
+    const phi = curveBasis(c, t), d = [0, 0, 0];
+    if (!phi) return d;
+    phi.forEach((f, k) => {
+      if (!f) return;
+      for (let a = 0; a < 3; a++) d[a] += f * ((c.points[k][a] || 0) - (co.points[k][a] || 0));
+    });
+    return d;
+  }
+  // Solves (Phi Phi^T) y = r (Gauss, partial pivoting); null if singular.
+  function solve(G, r) {
+    const n = G.length, M = G.map((row, i) => row.concat([r[i]]));
+    for (let c = 0; c < n; c++) {
+      let piv = c;
+      for (let i = c + 1; i < n; i++) if (Math.abs(M[i][c]) > Math.abs(M[piv][c])) piv = i;
+      if (Math.abs(M[piv][c]) < 1e-13) return null;
+      [M[c], M[piv]] = [M[piv], M[c]];
+      for (let i = 0; i < n; i++) if (i !== c) {
+        const f = M[i][c] / M[c][c];
+        for (let j = c; j <= n; j++) M[i][j] -= f * M[c][j];
+      }
+    }
+    return M.map((row, i) => row[n] / row[i]);
+  }
+  // The smallest change of the points of curve c (at JSON path cpath) not
+  // yet moved that changes c(params[b]) by r[b] for every b; the paths
+  // written go to fixes.
+  function adjustCurve(c, cpath, params, r, changed, fixes) {
+    if (r.every((v) => v.every((x) => Math.abs(x) === 0))) return;
+    const base = cpath.join('/') + '/points/';
+    const free = c.points.map((_, k) => k).filter((k) => !changed.has(base + k));
+    const Phi = params.map((u) => { const phi = curveBasis(c, u); return phi ? free.map((k) => phi[k]) : null; });
+    if (Phi.some((row) => !row)) return;
+    // only the nodes some free point reaches take part
+    const rows = Phi.map((row, b) => b).filter((b) => Phi[b].some((x) => Math.abs(x) > 1e-14));
+    const G = rows.map((b) => rows.map((e) => Phi[b].reduce((acc, x, k) => acc + x * Phi[e][k], 0)));
+    const delta = [[], [], []];
+    for (let d = 0; d < 3; d++) {
+      const y = solve(G, rows.map((b) => r[b][d]));
+      if (!y) return;
+      delta[d] = free.map((_, k) => rows.reduce((acc, b, i) => acc + Phi[b][k] * y[i], 0));
+    }
+    free.forEach((k, i) => {
+      const dx = [delta[0][i], delta[1][i], delta[2][i]];
+      if (dx.every((x) => x === 0)) return;
+      const p = c.points[k];
+      const z = (p.length > 2 ? p[2] : 0) + dx[2];
+      c.points[k] = p.length === 2 && z === 0 ? [p[0] + dx[0], p[1] + dx[1]] : [p[0] + dx[0], p[1] + dx[1], z];
+      fixes.push(cpath.concat('points', k));
+    });
+  }
+  // Curves that must meet at shared ends (the 12 edges of a body1 at its
+  // 8 corners, the 4 boundary curves of a coons or hermite-coons patch):
+  // where one that moved changed its end, the others' ends follow, their
+  // other ends staying where they are (or following a moved curve there).
+  function repairCorners(list, changed, fixes) {
+    const isChanged = (p) => { const pre = p.join('/') + '/'; for (const k of changed) if (k.startsWith(pre)) return true; return false; };
+    const target = new Map();
+    for (const e of list) {
+      if (!isChanged(e.path)) continue;
+      for (const [t, corner] of e.ends)
+        if (!target.has(corner)) target.set(corner, { owner: e, delta: curveDelta(e.c, e.co, t) });
+    }
+    if (!target.size) return;
+    // every curve but the one that sets a corner follows it there (with
+    // its points not yet moved: a moved curve adjusts its other points)
+    for (const e of list) {
+      if (!Array.isArray(e.c.points)) continue;
+      const r = e.ends.map(([t, corner]) => {
+        const tg = target.get(corner), have = curveDelta(e.c, e.co, t);
+        const want = !tg ? [0, 0, 0] : tg.owner === e ? have : tg.delta;
+        return [want[0] - have[0], want[1] - have[1], want[2] - have[2]];
+      });
+      adjustCurve(e.c, e.path, e.ends.map(([t]) => t), r, changed, fixes);
+    }
+  }
+  // Networks whose rows or columns changed: the other family is corrected
+  // by the smallest change of its points (those not already moved) that
+  // makes rows[j](s_i) = columns[i](t_j) again at every node. Returns the
+  // JSON paths written.
+  function repairNetworks(before, doc, changed) {
+    const fixes = [];
+    const isChanged = (prefix) => { for (const k of changed) if (k.startsWith(prefix + '/')) return true; return false; };
+    function visit(node, path) {
+      if (!node || typeof node !== 'object') return;
+      if (Array.isArray(node)) { node.forEach((v, i) => visit(v, path.concat(i))); return; }
+      if (node.type === 'network' && Array.isArray(node.rows) && Array.isArray(node.columns)) fix(node, path);
+      const old = () => get(before, path);
+      if (node.type === 'body1' && node.edges) {
+        const list = [];
+        for (const e of Object.keys(node.edges)) {
+          const f = e[0], d1 = +e[1], d2 = +e[2];
+          const corner = (a) => (f === 'u' ? [a, d1, d2] : f === 'v' ? [d1, a, d2] : [d1, d2, a]).join('');
+          list.push({ c: node.edges[e], co: old().edges[e], path: path.concat('edges', e), ends: [[0, corner(0)], [1, corner(1)]] });
+        }
+        repairCorners(list, changed, fixes);
+      }
+      if ((node.type === 'coons' || node.type === 'hermite-coons') && node.boundary) {
+        const ends = { t0: [[0, '00'], [1, '10']], t1: [[0, '01'], [1, '11']], s0: [[0, '00'], [1, '01']], s1: [[0, '10'], [1, '11']] };
+        const list = Object.keys(ends).filter((k) => node.boundary[k])
+          .map((k) => ({ c: node.boundary[k], co: old().boundary[k], path: path.concat('boundary', k), ends: ends[k] }));
+        repairCorners(list, changed, fixes);
+      }
+      for (const k of Object.keys(node)) if (!SKIP.has(k) || k === 'cross') visit(node[k], path.concat(k));
+    }
+    function fix(net, path) {
+      const old = get(before, path);
+      const np = path.join('/');
+      const rowsCh = isChanged(np + '/rows'), colsCh = isChanged(np + '/columns');
+      if (!rowsCh && !colsCh) return;
+      const m = net.columns.length - 1, n = net.rows.length - 1;
+      const sN = net.s_nodes || Array.from({ length: m + 1 }, (_, i) => i / m);
+      const tN = net.t_nodes || Array.from({ length: n + 1 }, (_, j) => j / n);
+      const adjust = rowsCh ? 'columns' : 'rows', other = rowsCh ? 'rows' : 'columns';
+      const params = adjust === 'columns' ? tN : sN; // along the adjusted curves
+      const at = adjust === 'columns' ? sN : tN;     // where the other family meets them
+      net[adjust].forEach((c, a) => {
+        const co = old[adjust][a];
+        if (!Array.isArray(c.points) || !co || !Array.isArray(co.points)) return;
+        const r = params.map((u, b) => {
+          const want = curveDelta(net[other][b], old[other][b], at[a]);
+          const have = curveDelta(c, co, u);
+          return [want[0] - have[0], want[1] - have[1], want[2] - have[2]];
+        });
+        adjustCurve(c, path.concat(adjust, a), params, r, changed, fixes);
+      });
+    }
+    visit(doc, []);
+    return fixes;
+  }
+
   // Moves control point `id` of `doc` (changed in place) to `xyz`, with
-  // everything linked to it. Returns {locations}: the JSON locations set to
-  // xyz, and {changed}: every JSON path written.
+  // everything linked to it, and corrects the networks whose nodes the move
+  // separated (their corrected points carry their links along too).
+  // Returns {locations}: the JSON locations set to xyz, and {changed}:
+  // every JSON path written.
   function move(doc, id, xyz) {
+    const before = JSON.parse(JSON.stringify(doc));
     const cps = controlPoints(doc);
     const start = cps.points[id];
     if (!start) throw new Error('no control point ' + id);
@@ -157,25 +366,39 @@
       owner.get(k).push({ point: p, A: m.A });
     }));
     const changed = new Set(), done = new Set();
-    const queue = [[start, xyz]];
-    while (queue.length) {
-      const [p, to] = queue.shift();
-      if (done.has(p.id)) continue;
-      done.add(p.id);
-      for (const m of p.members) {
-        const k = key(m.path);
-        if (changed.has(k)) continue;
-        changed.add(k);
-        set(doc, m.path, invertApply(m.A, to));
-        // other placements of this location move, and what sits there follows
-        for (const o of owner.get(k))
-          if (!done.has(o.point.id)) queue.push([o.point, apply(o.A, get(doc, m.path))]);
+    function propagate(queue) {
+      while (queue.length) {
+        const [p, to] = queue.shift();
+        if (done.has(p.id)) continue;
+        done.add(p.id);
+        for (const m of p.members) {
+          const k = key(m.path);
+          if (changed.has(k)) continue;
+          changed.add(k);
+          set(doc, m.path, invertApply(m.A, to));
+          // other placements of this location move, and what sits there follows
+          for (const o of owner.get(k))
+            if (!done.has(o.point.id)) queue.push([o.point, apply(o.A, get(doc, m.path))]);
+        }
       }
+    }
+    propagate([[start, xyz]]);
+    for (let round = 0; round < 4; round++) {
+      const fixes = repairNetworks(before, doc, changed);
+      if (!fixes.length) break;
+      const queue = [];
+      for (const path of fixes) {
+        const k = key(path);
+        changed.add(k);
+        for (const o of owner.get(k) || [])
+          if (!done.has(o.point.id)) queue.push([o.point, apply(o.A, get(doc, path))]);
+      }
+      propagate(queue);
     }
     return { locations: start.members, changed: [...changed] };
   }
 
-  const api = { controlPoints, move, diagonal, worldAt, leaves };
+  const api = { controlPoints, move, diagonal, worldAt, leaves, curveBasis };
   if (typeof module !== 'undefined' && module.exports) module.exports = api;
   else root.CoonsLinks = api;
 })(typeof self !== 'undefined' ? self : this);
