@@ -215,6 +215,33 @@
       default: return null;
     }
   }
+  // d phi_k / dt for the curve types whose ends the cross curves of
+  // hermite-coons patches follow (line, bezier, hermite); null otherwise
+  function curveDerivBasis(c, t) {
+    const n1 = c.points.length;
+    if (c.type === 'line') return [-1, 1];
+    if (c.type === 'hermite') return [-6 * t + 6 * t * t, 6 * t - 6 * t * t];
+    if (c.type !== 'bezier') return null;
+    const n = n1 - 1, phi = new Array(n1).fill(0);
+    const b = (i, m) => { // Bernstein i of degree m
+      if (i < 0 || i > m) return 0;
+      let c0 = 1;
+      for (let k = 0; k < i; k++) c0 = c0 * (m - k) / (k + 1);
+      return c0 * Math.pow(t, i) * Math.pow(1 - t, m - i);
+    };
+    for (let i = 0; i <= n; i++) phi[i] = n * (b(i - 1, n - 1) - b(i, n - 1));
+    return phi;
+  }
+  function curveDerivDelta(c, co, t) {
+    if (!c || !co || !Array.isArray(c.points) || !Array.isArray(co.points)) return [0, 0, 0];
+    const phi = curveDerivBasis(c, t), d = [0, 0, 0];
+    if (!phi) return null;
+    phi.forEach((f, k) => {
+      if (!f) return;
+      for (let a = 0; a < 3; a++) d[a] += f * ((c.points[k][a] || 0) - (co.points[k][a] || 0));
+    });
+    return d;
+  }
   // the change of curve c (old: co) at t, from the change of its points
   function curveDelta(c, co, t) {
     if (!c || !co || !Array.isArray(c.points) || !Array.isArray(co.points)) return [0, 0, 0];
@@ -319,8 +346,27 @@
         const list = Object.keys(ends).filter((k) => node.boundary[k])
           .map((k) => ({ c: node.boundary[k], co: old().boundary[k], path: path.concat('boundary', k), ends: ends[k] }));
         repairCorners(list, changed, fixes);
+        if (node.type === 'hermite-coons' && node.cross) repairCross(node, path, old());
       }
       for (const k of Object.keys(node)) if (!SKIP.has(k) || k === 'cross') visit(node[k], path.concat(k));
+    }
+    // cross curves follow the corner tangents of the boundary they must
+    // agree with (coons-model(5), hermite-coons)
+    function repairCross(node, path, old) {
+      const pairs = { t0: [['s0', 0], ['s1', 0]], t1: [['s0', 1], ['s1', 1]],
+                      s0: [['t0', 0], ['t1', 0]], s1: [['t0', 1], ['t1', 1]] };
+      for (const k of Object.keys(pairs)) {
+        const c = node.cross[k], co = old.cross && old.cross[k];
+        if (!c || !co || !Array.isArray(c.points)) continue;
+        const r = [];
+        for (const [end, [b, bEnd]] of pairs[k].entries()) {
+          const want = curveDerivDelta(node.boundary[b], old.boundary[b], bEnd);
+          if (!want) return;
+          const have = curveDelta(c, co, end);
+          r.push([want[0] - have[0], want[1] - have[1], want[2] - have[2]]);
+        }
+        adjustCurve(c, path.concat('cross', k), [0, 1], r, changed, fixes);
+      }
     }
     function fix(net, path) {
       const old = get(before, path);
