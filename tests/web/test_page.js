@@ -79,7 +79,9 @@ async function main() {
   check(await page.evaluate(() => !!document.querySelector('footer a[href="libcoons-source.tar.gz"]')) &&
         fs.existsSync(path.join(buildWeb, 'libcoons-source.tar.gz')), 'the footer offers the source');
 
-  const names = fs.readdirSync(examplesDir).filter((f) => f.endsWith('.json')).sort();
+  // COONS_WEB_EXAMPLES: a regular expression to take only some examples
+  const only = new RegExp(process.env.COONS_WEB_EXAMPLES || '.');
+  const names = fs.readdirSync(examplesDir).filter((f) => f.endsWith('.json') && only.test(f)).sort();
   const times = [];
   let examples = 0;
   for (const f of names) {
@@ -95,8 +97,16 @@ async function main() {
     // a non-blank view: the screenshot, decoded by the browser's own PNG
     // decoder on a 2-D canvas, has many pixels off the white background
     // and several shades (a shaded solid, not a flat silhouette)
+    // and the solid alone (points and nets switched off in the panel) too
     const view = await page.$('#view');
-    const png = await view.screenshot({ path: path.join(outDir, base + '.png') });
+    await view.screenshot({ path: path.join(outDir, base + '.png') });
+    await page.click('#show-points');
+    await page.click('#show-nets');
+    await page.evaluate(() => window.coons.rendered());
+    const png = await view.screenshot();
+    await page.click('#show-points');
+    await page.click('#show-nets');
+    await page.evaluate(() => window.coons.rendered());
     const seen = await page.evaluate(async (b64) => {
       const img = new Image();
       img.src = 'data:image/png;base64,' + b64;
@@ -114,7 +124,7 @@ async function main() {
       }
       return { off: off / (d.length / 4), shades: shades.size };
     }, Buffer.from(png).toString('base64'));
-    check(seen.off > 0.02 && seen.shades > 8, `${f}: the view is blank (${(100 * seen.off).toFixed(1)}% ` +
+    check(seen.off > 0.02 && seen.shades > 8, `${f}: the solid is blank (${(100 * seen.off).toFixed(1)}% ` +
           `drawn, ${seen.shades} shades)`);
 
     // export("stl") of the loaded model equals coons2stl's

@@ -18,6 +18,7 @@ if (!outDir) {
   process.exit(2);
 }
 const FORMATS = ['stl', 'off', 'scad', 'vtu', 'msh', 'inp'];
+const KNOWN_REFUSED = new Set(['curve-coons-cubic.json', 'curve-coons-cubic-closed.json']);
 let passed = 0, failed = 0;
 function check(ok, what) {
   if (ok) passed++;
@@ -104,7 +105,10 @@ async function main() {
     const cps = links.controlPoints(doc);
     check(cps.points.length > 0, `${f}: no control points`);
     const diag = links.diagonal(cps);
-    const picks = [0, Math.floor(cps.points.length / 2), cps.points.length - 1];
+    // three points; every point of a model with references (a definition
+    // placed twice moves at both places, and what sits there follows)
+    const picks = doc.define ? cps.points.map((p) => p.id)
+                             : [0, Math.floor(cps.points.length / 2), cps.points.length - 1];
     for (const k of picks) {
       const p = cps.points[k];
       const target = [p.xyz[0] + 0.01 * diag, p.xyz[1] - 0.005 * diag, p.xyz[2] + 0.003 * diag];
@@ -125,12 +129,33 @@ async function main() {
         api.load(JSON.stringify(doc2), f).free();
         reloaded++;
       } catch (e) {
-        // a move that breaks a constraint the links do not keep (a network
-        // node between control points) is refused with a path, never crashes
-        check(typeof e.path === 'string' && e.line > 0, `${f}: moved model: ${e.message}`);
-        console.log(`note ${f}: moving ${p.id} is refused: ${e.message}`);
+        // Every moved model loads, but where a body 1's edges are Coons
+        // cubics that meet at corners that are no control points and a
+        // closed edge must follow two corners at once (a limitation of
+        // links.js): there the move is refused with a path, never crashes.
+        const known = KNOWN_REFUSED.has(f);
+        check(known && typeof e.path === 'string' && e.line > 0,
+              `${f}: moving ${p.id} gives a model that does not load: ${e.message}`);
+        if (known) console.log(`note ${f}: moving ${p.id} is refused: ${e.message}`);
       }
     }
+  }
+  // A definition placed twice, the second place shared with a third body:
+  // moving the first place's corner moves the definition, so the second
+  // place moves too, and the third body's corner there must follow it.
+  {
+    const cube = (x) => [[x, 0, 0], [x, 0, 10], [x, 10, 0], [x, 10, 10],
+                         [x + 10, 0, 0], [x + 10, 0, 10], [x + 10, 10, 0], [x + 10, 10, 10]];
+    const doc = { coons: 1, define: { c: { type: 'body0', corners: cube(0) } },
+                  bodies: [{ ref: 'c', name: 'a' },
+                           { ref: 'c', name: 'b', transform: [[1, 0, 0, 20], [0, 1, 0, 0], [0, 0, 1, 0]] },
+                           { type: 'body0', name: 'c3', corners: cube(30) }] };
+    const cps = links.controlPoints(doc);
+    const at = (x) => cps.points.find((p) => p.xyz[0] === x[0] && p.xyz[1] === x[1] && p.xyz[2] === x[2]);
+    links.move(doc, at([10, 0, 0]).id, [11, -1, 0.5]);
+    check(JSON.stringify(doc.define.c.corners[4]) === '[11,-1,0.5]', 'the definition\'s corner moved');
+    check(JSON.stringify(doc.bodies[2].corners[0]) === '[31,-1,0.5]',
+          `the third body follows the second place: ${JSON.stringify(doc.bodies[2].corners[0])}`);
   }
   console.log(`wasm vs native: ${same} outputs equal, ${refused} refused alike, over ` +
               `${names.length} examples x ${FORMATS.length} formats; native ${tNative.toFixed(1)} s, ` +
