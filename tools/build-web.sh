@@ -46,13 +46,13 @@ cmake --build "$out/cmake" --target coons_static -j "${COONS_JOBS:-2}" >>"$out/c
 emcc -O2 -std=c11 -Wall -Wextra -Werror \
   -I include -I "$out/cmake/include" web/src/*.c "$out/cmake/src/libcoons.a" \
   -o "$out/coons.js" \
-  -sMODULARIZE=1 -sEXPORT_NAME=createCoons -sENVIRONMENT=web,node \
+  -sMODULARIZE=1 -sEXPORT_NAME=createCoons -sENVIRONMENT=web,worker,node \
   -sALLOW_MEMORY_GROWTH=1 \
   -sEXPORTED_FUNCTIONS=_malloc,_free \
   -sEXPORTED_RUNTIME_METHODS=UTF8ToString,stringToUTF8,lengthBytesUTF8,HEAPU8,HEAPU32,HEAPF64
 
 # The page, three.js and the examples (with their list, examples/index.json).
-cp web/index.html web/app.js web/coons-api.js web/links.js web/style.css "$out/"
+cp web/index.html web/app.js web/worker.js web/coons-api.js web/links.js web/style.css "$out/"
 mkdir -p "$out/three" "$out/examples"
 cp web/node_modules/three/build/three.module.js web/node_modules/three/build/three.core.js \
    web/node_modules/three/examples/jsm/controls/OrbitControls.js web/node_modules/three/LICENSE \
@@ -66,8 +66,10 @@ json.dump(names, open(os.path.join(d, 'index.json'), 'w'), indent=0)
 PY
 # The source offer of the footer (GPL): the tree the page was built from.
 if git -C "$here" rev-parse --git-dir >/dev/null 2>&1; then
+  # uncommitted changes to tracked files included (git stash create), else HEAD
+  tree=$(git -C "$here" stash create 2>/dev/null || true)
   git -C "$here" archive --format=tar.gz --prefix=libcoons/ -o "$out/libcoons-source.tar.gz" \
-    "$(git -C "$here" stash create 2>/dev/null || echo HEAD)"
+    "${tree:-HEAD}"
 else
   tar -czf "$out/libcoons-source.tar.gz" --exclude='./build*' --exclude='./web/node_modules' \
     --transform 's,^\.,libcoons,' .

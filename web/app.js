@@ -17,7 +17,7 @@ const PICK_PX = 12;
 
 const state = {
   text: '', doc: null, name: 'model', model: null, cps: null, tol: 0, diag: 1,
-  undo: [], redo: [], selected: -1, time: null, stats: { remesh: [] },
+  undo: [], redo: [], selected: -1, time: null, stats: { remesh: [] }, meshSeq: 0,
 };
 let api = null;
 
@@ -111,6 +111,40 @@ function setMesh(tol) {
   const t0 = performance.now();
   const m = api.mesh(state.model, tol);
   const ms = performance.now() - t0;
+  state.meshSeq++;
+  showMesh(m);
+  return ms;
+}
+
+// The full tolerance after a drag: in a Web Worker (worker.js) when there
+// is one, so that the page stays responsive; the result replaces the
+// preview unless the model changed meanwhile.
+let worker = null;
+try {
+  worker = new Worker('worker.js');
+  worker.onmessage = (ev) => {
+    const r = ev.data;
+    if (r.seq === state.workerSeq && state.idle) { state.idle(); state.idle = null; }
+    if (r.seq !== state.meshSeq) return; // a newer mesh is shown already
+    if (r.error) { showError({ message: r.error }); return; }
+    showMesh(r);
+    state.stats.lastFull = r.ms;
+    status(`${state.name}: ${state.triangles} triangles (tolerance ${state.tol.toPrecision(3)}), ` +
+           `${r.ms.toFixed(0)} ms in the worker`);
+  };
+} catch (_) { worker = null; }
+function fullMesh() {
+  if (!worker) {
+    state.stats.lastFull = setMesh(state.tol);
+    return;
+  }
+  const seq = ++state.meshSeq;
+  state.workerSeq = seq;
+  if (!state.busy) state.busy = new Promise((res) => { state.idle = () => { state.busy = null; res(); }; });
+  worker.postMessage({ seq, text: state.text, name: state.name + '.json', time: state.time, tol: state.tol });
+}
+
+function showMesh(m) {
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.BufferAttribute(m.positions, 3));
   g.setIndex(new THREE.BufferAttribute(m.indices, 1));
@@ -120,7 +154,6 @@ function setMesh(tol) {
   wire.geometry = new THREE.WireframeGeometry(g);
   state.triangles = m.indices.length / 3;
   requestRender();
-  return ms;
 }
 
 // the nets: consecutive points of each curve, surface and volume net, the
@@ -349,9 +382,7 @@ function endDrag(ev) {
   try { canvas.releasePointerCapture(ev.pointerId); } catch (_) { /* released */ }
   if (d.moved) {
     pushUndo(d.text);
-    const ms = setMesh(state.tol);
-    status($('status').textContent.replace(/, \d+ triangles.*$/, '') + `, ${state.triangles} triangles (tolerance ${state.tol.toPrecision(3)}), ${ms.toFixed(0)} ms`);
-    state.stats.lastFull = ms;
+    fullMesh();
   }
 }
 canvas.addEventListener('pointerup', endDrag);
@@ -462,6 +493,8 @@ const coons = {
   // and the remesh times of the drags so far
   screen: (id) => { const s = toScreen(state.cps.points[id].xyz); return { x: s.x, y: s.y, visible: s.z <= 1 }; },
   stats: () => ({ remesh: state.stats.remesh.slice(), lastFull: state.stats.lastFull, triangles: state.triangles }),
+  // resolves when the worker has delivered the last full-tolerance mesh
+  idle: () => (state.busy || Promise.resolve()).then(() => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res)))),
   rendered: () => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res))),
 };
 window.coons = coons;
