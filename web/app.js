@@ -52,7 +52,15 @@ const chosen = new THREE.Points(new THREE.BufferGeometry(),
   new THREE.PointsMaterial({ color: 0xffa000, size: 12, sizeAttenuation: false, depthTest: false }));
 chosen.renderOrder = 2;
 points.renderOrder = 1;
-scene.add(solid, wire, nets, points, chosen);
+// the interior: isoparametric surfaces and each body's boundary (see-through),
+// coloured by det J on request
+const boundaryMat = new THREE.MeshStandardMaterial({ color: 0x8fb3d9, transparent: true, opacity: 0.18,
+  depthWrite: false, side: THREE.DoubleSide, flatShading: true });
+const isoMat = new THREE.MeshStandardMaterial({ color: 0xe0a040, side: THREE.DoubleSide, flatShading: true });
+const isoColourMat = new THREE.MeshStandardMaterial({ vertexColors: true, side: THREE.DoubleSide, flatShading: true });
+const interior = new THREE.Mesh(new THREE.BufferGeometry(), [boundaryMat, isoMat]);
+interior.visible = false;
+scene.add(solid, wire, nets, points, chosen, interior);
 
 let renderPending = false;
 function requestRender() {
@@ -156,6 +164,41 @@ function showMesh(m) {
   requestRender();
 }
 
+// Isoparametric surfaces (seed 000, Fig. 2-6) and det J as colour, from the
+// module (cw_iso): shown instead of the solid while asked for.
+function updateInterior(tol) {
+  const dir = $('iso-dir').value, detj = $('detj').checked;
+  $('detj-legend').hidden = !detj;
+  interior.visible = !!(dir || detj);
+  solid.visible = $('show-solid').checked && !interior.visible;
+  if (!interior.visible || !state.model) { requestRender(); return; }
+  const n = dir ? Number($('iso-n').value) : 0;
+  const values = Array.from({ length: n }, (_, k) => (k + 1) / (n + 1));
+  let r;
+  try { r = api.iso(state.model, dir ? Number(dir) : 0, values, tol); } catch (e) { showError(e); return; }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(r.positions, 3));
+  g.setIndex(new THREE.BufferAttribute(r.indices, 1));
+  for (const p of r.parts) g.addGroup(3 * p.first, 3 * p.count, p.boundary && dir ? 0 : 1);
+  if (detj) {
+    let lo = Infinity, hi = -Infinity;
+    for (const d of r.detj) { lo = Math.min(lo, d); hi = Math.max(hi, d); }
+    const col = new Float32Array(3 * r.detj.length), c = new THREE.Color();
+    const top = Math.max(Math.abs(hi), 1e-300);
+    r.detj.forEach((d, i) => {
+      if (d <= 0) c.setRGB(0.35, 0, 0.35); // folded: det J <= 0
+      else c.setHSL(0.66 * (1 - d / top), 0.9, 0.5);
+      col.set([c.r, c.g, c.b], 3 * i);
+    });
+    g.setAttribute('color', new THREE.BufferAttribute(col, 3));
+    $('detj-range').textContent = `${lo.toPrecision(3)} .. ${hi.toPrecision(3)}`;
+  }
+  interior.material = [boundaryMat, detj ? isoColourMat : isoMat];
+  interior.geometry.dispose();
+  interior.geometry = g;
+  requestRender();
+}
+
 // the nets: consecutive points of each curve, surface and volume net, the
 // edges of bilinear and body0 corners
 function buildNets() {
@@ -235,6 +278,7 @@ function commit(text, doc, { tol = 0, fit = false, keepText = false } = {}) {
   updatePoints();
   if (fit) fitCamera();
   const ms = setMesh(tol > 0 ? tol : state.tol);
+  updateInterior(tol > 0 ? tol : state.tol);
   showError(null);
   status(`${state.name}: ${model.bodies()} bod${model.bodies() === 1 ? 'y' : 'ies'}, ` +
          `${state.cps.points.length} control points, ${state.triangles} triangles ` +
@@ -383,6 +427,7 @@ function endDrag(ev) {
   if (d.moved) {
     pushUndo(d.text);
     fullMesh();
+    if (interior.visible) updateInterior(state.tol);
   }
 }
 canvas.addEventListener('pointerup', endDrag);
@@ -409,7 +454,7 @@ $('sel-apply').onclick = () => {
 $('apply-json').onclick = () => { try { loadText($('json').value); } catch (_) { /* shown */ } };
 for (const id of ['show-solid', 'show-points', 'show-nets', 'show-wire']) {
   $(id).onchange = () => {
-    solid.visible = $('show-solid').checked;
+    solid.visible = $('show-solid').checked && !interior.visible;
     points.visible = chosen.visible = $('show-points').checked;
     nets.visible = $('show-nets').checked;
     wire.visible = $('show-wire').checked;
@@ -417,10 +462,12 @@ for (const id of ['show-solid', 'show-points', 'show-nets', 'show-wire']) {
   };
 }
 wire.visible = false;
+$('iso-dir').onchange = $('detj').onchange = () => updateInterior(state.tol);
+$('iso-n').oninput = () => { $('iso-n-value').textContent = $('iso-n').value; updateInterior(state.tol); };
 $('time').oninput = () => {
   state.time = Number($('time').value);
   $('time-value').textContent = state.time.toFixed(2);
-  try { state.model.setTime(state.time); setMesh(state.tol); } catch (e) { showError(e); }
+  try { state.model.setTime(state.time); setMesh(state.tol); updateInterior(state.tol); } catch (e) { showError(e); }
 };
 for (const b of document.querySelectorAll('[data-export]')) {
   b.onclick = async () => {

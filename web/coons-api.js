@@ -74,7 +74,29 @@
         indices: M.HEAPU32.slice(pt, pt + 3 * nt),
       };
     }
-    return { load, write, mesh, version: () => M.UTF8ToString(M._cw_version()), FORMATS };
+    // The isoparametric surfaces direction (0 u, 1 v, 2 w) = values of
+    // every body, with each body's boundary, and det J at every vertex:
+    // {positions, indices, detj (Float64Array), parts: [{first, count,
+    // boundary}]} (triangle ranges; body k's boundary is part k (n + 1)).
+    function iso(model, direction, values, tolerance) {
+      const n = values.length, pv = M._malloc(8 * Math.max(1, n));
+      M.HEAPF64.set(values, pv >> 3);
+      const rc = M._cw_iso(model.ptr, direction, pv, n, tolerance || 0);
+      M._free(pv);
+      if (rc) throw lastError();
+      const nv = M._cw_iso_vertex_count(), nt = M._cw_iso_triangle_count();
+      const v = M._cw_iso_vertices() >> 3, t = M._cw_iso_triangles() >> 2, d = M._cw_iso_detj() >> 3;
+      const parts = [];
+      for (let i = 0; i < M._cw_iso_part_count(); i++)
+        parts.push({ first: M._cw_iso_part_first(i), count: M._cw_iso_part_triangles(i), boundary: i % (n + 1) === 0 });
+      return {
+        positions: Float32Array.from(M.HEAPF64.subarray(v, v + 3 * nv)),
+        indices: M.HEAPU32.slice(t, t + 3 * nt),
+        detj: M.HEAPF64.slice(d, d + nv),
+        parts,
+      };
+    }
+    return { load, write, mesh, iso, version: () => M.UTF8ToString(M._cw_version()), FORMATS };
   }
 
   const api = { wrap, FORMATS };

@@ -140,6 +140,47 @@ async function main() {
       }
     }
   }
+  // The interior: a body0 parallelepiped with edges a, b, c has det J =
+  // a . (b x c) everywhere, and its surface u = 1/4 lies in the plane
+  // through a/4 spanned by b and c.
+  {
+    const a = [10, 0, 0], b = [3, 20, 0], c = [1, 2, 30];
+    const corners = [];
+    for (let i = 0; i < 2; i++) for (let j = 0; j < 2; j++) for (let k = 0; k < 2; k++)
+      corners.push([0, 1, 2].map((d) => i * a[d] + j * b[d] + k * c[d]));
+    const m = api.load(JSON.stringify({ coons: 1, bodies: [{ type: 'body0', corners }] }), 'p.json');
+    const r = api.iso(m, 0, [0.25], 0);
+    m.free();
+    const n = [b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]];
+    const det = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    check(r.detj.length > 0 && r.detj.every((d) => Math.abs(d - det) <= 1e-12 * det),
+          `det J of the parallelepiped is not ${det}: ${r.detj.slice(0, 3)}`);
+    check(r.parts.length === 2 && r.parts[0].boundary && !r.parts[1].boundary, 'iso parts: boundary, u=0.25');
+    const want = 0.25 * (a[0] * n[0] + a[1] * n[1] + a[2] * n[2]);
+    let worst = 0;
+    for (let t = r.parts[1].first; t < r.parts[1].first + r.parts[1].count; t++)
+      for (let e = 0; e < 3; e++) {
+        const v = r.indices[3 * t + e], x = r.positions.subarray(3 * v, 3 * v + 3);
+        worst = Math.max(worst, Math.abs(n[0] * x[0] + n[1] * x[1] + n[2] * x[2] - want) / Math.hypot(...n));
+      }
+    check(r.parts[1].count > 0 && worst < 1e-5, `the surface u = 1/4 is ${worst} off its plane`); // float32 positions
+  }
+  // det J varying through the body: F(u, v, w) = (u (10 + 10 v), 20 v, 30 w)
+  // (a body0 with those corners) has det J = 600 (10 + 10 v), v = y / 20.
+  {
+    const corners = [];
+    for (let i = 0; i < 2; i++) for (let j = 0; j < 2; j++) for (let k = 0; k < 2; k++)
+      corners.push([i * (10 + 10 * j), 20 * j, 30 * k]);
+    const m = api.load(JSON.stringify({ coons: 1, bodies: [{ type: 'body0', corners }] }), 't.json');
+    const r = api.iso(m, 2, [0.5], 0);
+    m.free();
+    let worst = 0;
+    r.detj.forEach((d, v) => {
+      const want = 600 * (10 + 10 * r.positions[3 * v + 1] / 20);
+      worst = Math.max(worst, Math.abs(d - want) / want);
+    });
+    check(r.detj.length > 0 && worst < 1e-6, `det J of the tapered body is ${worst} off 600 (10 + 10 v)`);
+  }
   // A definition placed twice, the second place shared with a third body:
   // moving the first place's corner moves the definition, so the second
   // place moves too, and the third body's corner there must follow it.

@@ -236,3 +236,77 @@ CW_EXPORT const uint32_t *cw_preview_triangles(void)
 {
     return preview ? coons_mesh_triangles(preview) : NULL;
 }
+
+/*
+ * The interior (seed 000, Fig. 2-6): the isoparametric surfaces
+ * `direction` (0 u, 1 v, 2 w) = values[0..n) of every body with each body's
+ * boundary (coons_model_iso_surfaces(), COONS_ISO_WITH_BOUNDARY: body k's
+ * boundary is part k (n + 1), its surfaces the n parts after it), and det J
+ * at every vertex (coons_body_eval_jacobian() at the vertex's parameters),
+ * kept until the next call. 0 or the error's status.
+ */
+static coons_mesh *iso;
+static double *iso_detj;
+
+CW_EXPORT int cw_iso(const coons_model *m, int direction, const double *values, size_t n,
+                     double tolerance)
+{
+    coons_mesh_free(iso);
+    iso = NULL;
+    free(iso_detj);
+    iso_detj = NULL;
+    coons_iso_request *req = malloc((n ? n : 1) * sizeof *req);
+    if (!req) {
+        set_error("out of memory");
+        return COONS_E_NOMEM;
+    }
+    for (size_t i = 0; i < n; i++) {
+        req[i].direction = direction;
+        req[i].value = values[i];
+    }
+    coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+    so.tolerance = tolerance > 0 ? tolerance : coons_model_tolerance(m);
+    memset(&last_error, 0, sizeof last_error);
+    coons_status rc =
+        coons_model_iso_surfaces(m, req, n, &so, COONS_ISO_WITH_BOUNDARY, &iso, &last_error);
+    free(req);
+    if (rc != COONS_OK) return rc;
+    size_t nv = coons_mesh_vertex_count(iso);
+    const double *uvw = coons_mesh_vertex_parameters(iso);
+    iso_detj = malloc((nv ? nv : 1) * sizeof *iso_detj);
+    if (!iso_detj || !uvw) {
+        set_error(iso_detj ? "the surfaces carry no parameters" : "out of memory");
+        return iso_detj ? COONS_E_INVALID : COONS_E_NOMEM;
+    }
+    for (size_t p = 0; p < coons_mesh_part_count(iso); p++) {
+        size_t tf, tc, vf, vc;
+        coons_mesh_part_range(iso, p, &tf, &tc, &vf, &vc);
+        const coons_body *b = coons_model_body(m, p / (n + 1));
+        for (size_t v = vf; v < vf + vc; v++) {
+            double x[3], jac[3][3];
+            iso_detj[v] = coons_body_eval_jacobian(b, uvw[3 * v], uvw[3 * v + 1], uvw[3 * v + 2],
+                                                   x, jac);
+        }
+    }
+    return COONS_OK;
+}
+
+CW_EXPORT size_t cw_iso_vertex_count(void) { return iso ? coons_mesh_vertex_count(iso) : 0; }
+CW_EXPORT size_t cw_iso_triangle_count(void) { return iso ? coons_mesh_triangle_count(iso) : 0; }
+CW_EXPORT const double *cw_iso_vertices(void) { return iso ? coons_mesh_vertices(iso) : NULL; }
+CW_EXPORT const uint32_t *cw_iso_triangles(void) { return iso ? coons_mesh_triangles(iso) : NULL; }
+CW_EXPORT const double *cw_iso_detj(void) { return iso_detj; }
+CW_EXPORT size_t cw_iso_part_count(void) { return iso ? coons_mesh_part_count(iso) : 0; }
+/* The triangle range of part i: first, count. */
+CW_EXPORT size_t cw_iso_part_first(size_t i)
+{
+    size_t tf = 0, tc = 0, vf = 0, vc = 0;
+    if (iso) coons_mesh_part_range(iso, i, &tf, &tc, &vf, &vc);
+    return tf;
+}
+CW_EXPORT size_t cw_iso_part_triangles(size_t i)
+{
+    size_t tf = 0, tc = 0, vf = 0, vc = 0;
+    if (iso) coons_mesh_part_range(iso, i, &tf, &tc, &vf, &vc);
+    return tc;
+}
