@@ -172,6 +172,57 @@ async function main() {
     const ms = st.remesh.slice(before);
     if (ms.length) times.push({ f, n: ms.length, max: Math.max(...ms), mean: ms.reduce((a, b) => a + b, 0) / ms.length, full: st.lastFull });
   }
+  // The rest of the contract and the panel, on spool.json: a drag along z
+  // moves the point along z only; undo and redo; moveControlPoint; the
+  // JSON export; a broken model is refused with its path shown.
+  if (only.test('spool.json')) {
+    const text = fs.readFileSync(path.join(examplesDir, 'spool.json'), 'utf8');
+    await page.evaluate((t) => window.coons.load(t, 'spool.json'), text);
+    await page.select('#constraint', 'z');
+    const cps = await page.evaluate(() => window.coons.controlPoints());
+    const box = await (await page.$('#view')).boundingBox();
+    let id = -1, s = null;
+    for (const p of cps) {
+      const q = await page.evaluate((i) => window.coons.screen(i), p.id);
+      if (q.visible && q.x > box.x + 40 && q.x < box.x + box.width - 40 && q.y > box.y + 80) { id = p.id; s = q; break; }
+    }
+    await page.mouse.move(s.x, s.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 5; k++) await page.mouse.move(s.x + 7 * k, s.y - 6 * k);
+    await page.mouse.up();
+    await page.evaluate(() => window.coons.idle());
+    await page.select('#constraint', 'free');
+    const dragged = await page.evaluate(() => window.coons.model());
+    const after = await page.evaluate(() => window.coons.controlPoints());
+    const q = after.reduce((b, p) => (Math.hypot(p.xyz[0] - cps[id].xyz[0], p.xyz[1] - cps[id].xyz[1]) <
+                                      Math.hypot(b.xyz[0] - cps[id].xyz[0], b.xyz[1] - cps[id].xyz[1]) ? p : b));
+    check(dragged !== text && q.xyz[0] === cps[id].xyz[0] && q.xyz[1] === cps[id].xyz[1] &&
+          q.xyz[2] !== cps[id].xyz[2], `a drag along z moved point ${id} from ${cps[id].xyz} to ${q.xyz}`);
+    await page.click('#undo');
+    check(await page.evaluate(() => window.coons.model()) === text, 'undo restores the model before the drag');
+    await page.click('#redo');
+    check(await page.evaluate(() => window.coons.model()) === dragged, 'redo restores the dragged model');
+    const json = Buffer.from(await page.evaluate(async () => Array.from(await window.coons.export('json'))));
+    check(json.toString('utf8') === dragged, 'export("json") is model()');
+    // moveControlPoint: the point (and its links) to an exact place
+    const p0 = after[0], to = [p0.xyz[0] + 0.5, p0.xyz[1] - 0.25, p0.xyz[2] + 0.125];
+    await page.evaluate((i, x) => window.coons.moveControlPoint(i, x), p0.id, to);
+    const moved = await page.evaluate(() => window.coons.controlPoints());
+    check(moved.some((p) => p.xyz.every((v, d) => Math.abs(v - to[d]) < 1e-12)), 'moveControlPoint puts the point there');
+    const stl = Buffer.from(await page.evaluate(async () => Array.from(await window.coons.export('stl'))));
+    const want = nativeStl(await page.evaluate(() => window.coons.model()), 'spool-moved');
+    check(want !== null && Buffer.compare(stl, want) === 0, 'export("stl") after moveControlPoint is coons2stl\'s');
+    // a broken model: refused, the error shown with its JSON path, the model kept
+    const before = await page.evaluate(() => window.coons.model());
+    const err = await page.evaluate(async () => {
+      try { await window.coons.load('{"coons": 1,\n "bodies": [{"type": "body0", "corners": [[0, 0, 0]]}]}', 'bad.json'); return null; }
+      catch (e) { return { message: e.message, path: e.path, shown: document.getElementById('error').textContent,
+                           visible: !document.getElementById('error').hidden }; }
+    });
+    check(err !== null && err.path === '/bodies/0/corners' && err.visible && err.shown.includes('/bodies/0/corners') &&
+          err.shown.includes('bad.json:2:'), `a broken model's error: ${JSON.stringify(err)}`);
+    check(await page.evaluate(() => window.coons.model()) === before, 'a refused model leaves the model as it was');
+  }
   check(pageErrors.length === 0, 'page errors: ' + pageErrors.join(' | '));
   await browser.close();
   server.close();
