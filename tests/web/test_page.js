@@ -194,10 +194,13 @@ async function main() {
     await page.select('#constraint', 'free');
     const dragged = await page.evaluate(() => window.coons.model());
     const after = await page.evaluate(() => window.coons.controlPoints());
-    const q = after.reduce((b, p) => (Math.hypot(p.xyz[0] - cps[id].xyz[0], p.xyz[1] - cps[id].xyz[1]) <
-                                      Math.hypot(b.xyz[0] - cps[id].xyz[0], b.xyz[1] - cps[id].xyz[1]) ? p : b));
-    check(dragged !== text && q.xyz[0] === cps[id].xyz[0] && q.xyz[1] === cps[id].xyz[1] &&
-          q.xyz[2] !== cps[id].xyz[2], `a drag along z moved point ${id} from ${cps[id].xyz} to ${q.xyz}`);
+    // the points that moved are new places with the x and y of the dragged point
+    const key = (p) => p.xyz.join(',');
+    const was = new Set(cps.map(key));
+    const moved = after.filter((p) => !was.has(key(p)));
+    check(dragged !== text && moved.length > 0 &&
+          moved.every((p) => p.xyz[0] === cps[id].xyz[0] && p.xyz[1] === cps[id].xyz[1]),
+          `a drag along z of point ${id} at ${cps[id].xyz} moved points to ${moved.map(key).join(' ')}`);
     await page.click('#undo');
     check(await page.evaluate(() => window.coons.model()) === text, 'undo restores the model before the drag');
     await page.click('#redo');
@@ -207,8 +210,8 @@ async function main() {
     // moveControlPoint: the point (and its links) to an exact place
     const p0 = after[0], to = [p0.xyz[0] + 0.5, p0.xyz[1] - 0.25, p0.xyz[2] + 0.125];
     await page.evaluate((i, x) => window.coons.moveControlPoint(i, x), p0.id, to);
-    const moved = await page.evaluate(() => window.coons.controlPoints());
-    check(moved.some((p) => p.xyz.every((v, d) => Math.abs(v - to[d]) < 1e-12)), 'moveControlPoint puts the point there');
+    const placed = await page.evaluate(() => window.coons.controlPoints());
+    check(placed.some((p) => p.xyz.every((v, d) => Math.abs(v - to[d]) < 1e-12)), 'moveControlPoint puts the point there');
     const stl = Buffer.from(await page.evaluate(async () => Array.from(await window.coons.export('stl'))));
     const want = nativeStl(await page.evaluate(() => window.coons.model()), 'spool-moved');
     check(want !== null && Buffer.compare(stl, want) === 0, 'export("stl") after moveControlPoint is coons2stl\'s');
