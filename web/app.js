@@ -17,7 +17,7 @@ const PICK_PX = 12;
 
 const state = {
   text: '', doc: null, name: 'model', model: null, cps: null, tol: 0, diag: 1,
-  undo: [], redo: [], selected: -1, time: null, stats: { remesh: [] }, meshSeq: 0,
+  undo: [], redo: [], selected: -1, time: null, stats: { remesh: [] }, meshSeq: 0, note: '',
 };
 let api = null;
 
@@ -138,7 +138,7 @@ try {
     showMesh(r);
     state.stats.lastFull = r.ms;
     status(`${state.name}: ${state.triangles} triangles (tolerance ${state.tol.toPrecision(3)}), ` +
-           `${r.ms.toFixed(0)} ms in the worker`);
+           `${r.ms.toFixed(0)} ms in the worker` + state.note);
   };
 } catch (_) { worker = null; }
 function fullMesh() {
@@ -161,6 +161,7 @@ function showMesh(m) {
   wire.geometry.dispose();
   wire.geometry = new THREE.WireframeGeometry(g);
   state.triangles = m.indices.length / 3;
+  state.note = m.united ? '' : ` (shown unmerged: ${m.note})`;
   requestRender();
 }
 
@@ -282,7 +283,8 @@ function commit(text, doc, { tol = 0, fit = false, keepText = false } = {}) {
   showError(null);
   status(`${state.name}: ${model.bodies()} bod${model.bodies() === 1 ? 'y' : 'ies'}, ` +
          `${state.cps.points.length} control points, ${state.triangles} triangles ` +
-         `(${tol > 0 ? 'preview ' : ''}tolerance ${(tol > 0 ? tol : state.tol).toPrecision(3)}), ${ms.toFixed(0)} ms`);
+         `(${tol > 0 ? 'preview ' : ''}tolerance ${(tol > 0 ? tol : state.tol).toPrecision(3)}), ${ms.toFixed(0)} ms` +
+         state.note);
   return ms;
 }
 

@@ -64,14 +64,17 @@
       return takeOutput();
     }
     // The solid's triangles at `tolerance` for display: {positions
-    // (Float32Array xyz), indices (Uint32Array)}.
+    // (Float32Array xyz), indices (Uint32Array), united, note}.
     function mesh(model, tolerance) {
       if (M._cw_preview(model.ptr, tolerance || 0)) throw lastError();
       const nv = M._cw_preview_vertex_count(), nt = M._cw_preview_triangle_count();
       const pv = M._cw_preview_vertices() >> 3, pt = M._cw_preview_triangles() >> 2;
+      const united = !!M._cw_preview_united();
       return {
         positions: Float32Array.from(M.HEAPF64.subarray(pv, pv + 3 * nv)),
         indices: M.HEAPU32.slice(pt, pt + 3 * nt),
+        // false: a union the C core cannot make, shown as the bodies' shells
+        united, note: united ? '' : M.UTF8ToString(M._cw_error_message()),
       };
     }
     // The isoparametric surfaces direction (0 u, 1 v, 2 w) = values of

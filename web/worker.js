@@ -14,7 +14,7 @@ onmessage = async (ev) => {
     if (time !== null && m.morphs()) m.setTime(time);
     const t0 = performance.now();
     const r = api.mesh(m, tol);
-    postMessage({ seq, positions: r.positions, indices: r.indices, ms: performance.now() - t0 },
+    postMessage({ seq, positions: r.positions, indices: r.indices, united: r.united, note: r.note, ms: performance.now() - t0 },
                 [r.positions.buffer, r.indices.buffer]);
   } catch (e) {
     postMessage({ seq, error: e.message });

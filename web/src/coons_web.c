@@ -212,13 +212,43 @@ CW_EXPORT int cw_write_volume(const coons_model *m, int format, const char *name
 }
 
 /* The mesh the page shows: the solid at `tolerance` (<= 0: the model's),
- * kept until the next call; its arrays through cw_preview_*(). */
+ * kept until the next call; its arrays through cw_preview_*(). A union
+ * that needs CGAL, which the C core refuses (as coons2stl does), is shown
+ * as its bodies' shells, unmerged: cw_preview_united() is then 0 and
+ * cw_error_message() says why. */
+static int preview_united;
+
 CW_EXPORT int cw_preview(const coons_model *m, double tolerance)
 {
     coons_mesh_free(preview);
     preview = NULL;
-    return make_solid(m, tolerance, &preview);
+    preview_united = 1;
+    coons_status rc = make_solid(m, tolerance, &preview);
+    if (rc != COONS_E_UNSUPPORTED || coons_csg_is_available()) return rc;
+    coons_mesh_free(preview);
+    preview = NULL;
+    coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
+    so.tolerance = tolerance > 0 ? tolerance : coons_model_tolerance(m);
+    coons_error why = last_error;
+    /* each body alone (coons_model_sample() refuses overlapping bodies too) */
+    rc = coons_mesh_new(&preview, &last_error);
+    for (size_t i = 0; rc == COONS_OK && i < coons_model_body_count(m); i++) {
+        coons_mesh *one = NULL;
+        rc = coons_body_sample(coons_model_body(m, i), &so, coons_model_body_name(m, i), &one,
+                               &last_error);
+        if (rc == COONS_OK)
+            rc = coons_mesh_add_part(preview, coons_model_body_name(m, i), coons_mesh_vertices(one),
+                                     coons_mesh_vertex_count(one), coons_mesh_triangles(one),
+                                     coons_mesh_triangle_count(one), &last_error);
+        coons_mesh_free(one);
+    }
+    if (rc != COONS_OK) return rc;
+    last_error = why;
+    preview_united = 0;
+    return COONS_OK;
 }
+
+CW_EXPORT int cw_preview_united(void) { return preview_united; }
 
 CW_EXPORT size_t cw_preview_vertex_count(void)
 {
