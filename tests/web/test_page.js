@@ -65,7 +65,7 @@ async function main() {
   const browser = await puppeteer.launch({
     executablePath: CHROMIUM, headless: true,
     args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-           '--disable-gpu-sandbox', '--no-first-run', '--window-size=1100,760'],
+           '--disable-gpu-sandbox', '--disable-dev-shm-usage', '--no-first-run', '--window-size=1100,760'],
   });
   const t0 = Date.now();
   const page = await browser.newPage();
