@@ -271,19 +271,29 @@
   // The smallest change of the points of curve c (at JSON path cpath) not
   // yet moved that changes c(params[b]) by r[b] for every b; the paths
   // written go to fixes.
-  function adjustCurve(c, cpath, params, r, changed, fixes) {
+  // Points linked to other places are left alone when the others suffice
+  // (moving one would move its links and undo another curve's fit).
+  function adjustCurve(c, cpath, params, r, changed, fixes, shared) {
     if (r.every((v) => v.every((x) => Math.abs(x) === 0))) return;
     const base = cpath.join('/') + '/points/';
-    const free = c.points.map((_, k) => k).filter((k) => !changed.has(base + k));
+    if (shared && adjustCurve1(c, cpath, params, r, changed, fixes, (k) => !shared.has(base + k))) return;
+    adjustCurve1(c, cpath, params, r, changed, fixes, () => true);
+  }
+  function adjustCurve1(c, cpath, params, r, changed, fixes, allowed) {
+    const base = cpath.join('/') + '/points/';
+    const free = c.points.map((_, k) => k).filter((k) => !changed.has(base + k) && allowed(k));
+    if (!free.length) return false;
     const Phi = params.map((u) => { const phi = curveBasis(c, u); return phi ? free.map((k) => phi[k]) : null; });
-    if (Phi.some((row) => !row)) return;
-    // only the nodes some free point reaches take part
+    if (Phi.some((row) => !row)) return false;
+    // only the nodes some free point reaches take part; a node none reaches
+    // must need no change
     const rows = Phi.map((row, b) => b).filter((b) => Phi[b].some((x) => Math.abs(x) > 1e-14));
+    if (Phi.some((row, b) => !rows.includes(b) && r[b].some((x) => x !== 0))) return false;
     const G = rows.map((b) => rows.map((e) => Phi[b].reduce((acc, x, k) => acc + x * Phi[e][k], 0)));
     const delta = [[], [], []];
     for (let d = 0; d < 3; d++) {
       const y = solve(G, rows.map((b) => r[b][d]));
-      if (!y) return;
+      if (!y) return false;
       delta[d] = free.map((_, k) => rows.reduce((acc, b, i) => acc + Phi[b][k] * y[i], 0));
     }
     free.forEach((k, i) => {
@@ -294,12 +304,13 @@
       c.points[k] = p.length === 2 && z === 0 ? [p[0] + dx[0], p[1] + dx[1]] : [p[0] + dx[0], p[1] + dx[1], z];
       fixes.push(cpath.concat('points', k));
     });
+    return true;
   }
   // Curves that must meet at shared ends (the 12 edges of a body1 at its
   // 8 corners, the 4 boundary curves of a coons or hermite-coons patch):
   // where one that moved changed its end, the others' ends follow, their
   // other ends staying where they are (or following a moved curve there).
-  function repairCorners(list, changed, fixes) {
+  function repairCorners(list, changed, fixes, shared) {
     const isChanged = (p) => { const pre = p.join('/') + '/'; for (const k of changed) if (k.startsWith(pre)) return true; return false; };
     const target = new Map();
     for (const e of list) {
@@ -317,14 +328,14 @@
         const want = !tg ? [0, 0, 0] : tg.owner === e ? have : tg.delta;
         return [want[0] - have[0], want[1] - have[1], want[2] - have[2]];
       });
-      adjustCurve(e.c, e.path, e.ends.map(([t]) => t), r, changed, fixes);
+      adjustCurve(e.c, e.path, e.ends.map(([t]) => t), r, changed, fixes, shared);
     }
   }
   // Networks whose rows or columns changed: the other family is corrected
   // by the smallest change of its points (those not already moved) that
   // makes rows[j](s_i) = columns[i](t_j) again at every node. Returns the
   // JSON paths written.
-  function repairNetworks(before, doc, changed) {
+  function repairNetworks(before, doc, changed, shared) {
     const fixes = [];
     const isChanged = (prefix) => { for (const k of changed) if (k.startsWith(prefix + '/')) return true; return false; };
     function visit(node, path) {
@@ -339,13 +350,13 @@
           const corner = (a) => (f === 'u' ? [a, d1, d2] : f === 'v' ? [d1, a, d2] : [d1, d2, a]).join('');
           list.push({ c: node.edges[e], co: old().edges[e], path: path.concat('edges', e), ends: [[0, corner(0)], [1, corner(1)]] });
         }
-        repairCorners(list, changed, fixes);
+        repairCorners(list, changed, fixes, shared);
       }
       if ((node.type === 'coons' || node.type === 'hermite-coons') && node.boundary) {
         const ends = { t0: [[0, '00'], [1, '10']], t1: [[0, '01'], [1, '11']], s0: [[0, '00'], [1, '01']], s1: [[0, '10'], [1, '11']] };
         const list = Object.keys(ends).filter((k) => node.boundary[k])
           .map((k) => ({ c: node.boundary[k], co: old().boundary[k], path: path.concat('boundary', k), ends: ends[k] }));
-        repairCorners(list, changed, fixes);
+        repairCorners(list, changed, fixes, shared);
         if (node.type === 'hermite-coons' && node.cross) repairCross(node, path, old());
       }
       for (const k of Object.keys(node)) if (!SKIP.has(k) || k === 'cross') visit(node[k], path.concat(k));
@@ -365,7 +376,7 @@
           const have = curveDelta(c, co, end);
           r.push([want[0] - have[0], want[1] - have[1], want[2] - have[2]]);
         }
-        adjustCurve(c, path.concat('cross', k), [0, 1], r, changed, fixes);
+        adjustCurve(c, path.concat('cross', k), [0, 1], r, changed, fixes, shared);
       }
     }
     function fix(net, path) {
@@ -387,7 +398,7 @@
           const have = curveDelta(c, co, u);
           return [want[0] - have[0], want[1] - have[1], want[2] - have[2]];
         });
-        adjustCurve(c, path.concat(adjust, a), params, r, changed, fixes);
+        adjustCurve(c, path.concat(adjust, a), params, r, changed, fixes, shared);
       });
     }
     visit(doc, []);
@@ -429,8 +440,10 @@
       }
     }
     propagate([[start, xyz]]);
+    const shared = new Set();
+    cps.points.forEach((p) => { if (p.members.length > 1) p.members.forEach((m) => shared.add(key(m.path))); });
     for (let round = 0; round < 4; round++) {
-      const fixes = repairNetworks(before, doc, changed);
+      const fixes = repairNetworks(before, doc, changed, shared);
       if (!fixes.length) break;
       const queue = [];
       for (const path of fixes) {
