@@ -35,6 +35,10 @@ for _name in dir(lib):
 FACE_NAMES = ("u0", "u1", "v0", "v1", "w0", "w1")
 
 
+def _dp(a):
+    return ffi.NULL if a is None else ffi.cast("double *", ffi.from_buffer(a))
+
+
 def _str(p):
     return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
 
@@ -178,30 +182,30 @@ def body_at_time(b, t):
 
 
 def body_eval(b, q):
-    """q: C-contiguous float64 (n, 3) in [0,1] -> (n, 3)."""
+    """q: C-contiguous float64 (n, 3) in [0,1] -> (n, 3), in one C call
+    (coons_body_eval_points: bitwise coons_body_eval at each point)."""
     n = q.shape[0]
     res = np.empty((n, 3), dtype=np.float64)
-    pq = ffi.cast("double *", ffi.from_buffer(q))
-    po = ffi.cast("double *", ffi.from_buffer(res, require_writable=True))
-    f = lib.coons_body_eval
-    for i in range(n):
-        f(b, pq[3 * i], pq[3 * i + 1], pq[3 * i + 2], po + 3 * i)
+    err = new_error()
+    check(lib.coons_body_eval_points(b, n, _dp(q), _dp_out(res), ffi.NULL, ffi.NULL, err), err)
     return res
 
 
 def body_eval_jacobian(b, q):
-    """-> points (n, 3), jacobians (n, 3, 3) [row x_r, column q_c], det (n,)."""
+    """-> points (n, 3), jacobians (n, 3, 3) [row x_r, column q_c], det (n,):
+    coons_body_eval_jacobian at each point, in one C call."""
     n = q.shape[0]
     x = np.empty((n, 3), dtype=np.float64)
     jac = np.empty((n, 3, 3), dtype=np.float64)
     det = np.empty(n, dtype=np.float64)
-    pq = ffi.cast("double *", ffi.from_buffer(q))
-    px = ffi.cast("double *", ffi.from_buffer(x, require_writable=True))
-    pj = ffi.cast("double (*)[3]", ffi.from_buffer(jac, require_writable=True))
-    f = lib.coons_body_eval_jacobian
-    for i in range(n):
-        det[i] = f(b, pq[3 * i], pq[3 * i + 1], pq[3 * i + 2], px + 3 * i, pj + 3 * i)
+    err = new_error()
+    check(lib.coons_body_eval_points(b, n, _dp(q), _dp_out(x), _dp_out(jac), _dp_out(det), err),
+          err)
     return x, jac, det
+
+
+def _dp_out(a):
+    return ffi.cast("double *", ffi.from_buffer(a, require_writable=True))
 
 
 def body_eval_grid(b, u, v, w):
@@ -270,10 +274,6 @@ def body_new_bspline(degree, points, ku, kv, kw, weights):
 
 
 # ---- curves and patches (coons/curve.h, coons/patch.h) ---------------------
-
-def _dp(a):
-    return ffi.NULL if a is None else ffi.cast("double *", ffi.from_buffer(a))
-
 
 def _made(kind, fn, *args):
     out = ffi.new("coons_%s **" % kind)
