@@ -208,14 +208,13 @@ def _dp_out(a):
     return ffi.cast("double *", ffi.from_buffer(a, require_writable=True))
 
 
-def body_eval_grid(b, u, v, w):
+def body_eval_grid(b, u, v, w, threads=0):
+    """The grid on `threads` threads (0: every core; byte-identical for any
+    count: coons_body_eval_grid_threads)."""
     out = np.empty((len(u), len(v), len(w), 3), dtype=np.float64)
     err = new_error()
-    rc = lib.coons_body_eval_grid(b, ffi.cast("double *", ffi.from_buffer(u)), len(u),
-                                  ffi.cast("double *", ffi.from_buffer(v)), len(v),
-                                  ffi.cast("double *", ffi.from_buffer(w)), len(w),
-                                  ffi.cast("double *", ffi.from_buffer(out, require_writable=True)),
-                                  err)
+    rc = lib.coons_body_eval_grid_threads(b, _dp(u), len(u), _dp(v), len(v), _dp(w), len(w),
+                                          _dp_out(out), threads, err)
     check(rc, err)
     return out
 

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "body_impl.h"
+#include "parallel.h"
 
 coons_status coons__body_alloc(const coons__body_kind *kind, coons_blend blend,
                                coons_body **out, coons_error *err)
@@ -112,6 +113,54 @@ coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t n
         return coons__error_set(err, COONS_E_LIMIT,
                                 "body grid of %zu x %zu x %zu points is too large", nu, nv, nw);
     return b->kind->grid(b, u, nu, v, nv, w, nw, out, err);
+}
+
+typedef struct grid_run {
+    const coons_body *b;
+    const double *u, *v, *w;
+    size_t nv, nw;
+    double *out;
+    coons_status *st;
+    coons_error *err; /* one per run */
+} grid_run;
+
+static void grid_chunk(void *ctx, unsigned c, size_t lo, size_t hi)
+{
+    grid_run *g = ctx;
+    g->st[c] = g->b->kind->grid(g->b, g->u + lo, hi - lo, g->v, g->nv, g->w, g->nw,
+                                g->out + lo * g->nv * g->nw * 3, &g->err[c]);
+}
+
+coons_status coons_body_eval_grid_threads(const coons_body *b, const double *u, size_t nu,
+                                          const double *v, size_t nv, const double *w,
+                                          size_t nw, double *out, unsigned threads,
+                                          coons_error *err)
+{
+    unsigned k = coons__thread_count(threads);
+    if (k <= 1 || nu <= 1 || nv == 0 || nw == 0)
+        return coons_body_eval_grid(b, u, nu, v, nv, w, nw, out, err);
+    if (!u || !v || !w || !out)
+        return coons__error_set(err, COONS_E_INVALID, "body grid: NULL parameter or output");
+    size_t lim = SIZE_MAX / (3 * sizeof(double));
+    if (nv > lim / nu || nw > lim / (nu * nv))
+        return coons__error_set(err, COONS_E_LIMIT,
+                                "body grid of %zu x %zu x %zu points is too large", nu, nv, nw);
+    if (k > nu) k = (unsigned)nu;
+    coons_status *st = coons__calloc(k, sizeof *st);
+    coons_error *errs = coons__calloc(k, sizeof *errs);
+    if (!st || !errs) {
+        coons__free(st);
+        coons__free(errs);
+        return coons__error_nomem(err);
+    }
+    grid_run g = {b, u, v, w, nv, nw, out, st, errs};
+    coons__parallel_for(nu, k, grid_chunk, &g);
+    coons_status rc = COONS_OK;
+    for (unsigned c = 0; c < k && !rc; c++)
+        if ((rc = st[c]) && err) *err = errs[c];
+    coons__free(st);
+    coons__free(errs);
+    return rc;
 }
 
 const char *coons__body_edge_name(int e)

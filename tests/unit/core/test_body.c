@@ -690,6 +690,40 @@ static void test_grid_matches_points(void **state)
     }
 }
 
+/* coons_body_eval_grid_threads: byte for byte coons_body_eval_grid(),
+ * whatever the thread count (more threads than u values included). */
+static void test_grid_threads(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_body *bodies[TB_MAX_BODIES];
+    int nb = tb_all_bodies(bodies);
+    double u[11], v[5] = {1.0, 0.0, 0.123, 0.77, 1.3}, w[6] = {0.0, 0.25, 0.5, 0.6, 0.999, 1.0};
+    for (int i = 0; i < 11; i++) u[i] = (i * 7 % 11) / 10.0 - 0.05;
+    static double ref[11 * 5 * 6 * 3], out[11 * 5 * 6 * 3];
+    const unsigned threads[] = {0, 1, 2, 3, 8, 64};
+    for (int m = 0; m < nb; m++) {
+        assert_coons_ok(coons_body_eval_grid(bodies[m], u, 11, v, 5, w, 6, ref, &err), &err);
+        for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
+            memset(out, 0xff, sizeof out);
+            assert_coons_ok(coons_body_eval_grid_threads(bodies[m], u, 11, v, 5, w, 6, out,
+                                                         threads[t], &err),
+                            &err);
+            if (memcmp(ref, out, sizeof out))
+                fail_msg("body %d (%s): %u threads differ from one", m, tb_body_label(m),
+                         threads[t]);
+        }
+        assert_int_equal(coons_body_eval_grid_threads(bodies[m], u, 11, NULL, 5, w, 6, out, 4,
+                                                      &err),
+                         COONS_E_INVALID);
+        size_t big = (size_t)1 << (sizeof(size_t) * 4);
+        assert_int_equal(coons_body_eval_grid_threads(bodies[m], u, big, v, big, w, 6, out, 4,
+                                                      &err),
+                         COONS_E_LIMIT);
+        coons_body_free(bodies[m]);
+    }
+}
+
 /* coons_body_eval_points: bitwise coons_body_eval() point by point, and
  * coons_body_eval_jacobian() with the Jacobians; bad arguments refused. */
 static void test_eval_points(void **state)
@@ -845,6 +879,7 @@ int main(void)
         cmocka_unit_test(test_jacobian_fd),
         cmocka_unit_test(test_grid_matches_points),
         cmocka_unit_test(test_eval_points),
+        cmocka_unit_test(test_grid_threads),
         cmocka_unit_test(test_min_jacobian_matches_points),
         cmocka_unit_test(test_copy),
         cmocka_unit_test(test_alloc_failures),
