@@ -39,7 +39,7 @@
  *
  * The deviation is always measured: the largest distance between the form
  * and the construction (coons_curve_eval(), coons_patch_eval_grid(),
- * coons_body_eval_grid()) over a fixed grid of two points inside every knot
+ * coons_body_eval_grid()) over a fixed grid of three points inside every knot
  * span in every direction and the domain's ends; for exact forms it is
  * rounding (about 1e-15 of the size), for fitted ones at most `tol` there.
  * A fit is judged on these points only: between them the error may be

@@ -249,11 +249,12 @@ static void breaks(const coons_curve *c, coons__breaks *B)
     coons__breaks_knots(B, c->knots, c->n, c->degree);
 }
 
-/* Degree p over the knots; rational with weights (The NURBS Book, eq. 4.8). */
+/* Degree p over the knots; rational with weights that differ (The NURBS
+ * Book, eq. 4.8). */
 static void space(const coons_curve *c, coons__space *S)
 {
     S->degree = c->degree;
-    S->kind = c->w ? COONS__SPACE_NURBS : COONS__SPACE_POLY;
+    S->kind = coons__weights_space(c->w, c->n);
     S->cont = coons__knots_continuity(c->knots, c->n, c->degree);
 }
 

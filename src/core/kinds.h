@@ -73,6 +73,15 @@ static inline coons__space coons__space_poly(int p)
     return S;
 }
 
+/* NURBS for weights w[0..n-1], POLY for none or all equal (the quotient
+ * is then the polynomial itself). */
+static inline coons__space_kind coons__weights_space(const double *w, size_t n)
+{
+    for (size_t i = 1; w && i < n; i++)
+        if (w[i] != w[0]) return COONS__SPACE_NURBS;
+    return COONS__SPACE_POLY;
+}
+
 /* The degree of a blend pair (basis.h): 1 linear, 3 cubic. */
 static inline int coons__blend_degree(coons_blend blend)
 {

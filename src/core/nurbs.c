@@ -290,22 +290,23 @@ static coons_status interpolate(const target *T, coons_nurbs *n, coons_error *er
     return rc;
 }
 
-/* Check parameters of direction d: both ends and two Gauss points inside
- * every knot span (not the Greville points the interpolant matches). */
+/* Check parameters of direction d: both ends, the midpoint and the two
+ * Gauss points of every knot span (the Gauss points are never Greville
+ * points, where an interpolant matches by construction). */
 static coons_status check_params(const coons_nurbs *n, int d, double **out, size_t *m,
                                  coons_error *err)
 {
-    static const double G[2] = {0.21132486540518713, 0.78867513459481287};
+    static const double G[3] = {0.21132486540518713, 0.5, 0.78867513459481287};
     size_t cnt = n->count[d];
     int p = n->degree[d];
-    double *x = coons__malloc_array(2 * cnt + 2, sizeof *x);
+    double *x = coons__malloc_array(3 * cnt + 2, sizeof *x);
     if (!x) return coons__error_nomem(err);
     size_t k = 0;
     x[k++] = 0.0;
     for (size_t i = (size_t)p; i < cnt; i++) {
         double a = n->knots[d][i], b = n->knots[d][i + 1];
         if (!(b > a)) continue;
-        for (int q = 0; q < 2; q++) x[k++] = a + G[q] * (b - a);
+        for (int q = 0; q < 3; q++) x[k++] = a + G[q] * (b - a);
     }
     x[k++] = 1.0;
     *out = x;

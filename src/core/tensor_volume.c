@@ -266,11 +266,11 @@ static void free_data(coons_body *b)
     coons__free(b->w);
 }
 
-/* Degrees deg[d]; rational with weights. */
+/* Degrees deg[d]; rational with weights that differ. */
 static void space(const coons_body *b, int d, coons__space *S)
 {
     S->degree = b->deg[d];
-    S->kind = b->w ? COONS__SPACE_NURBS : COONS__SPACE_POLY;
+    S->kind = coons__weights_space(b->w, b->n[0] * b->n[1] * b->n[2]);
     S->cont = coons__knots_continuity(b->knots[d], b->n[d], b->deg[d]);
 }
 
