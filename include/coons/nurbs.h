@@ -19,17 +19,21 @@
  *   the Coons body 2 defined by B-spline boundary surfaces is a B-spline
  *   body; the same holds for the other constructions, whose blends are
  *   polynomials. Their form uses in each direction the highest degree p of
- *   the data and blends there, a knot of multiplicity p at every breakpoint
- *   (a C0 space, which contains every such function) and clamped ends; the
+ *   the data and blends there, a knot of multiplicity p - c at every
+ *   breakpoint, c the continuity all the parts keep there (C2 for a Coons
+ *   cubic or a cubic B-spline with simple knots, C0 in general: such a
+ *   space contains every part, hence their sum), and clamped ends; the
  *   control points are found by interpolation at the tensor-product Greville
  *   points, one banded collocation system per direction (de Boor, "A
  *   Practical Guide to Splines", ch. XIII and XVII: the collocation matrix
  *   at the Greville points is totally positive, so elimination needs no
  *   pivoting). ::coons_nurbs.exact is 1.
- * - NURBS: B-spline curves, surfaces and volumes with weights, their affine
- *   images, reversals and reparametrisations, are copied (knots mapped to
- *   [0,1]); a face of a rational volume is its homogeneous section. Body 2
- *   faces are the body's face patches. exact is 1.
+ * - NURBS: B-spline curves, surfaces and volumes with weights (not all
+ *   equal), their affine images, reversals and reparametrisations, are
+ *   copied (knots mapped to [0,1]); a face of a rational volume is its
+ *   homogeneous section; a face of a body 2 with rational faces is that
+ *   face patch's form (Coons interpolation: the body there is the patch).
+ *   exact is 1.
  * - none: shells (the offset along the unit normal), Boolean sums and bodies
  *   that mix rational curves or faces, morphs with such keys. These are
  *   fitted: cubic in every direction that has no exact space (a knot of
@@ -104,9 +108,12 @@ COONS_EXPORT coons_status coons_curve_to_nurbs(const coons_curve *c, double tol,
 
 /**
  * The form of a patch over (s,t) in [0,1]^2 (dim 2, direction 0 = s).
- * Same parameters and statuses as coons_curve_to_nurbs(); a fit that does
- * not reach `tol` within ::COONS_NURBS_MAX_POINTS is ::COONS_E_LIMIT, with
- * the deviation reached in the message.
+ * Same parameters as coons_curve_to_nurbs().
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument; tol not finite and
+ *         > 0 when a fit is needed), ::COONS_E_LIMIT (too many control
+ *         points; a fit that does not reach `tol` within
+ *         ::COONS_NURBS_MAX_POINTS, with the deviation reached in the
+ *         message), ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_patch_to_nurbs(const coons_patch *p, double tol,
                                                coons_nurbs *out, coons_error *err);
@@ -127,7 +134,11 @@ COONS_EXPORT coons_status coons_body_face_to_nurbs(const coons_body *b, int face
 /**
  * The whole body as a trivariate tensor-product form over (u,v,w) (dim 3):
  * exact for the polynomial bodies and rational volumes listed above
- * (seed 000 §2.4), fitted otherwise. Statuses as coons_patch_to_nurbs().
+ * (seed 000 §2.4), fitted otherwise (a shell is fitted in u and v and
+ * linear in w).
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL argument; no usable tol for a
+ *         fit), ::COONS_E_LIMIT (as coons_patch_to_nurbs()),
+ *         ::COONS_E_NOMEM.
  */
 COONS_EXPORT coons_status coons_body_to_nurbs(const coons_body *b, double tol, coons_nurbs *out,
                                               coons_error *err);
