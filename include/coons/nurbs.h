@@ -41,6 +41,11 @@
  *   doubled until the deviation is within the tolerance), the exact space in
  *   the others (a shell is linear through its thickness). exact is 0.
  *
+ * An exact form is claimed (exact 1) only when its measured deviation is
+ * also at most 1e-10 of its control net's size; one that is not (data that
+ * failed to report a breakpoint) is refitted within `tol` when `tol` > 0, or
+ * returned as it is, with exact 0 either way.
+ *
  * The deviation is always measured: the largest distance between the form
  * and the construction (coons_curve_eval(), coons_patch_eval_grid(),
  * coons_body_eval_grid()) over a fixed grid of three points inside every knot

@@ -585,6 +585,22 @@ static coons_status check_tol(double tol, coons_error *err)
     return COONS_OK;
 }
 
+/* The diagonal of the control net's box. */
+static double net_size(const coons_nurbs *n)
+{
+    double lo[3], hi[3];
+    bbox_empty(lo, hi);
+    for (size_t i = 0, m = nurbs_size(n); i < m; i++) bbox_add(lo, hi, n->points + 3 * i);
+    return v3_dist(lo, hi);
+}
+
+/* An exact form whose measured deviation is more than rounding is not
+ * claimed exact (a breakpoint the data did not report would show so). */
+static int confirmed(const coons_nurbs *n)
+{
+    return n->deviation <= 1e-10 * net_size(n);
+}
+
 static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coons_error *err)
 {
     coons__space S[3] = {{0}};
@@ -614,7 +630,7 @@ static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coon
             coons_nurbs_free(&V);
         }
         if (!rc) rc = measure(T, out, err);
-        if (!rc) out->exact = 1;
+        if (!rc) out->exact = confirmed(out);
         return rc;
     }
     /* Body 2's faces are its face patches (Coons interpolation). */
@@ -631,12 +647,21 @@ static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coon
         if (B[d].n >= COONS_NURBS_MAX_POINTS)
             rc = coons__error_set(err, COONS_E_LIMIT, "nurbs: %zu breakpoints in direction %d",
                                   B[d].n, d);
+    int refit = 0;
     if (!rc && all_poly) {
         rc = in_space(T, S, B, 1, 0, out, err);
-        out->exact = 1;
-    } else if (!rc) {
+        out->exact = !rc && confirmed(out);
+        if (!rc && !out->exact && !(out->deviation <= tol) && tol > 0.0 && isfinite(tol)) {
+            refit = 1;
+            for (int d = 0; d < T->dim; d++) {
+                S[d].kind = COONS__SPACE_NONE;
+                if (S[d].degree < 3) S[d].degree = 3;
+            }
+        }
+    }
+    if (!rc && (!all_poly || refit)) {
         for (int d = 0; d < T->dim; d++)
-            if (S[d].kind != COONS__SPACE_POLY) S[d].degree = 3;
+            if (S[d].kind != COONS__SPACE_POLY && !refit) S[d].degree = 3;
         double last = INFINITY;
         for (size_t sub = 4;; sub *= 2) {
             coons_nurbs_free(out);

@@ -393,6 +393,17 @@ static void test_too_small_space(void **state)
     assert_coons_ok(coons__nurbs_in_space(pl, NULL, NULL, 1, 0, &N, &err), &err);
     assert_true(N.deviation < 1e-15);
     coons_nurbs_free(&N);
+    /* a body 1 of cubic B-spline edges in degree 1; in degree 3 it fits */
+    coons_model *m = test_source_model("examples/body1-bspline-edges.json");
+    const coons_body *b = coons_model_body(m, 0);
+    assert_coons_ok(coons__nurbs_in_space(NULL, NULL, b, 1, 0, &N, &err), &err);
+    printf("body 1 in degree 1: deviation %.3g\n", N.deviation);
+    assert_true(N.deviation > 1e-6);
+    coons_nurbs_free(&N);
+    assert_coons_ok(coons__nurbs_in_space(NULL, NULL, b, 3, 0, &N, &err), &err);
+    assert_true(N.deviation < 1e-12);
+    coons_nurbs_free(&N);
+    coons_model_free(m);
     coons_curve_free(c);
     coons_curve_free(pl);
 }
