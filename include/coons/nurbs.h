@@ -9,11 +9,9 @@
  * Which constructions are exact. Between the breakpoints of its data (knots,
  * segment ends, network nodes) every construction of libcoons except the
  * shell is a polynomial in each parameter, or a NURBS over its own weights:
- * - polynomial: line, polyline, Bezier, Hermite, Coons cubic, clamped cubic
- *   and polynomial B-spline curves; bilinear, ruled, Coons (linear and cubic
+ * - polynomial: Coons cubic curves; bilinear, ruled, Coons (linear and cubic
  *   blend) and Hermite Coons patches and networks of polynomial curves;
- *   Bezier and polynomial B-spline surfaces; bodies 0, 1 and 2 of polynomial
- *   data, polynomial tensor volumes, morphs of polynomial keys, and the
+ *   bodies 0, 1 and 2 of polynomial data, morphs of polynomial keys, and the
  *   affine images and reparametrisations of all of these. Seed 000 §2.4
  *   (Ďurikovič & Czanner, "Modelling with three types of Coons bodies"):
  *   the Coons body 2 defined by B-spline boundary surfaces is a B-spline
@@ -28,12 +26,15 @@
  *   Practical Guide to Splines", ch. XIII and XVII: the collocation matrix
  *   at the Greville points is totally positive, so elimination needs no
  *   pivoting). ::coons_nurbs.exact is 1.
- * - NURBS: B-spline curves, surfaces and volumes with weights (not all
- *   equal), their affine images, reversals and reparametrisations, are
- *   copied (knots mapped to [0,1]); a face of a rational volume is its
- *   homogeneous section; a face of a body 2 with rational faces is that
- *   face patch's form (Coons interpolation: the body there is the patch).
- *   exact is 1.
+ * - control nets: B-spline-backed curves (line, polyline, Bezier, Hermite,
+ *   clamped cubic, B-spline), Bezier and B-spline surfaces and volumes,
+ *   with or without weights (NURBS: weights not all equal), their affine
+ *   images, reversals and reparametrisations, are copied rather than
+ *   interpolated (knots mapped to [0,1]; the copy keeps the digits of high
+ *   degrees that interpolation at equally spaced points would lose); a face
+ *   of a volume is its homogeneous section; a face of a body 2 with
+ *   rational faces is that face patch's form (Coons interpolation: the
+ *   body there is the patch). exact is 1.
  * - none: shells (the offset along the unit normal), Boolean sums and bodies
  *   that mix rational curves or faces, morphs with such keys. These are
  *   fitted: cubic in every direction that has no exact space (a knot of

@@ -459,6 +459,31 @@ static coons_status transpose(coons_nurbs *n, coons_error *err)
     return COONS_OK;
 }
 
+/* Whether the object is its own control net (a B-spline-backed type,
+ * through affine images, reversals and reparametrisations): then its form
+ * is a copy, exact and as well conditioned as the data (interpolation at
+ * equally spaced Greville points loses digits in the control points of
+ * high degrees, though not in the values). */
+static int curve_is_net(const coons_curve *c)
+{
+    while (c->kind == &coons__curve_transformed_kind || c->kind == &coons__curve_reversed_kind)
+        c = c->inner;
+    return c->knots != NULL && c->pts != NULL && !c->inner;
+}
+
+static int patch_is_net(const coons_patch *p)
+{
+    while (p->kind == &coons__patch_transformed_kind || p->kind == &coons__patch_reparam_kind)
+        p = p->inner;
+    return p->kind == &coons__bspline_surface_kind || p->kind == &coons__bezier_surface_kind;
+}
+
+static int body_is_net(const coons_body *b)
+{
+    while (b->kind == &coons__body_transformed_kind) b = b->inner;
+    return b->kind == &coons__bspline_volume_kind || b->kind == &coons__bezier_volume_kind;
+}
+
 static coons_status copy_curve(const coons_curve *c, coons_nurbs *n, coons_error *err)
 {
     coons_status rc;
@@ -492,11 +517,22 @@ static coons_status copy_patch(const coons_patch *p, coons_nurbs *n, coons_error
         if (p->flip_t) flip(n, 1);
         return p->swap ? transpose(n, err) : COONS_OK;
     }
-    if (!p->ks || !p->kt)
-        return coons__error_set(err, COONS_E_INTERNAL, "nurbs: a rational patch without knots");
     nurbs_empty(n, 2);
-    if ((rc = copy_knots(n, 0, p->ks, p->ns, p->ps, err)) ||
-        (rc = copy_knots(n, 1, p->kt, p->nt, p->pt, err)))
+    if (!p->ks) { /* Bezier: knots 0^(p+1) 1^(p+1) */
+        for (int d = 0; d < 2; d++) {
+            int deg = d ? p->pt : p->ps;
+            double *k = coons__malloc_array(2 * (size_t)deg + 2, sizeof *k);
+            if (!k) return coons__error_nomem(err);
+            for (int i = 0; i <= deg; i++) {
+                k[i] = 0.0;
+                k[deg + 1 + i] = 1.0;
+            }
+            n->knots[d] = k;
+            n->degree[d] = deg;
+            n->count[d] = (size_t)deg + 1;
+        }
+    } else if ((rc = copy_knots(n, 0, p->ks, p->ns, p->ps, err)) ||
+               (rc = copy_knots(n, 1, p->kt, p->nt, p->pt, err)))
         return rc;
     return copy_net(n, p->pts, p->w, err);
 }
@@ -615,7 +651,8 @@ static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coon
         all_poly &= S[d].kind == COONS__SPACE_POLY;
         all_nurbs &= S[d].kind == COONS__SPACE_NURBS;
     }
-    if (all_nurbs) {
+    int is_net = T->c ? curve_is_net(T->c) : T->p ? patch_is_net(T->p) : body_is_net(T->b);
+    if (all_nurbs || (all_poly && is_net)) {
         out->exact = 1;
         if (T->c)
             rc = copy_curve(T->c, out, err);

@@ -231,6 +231,12 @@ static void test_bezier_curve(void **state)
     assert_true(N.deviation < 1e-14);
     coons_nurbs_free(&N);
     assert_null(N.points);
+    /* the form copies the net; the collocation itself (the test hook, in
+     * the curve's own space) gives the same points */
+    assert_coons_ok(coons__nurbs_in_space(c, NULL, NULL, 4, 0, &N, &err), &err);
+    assert_int_equal(N.count[0], 5);
+    for (int i = 0; i < 5; i++) assert_vec3_near(N.points + 3 * i, P[i], 1e-14);
+    coons_nurbs_free(&N);
     coons_curve_free(c);
 }
 
