@@ -631,10 +631,26 @@ static double net_size(const coons_nurbs *n)
 }
 
 /* An exact form whose measured deviation is more than rounding is not
- * claimed exact (a breakpoint the data did not report would show so). */
-static int confirmed(const coons_nurbs *n)
+ * claimed exact (a breakpoint the data did not report would show so).
+ * The scale is the largest of the net's and the object's control box and
+ * the coordinates' magnitude (a collapsed face has a box of size 0; the
+ * rounding of a point scales with its coordinates). */
+static int confirmed(const target *T, const coons_nurbs *n)
 {
-    return n->deviation <= 1e-10 * net_size(n);
+    double lo[3], hi[3];
+    if (T->c)
+        coons_curve_control_bbox(T->c, lo, hi);
+    else if (T->p)
+        coons_patch_control_bbox(T->p, lo, hi);
+    else
+        coons_body_control_bbox(T->b, lo, hi);
+    double size = v3_dist(lo, hi), ns = net_size(n);
+    if (!(size >= ns)) size = ns;
+    for (int k = 0; k < 3; k++) {
+        if (fabs(lo[k]) > size) size = fabs(lo[k]);
+        if (fabs(hi[k]) > size) size = fabs(hi[k]);
+    }
+    return n->deviation <= 1e-10 * size;
 }
 
 static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coons_error *err)
@@ -667,7 +683,7 @@ static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coon
             coons_nurbs_free(&V);
         }
         if (!rc) rc = measure(T, out, err);
-        if (!rc) out->exact = confirmed(out);
+        if (!rc) out->exact = confirmed(T, out);
         return rc;
     }
     /* Body 2's faces are its face patches (Coons interpolation). */
@@ -675,7 +691,7 @@ static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coon
         rc = coons_patch_to_nurbs(T->b->face[T->face], tol, out, err);
         int exact = out->exact;
         if (!rc) rc = measure(T, out, err);
-        out->exact = exact;
+        out->exact = exact && !rc && confirmed(T, out);
         return rc;
     }
     if (!all_poly && (rc = check_tol(tol, err))) return rc;
@@ -687,7 +703,7 @@ static coons_status to_nurbs(const target *T, double tol, coons_nurbs *out, coon
     int refit = 0;
     if (!rc && all_poly) {
         rc = in_space(T, S, B, 1, 0, out, err);
-        out->exact = !rc && confirmed(out);
+        out->exact = !rc && confirmed(T, out);
         if (!rc && !out->exact && !(out->deviation <= tol) && tol > 0.0 && isfinite(tol)) {
             refit = 1;
             for (int d = 0; d < T->dim; d++) {

@@ -16,6 +16,7 @@
  *   breakpoints) shows a large deviation: the measurement can fail;
  * - a shell face and a Coons patch with a rational side are fitted
  *   (exact 0) within the tolerance, confirmed at other points;
+ * - a collapsed face (the nail's tip) is exact, its net one point;
  * - bad arguments, allocation failures.
  */
 #include <dirent.h>
@@ -512,6 +513,30 @@ static void test_bad_args(void **state)
     coons_body_free(b);
 }
 
+/* The nail: a body 2 of NURBS faces whose w0 face collapses to its tip.
+ * Every face is exact (the face patches' nets), the collapsed one a net
+ * of coincident points at the tip. */
+static void test_collapsed_face(void **state)
+{
+    (void)state;
+    coons_model *m = test_source_model("examples/nail.json");
+    const coons_body *b = coons_model_body(m, 0);
+    const double tip[3] = {0, 0, 12};
+    for (int f = 0; f < 6; f++) {
+        coons_nurbs N = {0};
+        coons_error err = COONS_ERROR_INIT;
+        assert_coons_ok(coons_body_face_to_nurbs(b, f, 1e-9, &N, &err), &err);
+        assert_int_equal(N.exact, 1);
+        assert_non_null(N.weights);
+        assert_true(face_error(b, f, &N, 500, 1) < 1e-12);
+        if (f == COONS_FACE_W0)
+            for (size_t i = 0; i < N.count[0] * N.count[1]; i++)
+                assert_vec3_near(N.points + 3 * i, tip, 0.0);
+        coons_nurbs_free(&N);
+    }
+    coons_model_free(m);
+}
+
 static void test_alloc_failures(void **state)
 {
     (void)state;
@@ -545,6 +570,7 @@ int main(void)
         cmocka_unit_test(test_bilinear),       cmocka_unit_test(test_rational_copy),
         cmocka_unit_test(test_too_small_space), cmocka_unit_test(test_fits),
         cmocka_unit_test(test_bad_args),       cmocka_unit_test(test_alloc_failures),
+        cmocka_unit_test(test_collapsed_face),
         cmocka_unit_test(test_examples),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
