@@ -477,6 +477,16 @@ static void test_fits(void **state)
     coons_body_free(sh);
     coons_patch_free(p);
     fx_boundary_free(&B);
+    /* a tolerance out of reach: the size cap, said so, nothing returned */
+    coons_model *m = test_source_model("examples/hood-shell.json");
+    assert_int_equal(coons_body_face_to_nurbs(coons_model_body(m, 0), COONS_FACE_W0, 1e-13, &N,
+                                              &err),
+                     COONS_E_LIMIT);
+    printf("out of reach: %s\n", err.message);
+    assert_true(strstr(err.message, "deviation") != NULL);
+    assert_null(N.points);
+    assert_int_equal(N.dim, 0);
+    coons_model_free(m);
 }
 
 static void test_bad_args(void **state)
