@@ -174,3 +174,10 @@ const char *coons__body_face_name(int f)
     const char *n = coons_body_face_name(f);
     return n ? n : "?";
 }
+
+coons__space coons__body_space(const coons_body *b, int d)
+{
+    coons__space S = {3, COONS__SPACE_NONE, 0};
+    if (b->kind->space) b->kind->space(b, d, &S);
+    return S;
+}
