@@ -33,6 +33,7 @@
 #include "coons/curve.h"
 #include "coons/patch.h"
 #include "coons/body.h"
+#include "coons/nurbs.h"
 #include "coons/model.h"
 #include "coons/mesh.h"
 #include "coons/sample.h"

@@ -86,16 +86,19 @@ class Body:
             _, _, det = _lib.body_eval_jacobian(b, q)
         return float(det[0]) if single else det
 
-    def grid(self, u, v, w, time=None):
+    def grid(self, u, v, w, time=None, threads=None):
         """Points on the tensor grid of 1-D parameter arrays: ->
         (len(u), len(v), len(w), 3); [i, j, k] is the point at (u[i], v[j], w[k])
-        (equal to eval within a few ulp: the grid reuses basis values)."""
+        (equal to eval within a few ulp: the grid reuses basis values).
+        ``threads``: None or 0 every core, else that many; the result is the
+        same, byte for byte, for every count."""
         u, v, w = (_args.vector(a, n) for a, n in ((u, "u"), (v, "v"), (w, "w")))
+        nthreads = 0 if threads is None else _args.count(threads, "threads", 0, 1024)
         if len(u) * len(v) * len(w) > _args.MAX_POINTS:
             raise _args.LimitError("grid: %d points, more than %d in one call"
                                    % (len(u) * len(v) * len(w), _args.MAX_POINTS))
         with self._ptr(_args.time(time)) as b:
-            return _lib.body_eval_grid(b, u, v, w)
+            return _lib.body_eval_grid(b, u, v, w, nthreads)
 
     def volume(self, rel_tol=1e-9, time=None):
         """The body's signed volume, the integral of det J over [0, 1]^3, to

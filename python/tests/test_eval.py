@@ -83,6 +83,9 @@ def test_grid_within_4_ulp_of_eval(example_file):
         # groups its point as its grid does (src/core/body2.c), summed term
         # by term it was up to 17 ulp off
         assert np.all(np.abs(g - e) <= 4 * np.spacing(np.abs(e).max())), b.name
+        # the same bytes on 1, 2 and 5 threads
+        for n in (1, 2, 5):
+            assert np.array_equal(b.grid(u, v, w, threads=n), g), (b.name, n)
 
 
 def test_volume_is_integral_of_det_j():

@@ -5,7 +5,10 @@
  * the type's row (kinds.h). The types live in body0.c (T), body1.c (C1),
  * body2.c (C2) and tensor_volume.c (the tensor-product solid of section 2).
  */
+#include <string.h>
+
 #include "body_impl.h"
+#include "parallel.h"
 
 coons_status coons__body_alloc(const coons__body_kind *kind, coons_blend blend,
                                coons_body **out, coons_error *err)
@@ -73,6 +76,29 @@ double coons_body_eval_jacobian(const coons_body *b, double u, double v, double 
     return v3_dot(d[0], x);
 }
 
+coons_status coons_body_eval_points(const coons_body *b, size_t n, const double *uvw,
+                                    double *xyz, double *jac, double *det, coons_error *err)
+{
+    if (!b) return coons__error_set(err, COONS_E_INVALID, "body points: NULL body");
+    if (n && (!uvw || !xyz))
+        return coons__error_set(err, COONS_E_INVALID, "body points: NULL parameters or output");
+    if (!jac && !det) {
+        for (size_t i = 0; i < n; i++) {
+            const double *q = uvw + 3 * i;
+            b->kind->eval(b, clamp01(q[0]), clamp01(q[1]), clamp01(q[2]), xyz + 3 * i, NULL);
+        }
+        return COONS_OK;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const double *q = uvw + 3 * i;
+        double J[3][3];
+        double d = coons_body_eval_jacobian(b, q[0], q[1], q[2], xyz + 3 * i, J);
+        if (jac) memcpy(jac + 9 * i, J, sizeof J);
+        if (det) det[i] = d;
+    }
+    return COONS_OK;
+}
+
 coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t nu,
                                   const double *v, size_t nv, const double *w, size_t nw,
                                   double *out, coons_error *err)
@@ -89,6 +115,54 @@ coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t n
     return b->kind->grid(b, u, nu, v, nv, w, nw, out, err);
 }
 
+typedef struct grid_run {
+    const coons_body *b;
+    const double *u, *v, *w;
+    size_t nv, nw;
+    double *out;
+    coons_status *st;
+    coons_error *err; /* one per run */
+} grid_run;
+
+static void grid_chunk(void *ctx, unsigned c, size_t lo, size_t hi)
+{
+    grid_run *g = ctx;
+    g->st[c] = g->b->kind->grid(g->b, g->u + lo, hi - lo, g->v, g->nv, g->w, g->nw,
+                                g->out + lo * g->nv * g->nw * 3, &g->err[c]);
+}
+
+coons_status coons_body_eval_grid_threads(const coons_body *b, const double *u, size_t nu,
+                                          const double *v, size_t nv, const double *w,
+                                          size_t nw, double *out, unsigned threads,
+                                          coons_error *err)
+{
+    unsigned k = coons__thread_count(threads);
+    if (k <= 1 || nu <= 1 || nv == 0 || nw == 0)
+        return coons_body_eval_grid(b, u, nu, v, nv, w, nw, out, err);
+    if (!u || !v || !w || !out)
+        return coons__error_set(err, COONS_E_INVALID, "body grid: NULL parameter or output");
+    size_t lim = SIZE_MAX / (3 * sizeof(double));
+    if (nv > lim / nu || nw > lim / (nu * nv))
+        return coons__error_set(err, COONS_E_LIMIT,
+                                "body grid of %zu x %zu x %zu points is too large", nu, nv, nw);
+    if (k > nu) k = (unsigned)nu;
+    coons_status *st = coons__calloc(k, sizeof *st);
+    coons_error *errs = coons__calloc(k, sizeof *errs);
+    if (!st || !errs) {
+        coons__free(st);
+        coons__free(errs);
+        return coons__error_nomem(err);
+    }
+    grid_run g = {b, u, v, w, nv, nw, out, st, errs};
+    coons__parallel_for(nu, k, grid_chunk, &g);
+    coons_status rc = COONS_OK;
+    for (unsigned c = 0; c < k && !rc; c++)
+        if ((rc = st[c]) && err) *err = errs[c];
+    coons__free(st);
+    coons__free(errs);
+    return rc;
+}
+
 const char *coons__body_edge_name(int e)
 {
     const char *n = coons_body_edge_name(e);
@@ -99,4 +173,11 @@ const char *coons__body_face_name(int f)
 {
     const char *n = coons_body_face_name(f);
     return n ? n : "?";
+}
+
+coons__space coons__body_space(const coons_body *b, int d)
+{
+    coons__space S = {3, COONS__SPACE_NONE, 0};
+    if (b->kind->space) b->kind->space(b, d, &S);
+    return S;
 }

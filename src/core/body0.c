@@ -118,5 +118,12 @@ static coons_status grid(const coons_body *b, const double *u, size_t nu, const 
 }
 
 /* The eight corners are all its data: no breakpoints, nothing owned. */
+/* The blends (seed 000 section 2.2). */
+static void space(const coons_body *b, int d, coons__space *S)
+{
+    (void)d;
+    *S = coons__space_poly(coons__blend_degree(b->blend));
+}
+
 const coons__body_kind coons__body0_kind = {
-    .type = COONS_BODY_BODY0, .eval = eval, .grid = grid};
+    .type = COONS_BODY_BODY0, .eval = eval, .grid = grid, .space = space};

@@ -255,6 +255,14 @@ static void free_data(coons_body *b)
     for (int e = 0; e < 12; e++) coons_curve_free(b->edge[e]);
 }
 
+/* The blends and the four edges along d (the others enter through the
+ * blends of d). */
+static void space(const coons_body *b, int d, coons__space *S)
+{
+    *S = coons__space_poly(coons__blend_degree(b->blend));
+    for (int e = 0; e < 4; e++) coons__space_join(S, coons__curve_space(b->edge[4 * d + e]));
+}
+
 const coons__body_kind coons__body1_kind = {
     .type = COONS_BODY_BODY1, .eval = eval, .grid = grid, .breaks = breaks,
-    .copy = copy_data, .free = free_data};
+    .copy = copy_data, .free = free_data, .space = space};

@@ -605,6 +605,18 @@ static void breaks(const coons_body *b, int d, coons__breaks *B)
     for (int m = 0; m < 4; m++) coons__patch_breaks(b->face[face[d][m]], sdir[d][m], B);
 }
 
+/* The blends and the faces along d (their edges are the faces' boundary
+ * curves; seed 000 section 2.4: a Coons body 2 of B-spline faces is a
+ * B-spline body). */
+static void space(const coons_body *b, int d, coons__space *S)
+{
+    static const int face[3][4] = {{2, 3, 4, 5}, {0, 1, 4, 5}, {0, 1, 2, 3}};
+    static const int sdir[3][4] = {{0, 0, 0, 0}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+    *S = coons__space_poly(coons__blend_degree(b->blend));
+    for (int m = 0; m < 4; m++)
+        coons__space_join(S, coons__patch_space(b->face[face[d][m]], sdir[d][m]));
+}
+
 static coons_status copy_data(const coons_body *b, coons_body *d, coons_error *err)
 {
     for (int f = 0; f < 6; f++) d->face[f] = NULL;
@@ -623,4 +635,4 @@ static void free_data(coons_body *b)
 
 const coons__body_kind coons__body2_kind = {
     .type = COONS_BODY_BODY2, .eval = eval, .grid = grid, .det_grid = det_grid,
-    .breaks = breaks, .copy = copy_data, .free = free_data};
+    .breaks = breaks, .copy = copy_data, .free = free_data, .space = space};

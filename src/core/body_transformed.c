@@ -61,9 +61,14 @@ static coons_status copy(const coons_body *b, coons_body *d, coons_error *err)
 
 static void release(coons_body *b) { coons_body_free(b->inner); }
 
+static void space(const coons_body *b, int d, coons__space *S)
+{
+    *S = coons__body_space(b->inner, d);
+}
+
 const coons__body_kind coons__body_transformed_kind = {
     COONS_BODY_BODY0, /* unused: coons_body_kind() reports the inner type */
-    eval, grid, det_grid, breaks, copy, release,
+    eval, grid, det_grid, breaks, copy, release, space,
 };
 
 coons_status coons_body_new_transformed(const coons_body *b, const double *m,

@@ -122,6 +122,20 @@ void coons__boolsum_control_bbox(const coons_patch *p, double lo[3], double hi[3
 
 /* T0, T1 and the cross curves x_t(s,0), x_t(s,1) run along s; S0, S1 and
  * x_s(0,t), x_s(1,t) along t (a ruled patch has only T0 = c0, T1 = c1). */
+/* The blends (Hermite: cubic) times polynomials of the other parameter,
+ * plus the curves (and cross curves) running along dir: their spaces
+ * joined (a rational curve makes the sum NONE: the terms' denominators
+ * differ). Bilinear and ruled patches have linear blends. */
+void coons__boolsum_space(const coons_patch *p, int dir, coons__space *S)
+{
+    *S = coons__space_poly(p->n == 4 ? 3 : coons__blend_degree(p->blend));
+    int a = dir == 0 ? COONS_SIDE_T0 : COONS_SIDE_S0, b = dir == 0 ? COONS_SIDE_T1 : COONS_SIDE_S1;
+    coons__space_join(S, coons__curve_space(p->curve[a]));
+    coons__space_join(S, coons__curve_space(p->curve[b]));
+    coons__space_join(S, coons__curve_space(p->cross[dir == 0 ? 0 : 2]));
+    coons__space_join(S, coons__curve_space(p->cross[dir == 0 ? 1 : 3]));
+}
+
 void coons__boolsum_breaks(const coons_patch *p, int dir, coons__breaks *B)
 {
     coons__curve_breaks(p->curve[dir == 0 ? COONS_SIDE_T0 : COONS_SIDE_S0], B);

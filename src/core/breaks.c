@@ -26,12 +26,24 @@ void coons__breaks_knots(coons__breaks *B, const double *k, size_t ncp, int p)
 {
     if (!k) return;
     double lo = k[p], len = k[ncp] - k[p];
-    for (size_t i = (size_t)p + 1; i < ncp && B->n <= COONS__MAX_BREAKS; i++)
+    for (size_t i = (size_t)p + 1; i < ncp && (B->all || B->n <= COONS__MAX_BREAKS); i++)
         coons__breaks_add(B, (k[i] - lo) / len);
+}
+
+int coons__knots_continuity(const double *k, size_t ncp, int p)
+{
+    int mmax = 0;
+    for (size_t i = (size_t)p + 1; k && i < ncp;) {
+        size_t j = i;
+        while (j + 1 < ncp && k[j + 1] == k[i]) j++;
+        if ((int)(j - i + 1) > mmax) mmax = (int)(j - i + 1);
+        i = j + 1;
+    }
+    return mmax ? p - mmax : COONS__SMOOTH;
 }
 
 void coons__breaks_uniform(coons__breaks *B, size_t nseg)
 {
-    for (size_t s = 1; s < nseg && B->n <= COONS__MAX_BREAKS; s++)
+    for (size_t s = 1; s < nseg && (B->all || B->n <= COONS__MAX_BREAKS); s++)
         coons__breaks_add(B, (double)s / nseg);
 }

@@ -249,9 +249,18 @@ static void breaks(const coons_curve *c, coons__breaks *B)
     coons__breaks_knots(B, c->knots, c->n, c->degree);
 }
 
+/* Degree p over the knots; rational with weights that differ (The NURBS
+ * Book, eq. 4.8). */
+static void space(const coons_curve *c, coons__space *S)
+{
+    S->degree = c->degree;
+    S->kind = coons__weights_space(c->w, c->n);
+    S->cont = coons__knots_continuity(c->knots, c->n, c->degree);
+}
+
 #define BSPLINE_ROW(t)                                                                 \
     {.type = t, .eval = eval, .bezier = bezier_segments, .breaks = breaks,              \
-     .copy = copy_data, .free = free_data}
+     .copy = copy_data, .free = free_data, .space = space}
 const coons__curve_kind coons__line_kind = BSPLINE_ROW(COONS_CURVE_LINE);
 const coons__curve_kind coons__polyline_kind = BSPLINE_ROW(COONS_CURVE_POLYLINE);
 const coons__curve_kind coons__bezier_kind = BSPLINE_ROW(COONS_CURVE_BEZIER);

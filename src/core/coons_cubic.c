@@ -115,9 +115,16 @@ static coons_status copy_data(const coons_curve *c, coons_curve *d, coons_error 
 
 static void free_data(coons_curve *c) { coons__free(c->pts); }
 
+/* The uniform cubic B-spline over the segment ends (seed 002). */
+static void space(const coons_curve *c, coons__space *S)
+{
+    *S = coons__space_poly(3);
+    if (c->n > 4) S->cont = 2;
+}
+
 const coons__curve_kind coons__coons_cubic_kind = {
     .type = COONS_CURVE_COONS_CUBIC, .eval = eval, .bezier = bezier_segments, .breaks = breaks,
-    .copy = copy_data, .free = free_data};
+    .copy = copy_data, .free = free_data, .space = space};
 
 coons_status coons_curve_convert_open_to_clamped(const double *open, size_t count, double *clamped,
                                                  coons_error *err)

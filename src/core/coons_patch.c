@@ -210,7 +210,7 @@ static void bilinear_bbox(const coons_patch *p, double lo[3], double hi[3])
 #define BOOLSUM_ROW(type_, sline_, tline_, bbox_, breaks_)                               \
     {.type = type_, .eval = coons__boolsum_eval, .grid = coons__boolsum_grid,             \
      .sline = sline_, .tline = tline_, .control_bbox = bbox_, .breaks = breaks_,          \
-     .copy = coons__boolsum_copy, .free = coons__boolsum_free}
+     .copy = coons__boolsum_copy, .free = coons__boolsum_free, .space = coons__boolsum_space}
 const coons__patch_kind coons__bilinear_kind =
     BOOLSUM_ROW(COONS_PATCH_BILINEAR, bilinear_sline, linear_tline, bilinear_bbox, NULL);
 const coons__patch_kind coons__ruled_kind =

@@ -76,3 +76,11 @@ void coons__curve_breaks(const coons_curve *c, coons__breaks *B)
 {
     if (c) c->kind->breaks(c, B);
 }
+
+coons__space coons__curve_space(const coons_curve *c)
+{
+    coons__space S = {1, COONS__SPACE_NONE, 0};
+    if (!c) return coons__space_poly(1);
+    if (c->kind->space) c->kind->space(c, &S);
+    return S;
+}

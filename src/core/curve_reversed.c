@@ -43,9 +43,11 @@ static void breaks(const coons_curve *c, coons__breaks *B)
     for (size_t i = n0; i < B->n; i++) B->v[i] = 1.0 - B->v[i];
 }
 
+static void space(const coons_curve *c, coons__space *S) { *S = coons__curve_space(c->inner); }
+
 const coons__curve_kind coons__curve_reversed_kind = {
     COONS_CURVE_LINE, /* unused: coons_curve_kind() reports the inner type */
-    eval, bezier, breaks, coons__curve_wrap_copy, coons__curve_wrap_free,
+    eval, bezier, breaks, coons__curve_wrap_copy, coons__curve_wrap_free, space,
 };
 
 coons_status coons_curve_new_reversed(const coons_curve *c, coons_curve **out, coons_error *err)

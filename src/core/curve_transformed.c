@@ -74,9 +74,11 @@ fail:
     return rc;
 }
 
+static void space(const coons_curve *c, coons__space *S) { *S = coons__curve_space(c->inner); }
+
 const coons__curve_kind coons__curve_transformed_kind = {
     COONS_CURVE_LINE, /* unused: coons_curve_kind() reports the inner type */
-    eval, bezier, breaks, coons__curve_wrap_copy, coons__curve_wrap_free,
+    eval, bezier, breaks, coons__curve_wrap_copy, coons__curve_wrap_free, space,
 };
 
 coons_status coons_curve_new_transformed(const coons_curve *c, const double *m,

@@ -212,7 +212,7 @@ const coons__patch_kind coons__hermite_coons_kind = {
     .type = COONS_PATCH_HERMITE_COONS, .eval = coons__boolsum_eval,
     .grid = coons__boolsum_grid, .sline = sline, .tline = tline,
     .control_bbox = coons__boolsum_control_bbox, .breaks = coons__boolsum_breaks,
-    .copy = coons__boolsum_copy, .free = coons__boolsum_free};
+    .copy = coons__boolsum_copy, .free = coons__boolsum_free, .space = coons__boolsum_space};
 
 void coons_hermite_options_init(coons_hermite_options *o)
 {

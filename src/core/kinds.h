@@ -12,6 +12,8 @@
  *
  * Adding a type: its enum value in the public header, one new file that
  * defines the row (declared below), and one line in the table of kinds.c.
+ * Its space operation (below) tells the exact spline form of nurbs.c what
+ * space holds it; without one the type is fitted.
  *
  * Conventions of every row:
  * - eval gets parameters already clamped to [0,1] (clamp01), grid gets them
@@ -30,6 +32,62 @@
 
 typedef struct coons__pline coons__pline; /* patch_impl.h */
 
+/* The spline space of an object along one direction (the space operation
+ * of the rows; nurbs.c): between its breakpoints the object is a
+ * polynomial of at most `degree` in that parameter (POLY), the quotient of
+ * such polynomials over its own weights, a tensor-product NURBS whose
+ * control net is the type's data (NURBS), or neither (NONE: an offset, a
+ * Boolean sum of rational curves). A Boolean sum, blend or morph joins its
+ * parts with coons__space_join(); a wrapper forwards its inner object's. */
+typedef enum coons__space_kind {
+    COONS__SPACE_POLY = 0,
+    COONS__SPACE_NURBS = 1,
+    COONS__SPACE_NONE = 2
+} coons__space_kind;
+
+typedef struct coons__space {
+    int degree;             /* >= 1 */
+    coons__space_kind kind;
+    /* Continuity at every breakpoint: C^cont at least (0: C0 only;
+     * COONS__SMOOTH (breaks.h) where the object has no breakpoints of its own). */
+    int cont;
+} coons__space;
+
+
+/* S becomes the space of a sum of S's and T's objects (products with
+ * polynomials included): the larger degree, the lesser continuity (each
+ * term is smooth away from its own breakpoints); POLY if both are, else
+ * NONE (two rational parts have different denominators). */
+static inline void coons__space_join(coons__space *S, coons__space T)
+{
+    if (T.degree > S->degree) S->degree = T.degree;
+    if (T.cont < S->cont) S->cont = T.cont;
+    S->kind = S->kind == COONS__SPACE_POLY && T.kind == COONS__SPACE_POLY ? COONS__SPACE_POLY
+                                                                          : COONS__SPACE_NONE;
+}
+
+/* The polynomial space of degree p (a blend, a fixed basis). */
+static inline coons__space coons__space_poly(int p)
+{
+    coons__space S = {p < 1 ? 1 : p, COONS__SPACE_POLY, COONS__SMOOTH};
+    return S;
+}
+
+/* NURBS for weights w[0..n-1], POLY for none or all equal (the quotient
+ * is then the polynomial itself). */
+static inline coons__space_kind coons__weights_space(const double *w, size_t n)
+{
+    for (size_t i = 1; w && i < n; i++)
+        if (w[i] != w[0]) return COONS__SPACE_NURBS;
+    return COONS__SPACE_POLY;
+}
+
+/* The degree of a blend pair (basis.h): 1 linear, 3 cubic. */
+static inline int coons__blend_degree(coons_blend blend)
+{
+    return blend == COONS_BLEND_CUBIC ? 3 : 1;
+}
+
 typedef struct coons__curve_kind {
     coons_curve_type type;
     /* Point (out[0]) and derivatives up to order (<= 2) at t. */
@@ -41,6 +99,8 @@ typedef struct coons__curve_kind {
     void (*breaks)(const coons_curve *c, coons__breaks *B);
     coons_status (*copy)(const coons_curve *c, coons_curve *d, coons_error *err);
     void (*free)(coons_curve *c);
+    /* The spline space (coons__space); NULL: NONE. */
+    void (*space)(const coons_curve *c, coons__space *S);
 } coons__curve_kind;
 
 typedef struct coons__patch_kind {
@@ -60,6 +120,8 @@ typedef struct coons__patch_kind {
     void (*breaks)(const coons_patch *p, int dir, coons__breaks *B);
     coons_status (*copy)(const coons_patch *p, coons_patch *d, coons_error *err);
     void (*free)(coons_patch *p);
+    /* The spline space along s (dir 0) or t (dir 1); NULL: NONE. */
+    void (*space)(const coons_patch *p, int dir, coons__space *S);
 } coons__patch_kind;
 
 typedef struct coons__body_kind {
@@ -82,6 +144,8 @@ typedef struct coons__body_kind {
     /* NULL: the type owns no memory beyond the record. */
     coons_status (*copy)(const coons_body *b, coons_body *d, coons_error *err);
     void (*free)(coons_body *b);
+    /* The spline space along direction d; NULL: NONE. */
+    void (*space)(const coons_body *b, int d, coons__space *S);
 } coons__body_kind;
 
 /* Breakpoints of c in (0,1) into B through its row (nothing if c is NULL;
@@ -90,7 +154,14 @@ void coons__curve_breaks(const coons_curve *c, coons__breaks *B);
 /* Breakpoints of p along s (dir 0) or t (dir 1) through its row (patch.c). */
 void coons__patch_breaks(const coons_patch *p, int dir, coons__breaks *B);
 
-/* The row of a type, or NULL for a value outside the enum. */
+/* The spline space of a curve, of a patch along dir, of a body along d
+ * through the row (NONE where the row has no space operation; curve.c,
+ * patch.c, body.c). A NULL curve (an absent cross curve) is degree 1 POLY. */
+coons__space coons__curve_space(const coons_curve *c);
+coons__space coons__patch_space(const coons_patch *p, int dir);
+coons__space coons__body_space(const coons_body *b, int d);
+
+/* The row of a type for a value outside the enum. */
 const coons__curve_kind *coons__curve_kind_of(coons_curve_type type);
 const coons__patch_kind *coons__patch_kind_of(coons_patch_type type);
 const coons__body_kind *coons__body_kind_of(coons_body_type type);

@@ -248,8 +248,15 @@ static void release(coons_body *b)
     coons__free(b->at);
 }
 
+/* At a fixed time a morph is a fixed combination of its keys. */
+static void space(const coons_body *b, int d, coons__space *S)
+{
+    *S = coons__space_poly(1);
+    for (size_t k = 0; k < b->nkeys; k++) coons__space_join(S, coons__body_space(b->keys[k], d));
+}
+
 const coons__body_kind coons__morph_kind = {
-    COONS_BODY_MORPH, eval, grid, det_grid, breaks, copy, release,
+    COONS_BODY_MORPH, eval, grid, det_grid, breaks, copy, release, space,
 };
 
 coons_status coons_body_new_morph(coons_body *const *keys, size_t nkeys, const double *at,

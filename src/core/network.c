@@ -60,16 +60,23 @@ static void piece_breaks(const coons_curve *c, coons__breaks *B)
         B->hit |= in.hit;
         return;
     }
-    coons__breaks in = {0};
+    coons__breaks in = {.all = B->all};
     coons__curve_breaks(c->inner, &in);
     for (size_t i = 0; i < in.n; i++) coons__breaks_add(B, (in.v[i] - a) / (b - a));
     if (in.nomem) B->nomem = 1;
     coons__free(in.v);
 }
 
+/* A piece [a,b] of a curve is the same polynomial (or quotient) per span. */
+static void piece_space(const coons_curve *c, coons__space *S)
+{
+    *S = coons__curve_space(c->inner);
+}
+
 static const coons__curve_kind piece_kind = {
     COONS_CURVE_LINE, /* internal only: never seen by coons_curve_kind() */
     piece_eval, piece_bezier, piece_breaks, coons__curve_wrap_copy, coons__curve_wrap_free,
+    piece_space,
 };
 
 static coons_status piece_new(const coons_curve *c, double a, double b, coons_curve **out,
@@ -440,6 +447,16 @@ static void breaks(const coons_patch *p, int dir, coons__breaks *B)
     for (size_t k = 0; k < count; k++) coons__curve_breaks(p->net[first + k], B);
 }
 
+/* Each cell maps its node interval linearly onto [0,1]: the cells'
+ * spaces joined. */
+static void space(const coons_patch *p, int dir, coons__space *S)
+{
+    *S = coons__space_poly(1);
+    S->cont = 0; /* the cells meet with C0 at least */
+    for (size_t i = 0; i < p->ncs * p->nct; i++)
+        coons__space_join(S, coons__patch_space(p->cells[i], dir));
+}
+
 static coons_status copy(const coons_patch *p, coons_patch *d, coons_error *err)
 {
     size_t nnet = p->ncs + p->nct + 2, ncell = p->ncs * p->nct;
@@ -472,7 +489,7 @@ static void free_network(coons_patch *p)
 
 const coons__patch_kind coons__network_kind = {
     .type = COONS_PATCH_NETWORK, .eval = eval, .grid = grid, .control_bbox = net_bbox,
-    .breaks = breaks, .copy = copy, .free = free_network};
+    .breaks = breaks, .copy = copy, .free = free_network, .space = space};
 
 void coons_network_options_init(coons_network_options *o)
 {

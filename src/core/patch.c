@@ -85,3 +85,10 @@ coons_status coons_patch_eval_grid(const coons_patch *p, const double *s, size_t
         return coons__error_set(err, COONS_E_INVALID, "patch grid: NULL parameter or output array");
     return p->kind->grid(p, s, ns, t, nt, out, err);
 }
+
+coons__space coons__patch_space(const coons_patch *p, int dir)
+{
+    coons__space S = {3, COONS__SPACE_NONE, 0};
+    if (p->kind->space) p->kind->space(p, dir, &S);
+    return S;
+}

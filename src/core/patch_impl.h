@@ -94,6 +94,7 @@ coons_status coons__boolsum_grid(const coons_patch *p, const double *s, size_t n
                                  const double *t, size_t nt, double *out, coons_error *err);
 void coons__boolsum_control_bbox(const coons_patch *p, double lo[3], double hi[3]);
 void coons__boolsum_breaks(const coons_patch *p, int dir, coons__breaks *B);
+void coons__boolsum_space(const coons_patch *p, int dir, coons__space *S);
 coons_status coons__boolsum_copy(const coons_patch *p, coons_patch *d, coons_error *err);
 void coons__boolsum_free(coons_patch *p);
 

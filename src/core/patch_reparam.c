@@ -81,10 +81,16 @@ static void breaks(const coons_patch *p, int dir, coons__breaks *B)
         for (size_t i = n0; i < B->n; i++) B->v[i] = 1.0 - B->v[i];
 }
 
+/* Flips keep the space, the swap exchanges the directions. */
+static void space(const coons_patch *p, int dir, coons__space *S)
+{
+    *S = coons__patch_space(p->inner, p->swap ? 1 - dir : dir);
+}
+
 const coons__patch_kind coons__patch_reparam_kind = {
     COONS_PATCH_BILINEAR, /* unused: coons_patch_kind() reports the inner type */
     eval, grid, NULL, NULL, coons__patch_wrap_bbox, breaks,
-    coons__patch_wrap_copy, coons__patch_wrap_free,
+    coons__patch_wrap_copy, coons__patch_wrap_free, space,
 };
 
 coons_status coons_patch_new_reparametrized(const coons_patch *p, int swap, int flip_s,

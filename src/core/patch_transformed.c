@@ -65,10 +65,15 @@ coons_status coons__patch_wrap(const coons__patch_kind *kind, const coons_patch 
     return COONS_OK;
 }
 
+static void space(const coons_patch *p, int dir, coons__space *S)
+{
+    *S = coons__patch_space(p->inner, dir);
+}
+
 const coons__patch_kind coons__patch_transformed_kind = {
     COONS_PATCH_BILINEAR, /* unused: coons_patch_kind() reports the inner type */
     eval, grid, NULL, NULL, coons__patch_wrap_bbox, breaks,
-    coons__patch_wrap_copy, coons__patch_wrap_free,
+    coons__patch_wrap_copy, coons__patch_wrap_free, space,
 };
 
 coons_status coons_patch_new_transformed(const coons_patch *p, const double *m,

@@ -88,9 +88,17 @@ static coons_status copy(const coons_body *b, coons_body *d, coons_error *err)
 
 static void release(coons_body *b) { coons_patch_free(b->face[0]); }
 
+/* Linear in w; the offset along the unit normal has no spline form. */
+static void space(const coons_body *b, int d, coons__space *S)
+{
+    (void)b;
+    *S = coons__space_poly(d < 2 ? 3 : 1);
+    if (d < 2) S->kind = COONS__SPACE_NONE;
+}
+
 const coons__body_kind coons__shell_kind = {
     .type = COONS_BODY_SHELL, .eval = eval, .grid = grid, .breaks = breaks, .copy = copy,
-    .free = release};
+    .free = release, .space = space};
 
 coons_status coons_body_new_shell(const coons_patch *surface, double h, coons_shell_side side,
                                   coons_body **out, coons_error *err)

@@ -194,12 +194,21 @@ static void bspline_breaks(const coons_patch *p, int dir, coons__breaks *B)
         coons__breaks_knots(B, p->kt, p->nt, p->pt);
 }
 
+/* Degrees ps, pt; rational with weights that differ. */
+static void space(const coons_patch *p, int dir, coons__space *S)
+{
+    S->degree = dir == 0 ? p->ps : p->pt;
+    S->kind = coons__weights_space(p->w, p->ns * p->nt);
+    S->cont = dir == 0 ? coons__knots_continuity(p->ks, p->ns, p->ps)
+                       : coons__knots_continuity(p->kt, p->nt, p->pt);
+}
+
 const coons__patch_kind coons__bezier_surface_kind = {
     .type = COONS_PATCH_BEZIER, .eval = eval, .grid = grid, .control_bbox = control_bbox,
-    .copy = copy_data, .free = free_data};
+    .copy = copy_data, .free = free_data, .space = space};
 const coons__patch_kind coons__bspline_surface_kind = {
     .type = COONS_PATCH_BSPLINE, .eval = eval, .grid = grid, .control_bbox = control_bbox,
-    .breaks = bspline_breaks, .copy = copy_data, .free = free_data};
+    .breaks = bspline_breaks, .copy = copy_data, .free = free_data, .space = space};
 
 static coons_status check_net(const double *points, size_t ns, size_t nt, const char *what,
                               coons_error *err)

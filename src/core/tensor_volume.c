@@ -266,8 +266,16 @@ static void free_data(coons_body *b)
     coons__free(b->w);
 }
 
+/* Degrees deg[d]; rational with weights that differ. */
+static void space(const coons_body *b, int d, coons__space *S)
+{
+    S->degree = b->deg[d];
+    S->kind = coons__weights_space(b->w, b->n[0] * b->n[1] * b->n[2]);
+    S->cont = coons__knots_continuity(b->knots[d], b->n[d], b->deg[d]);
+}
+
 #define TENSOR_ROW(t)                                                                  \
     {.type = t, .eval = eval, .grid = grid, .breaks = breaks, .copy = copy_data,          \
-     .free = free_data}
+     .free = free_data, .space = space}
 const coons__body_kind coons__bezier_volume_kind = TENSOR_ROW(COONS_BODY_BEZIER);
 const coons__body_kind coons__bspline_volume_kind = TENSOR_ROW(COONS_BODY_BSPLINE);

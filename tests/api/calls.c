@@ -145,6 +145,13 @@ static void patches(void)
     coons_patch_eval(xp[1], 0.5, 0.5, d[1]);
     check("transformed and swapped patch points",
           near3(d[0], 0.5, 0.5, 2.25) && near3(d[1], 0.5, 0.5, 0.25));
+    /* The spline form of the Coons patch: a plain param array, out[3]. */
+    coons_nurbs n = {0};
+    double st[2] = {0.5, 0.5};
+    check("patch to nurbs", coons_patch_to_nurbs(p[3], 1e-9, &n, &err) == COONS_OK && n.exact);
+    coons_nurbs_eval(&n, st, x);
+    check("nurbs centre", near3(x, 0.5, 0.5, 0.25));
+    coons_nurbs_free(&n);
     for (int k = 0; k < 2; k++) coons_patch_free(xp[k]);
     for (int k = 0; k < 8; k++) coons_patch_free(p[k]);
     for (int k = 0; k < 4; k++) coons_curve_free(side[k]);

@@ -11,7 +11,12 @@
  * huge pages (what numpy does for large arrays, so splipy's result arrays
  * and ours pay the same page-fault cost); --small-pages skips the advice.
  *
- * Usage: bench_grid [-n N] [-r RUNS] [--small-pages] [--net] [--probe i,j,k ...]
+ * With -t T (default: every online core) it also times
+ * coons_body_eval_grid_threads() on T threads into fresh and reused arrays,
+ * checks that its output equals the one-thread grid byte for byte, and
+ * measures the all-core write bound (T threads each storing their slice).
+ *
+ * Usage: bench_grid [-n N] [-r RUNS] [-t THREADS] [--small-pages] [--net] [--probe i,j,k ...]
  *   --net    also print the faces' control net (JSON) for bench_grid.py
  *   --probe  print the grid point at index (i,j,k) (for cross-checking)
  * Output: one JSON object on stdout.
@@ -22,7 +27,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <pthread.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <coons.h>
 
@@ -85,10 +92,39 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+typedef struct slice {
+    double *p;
+    size_t lo, hi;
+} slice;
+
+static void *store_slice(void *arg)
+{
+    slice *s = arg;
+    for (size_t m = s->lo; m < s->hi; m++) s->p[m] = (double)m;
+    return NULL;
+}
+
+/* Stores m into p[m] for m < count on `threads` threads, one slice each. */
+static void store_threads(double *p, size_t count, unsigned threads)
+{
+    pthread_t tid[256];
+    slice sl[256];
+    if (threads > 256) threads = 256;
+    for (unsigned t = 0; t < threads; t++)
+        sl[t] = (slice){p, count * t / threads, count * (t + 1) / threads};
+    unsigned started = 0;
+    for (unsigned t = 1; t < threads; t++, started++)
+        if (pthread_create(&tid[t], NULL, store_slice, &sl[t])) break;
+    store_slice(&sl[0]);
+    for (unsigned t = started + 1; t < threads; t++) store_slice(&sl[t]);
+    for (unsigned t = 1; t <= started; t++) pthread_join(tid[t], NULL);
+}
+
 int main(int argc, char **argv)
 {
     size_t n = 200;
     int runs = 5, print_net = 0;
+    unsigned threads = 0;
     size_t probes[64][3];
     int nprobe = 0;
     for (int a = 1; a < argc; a++) {
@@ -96,6 +132,8 @@ int main(int argc, char **argv)
             n = (size_t)strtoul(argv[++a], NULL, 10);
         else if (!strcmp(argv[a], "-r") && a + 1 < argc)
             runs = atoi(argv[++a]);
+        else if (!strcmp(argv[a], "-t") && a + 1 < argc)
+            threads = (unsigned)strtoul(argv[++a], NULL, 10);
         else if (!strcmp(argv[a], "--small-pages"))
             huge = 0;
         else if (!strcmp(argv[a], "--net"))
@@ -111,7 +149,7 @@ int main(int argc, char **argv)
             probes[nprobe][2] = z;
             nprobe++;
         } else {
-            fprintf(stderr, "usage: bench_grid [-n N] [-r RUNS] [--small-pages] [--net] [--probe i,j,k]\n");
+            fprintf(stderr, "usage: bench_grid [-n N] [-r RUNS] [-t THREADS] [--small-pages] [--net] [--probe i,j,k]\n");
             return 2;
         }
     }
@@ -170,6 +208,49 @@ int main(int argc, char **argv)
         }
         memcpy(probeval[p], keep + ((i * n + j) * n + k) * 3, sizeof probeval[p]);
     }
+    /* The same grid on `threads` threads: fresh and reused output, equal
+     * to the one-thread grid byte for byte. */
+    if (threads == 0) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = c > 0 ? (unsigned)c : 1u;
+    }
+    double *t_fresh_mt = malloc((size_t)runs * sizeof(double));
+    double *t_warm_mt = malloc((size_t)runs * sizeof(double));
+    int threads_equal = 1;
+    for (int r = 0; r < runs; r++) {
+        double *out = fresh(bytes);
+        double t0 = now();
+        if (coons_body_eval_grid_threads(body, par, n, par, n, par, n, out, threads, &err)) {
+            fprintf(stderr, "bench_grid: grid on %u threads: %s\n", threads, err.message);
+            return 1;
+        }
+        t_fresh_mt[r] = now() - t0;
+        if (memcmp(out, keep, bytes)) threads_equal = 0;
+        munmap(out, bytes);
+    }
+    double *warm_mt = fresh(bytes);
+    memcpy(warm_mt, keep, bytes);
+    for (int r = 0; r < runs; r++) {
+        double t0 = now();
+        coons_body_eval_grid_threads(body, par, n, par, n, par, n, warm_mt, threads, &err);
+        t_warm_mt[r] = now() - t0;
+    }
+    if (memcmp(warm_mt, keep, bytes)) threads_equal = 0;
+    munmap(warm_mt, bytes);
+    /* The all-core write bound: `threads` threads each storing their slice
+     * of a fresh array. */
+    double *t_store_mt = malloc((size_t)runs * sizeof(double));
+    for (int r = 0; r < runs; r++) {
+        double *out = fresh(bytes);
+        double t0 = now();
+        store_threads(out, 3 * npts, threads);
+        t_store_mt[r] = now() - t0;
+        munmap(out, bytes);
+    }
+    qsort(t_fresh_mt, (size_t)runs, sizeof(double), cmp_double);
+    qsort(t_warm_mt, (size_t)runs, sizeof(double), cmp_double);
+    qsort(t_store_mt, (size_t)runs, sizeof(double), cmp_double);
+
     /* Memory-write bound: the same number of bytes into a fresh array. */
     double *t_memset = malloc((size_t)runs * sizeof(double));
     double *t_store = malloc((size_t)runs * sizeof(double));
@@ -212,8 +293,14 @@ int main(int argc, char **argv)
            t_memset[0], t_store[0], bound);
     printf("  \"warm_store_loop_s\": %.6f, \"warm_grid_over_warm_store\": %.3f,\n",
            t_warm_store[0], t_warm[0] / t_warm_store[0]);
-    printf("  \"write_bound_pts_per_s\": %.6e, \"grid_over_bound\": %.3f", (double)npts / bound,
+    printf("  \"write_bound_pts_per_s\": %.6e, \"grid_over_bound\": %.3f,\n", (double)npts / bound,
            t_fresh[0] / bound);
+    printf("  \"threads\": %u, \"threads_equal\": %s, \"grid_fresh_threads_s\": %.6f,\n",
+           threads, threads_equal ? "true" : "false", t_fresh_mt[0]);
+    printf("  \"grid_warm_threads_s\": %.6f, \"store_loop_threads_s\": %.6f,\n", t_warm_mt[0],
+           t_store_mt[0]);
+    printf("  \"speedup_fresh\": %.3f, \"speedup_warm\": %.3f, \"threads_over_bound\": %.3f",
+           t_fresh[0] / t_fresh_mt[0], t_warm[0] / t_warm_mt[0], t_fresh_mt[0] / t_store_mt[0]);
     if (nprobe) {
         printf(",\n  \"probes\": [");
         for (int p = 0; p < nprobe; p++)

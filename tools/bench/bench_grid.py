@@ -135,6 +135,14 @@ def main():
           % (lib * s1["seconds"] / npts, lib * sd["seconds"] / npts))
     print("  libcoons time / write-bound time (fresh arrays): %.2f; reused array vs store loop: %.2f"
           % (c["grid_fresh_s"] / c["write_bound_s"], c["warm_grid_over_warm_store"]))
+    print("  libcoons coons_body_eval_grid_threads, %d threads: fresh %.4f s (%.2fx one thread), "
+          "reused %.4f s (%.2fx); all-core write bound %.4f s (threads / bound %.2f); "
+          "byte-identical to one thread: %s"
+          % (c["threads"], c["grid_fresh_threads_s"], c["speedup_fresh"], c["grid_warm_threads_s"],
+             c["speedup_warm"], c["store_loop_threads_s"], c["threads_over_bound"],
+             c["threads_equal"]))
+    if not c["threads_equal"]:
+        sys.exit("bench_grid: the threaded grid differs from the one-thread grid")
     if max(s1["worst"], sd["worst"]) > 1e-9:
         sys.exit("bench_grid: libcoons and splipy disagree")
 
