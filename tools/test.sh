@@ -171,11 +171,12 @@ fi
 #    for emscripten; the tests load the module from its file (no fetch).
 if want web; then
   begin "WebAssembly module and page"
-  if [ ! -x "$build-core/tools/coons2stl" ]; then
+  # the C-only coons2stl, up to date (built already when the core stage ran)
+  if [ ! -f "$build-core/CMakeCache.txt" ]; then
     cmake -S . -B "$build-core" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCOONS_WERROR=ON \
       -DCOONS_WITH_OPENMESH=OFF -DCOONS_WITH_CGAL=OFF
-    cmake --build "$build-core" -j "$jobs" --target coons2stl
   fi
+  cmake --build "$build-core" -j "$jobs" --target coons2stl
   COONS_WEB_DIR="$build-web" COONS_JOBS=$jobs bash tools/build-web.sh
   rm -rf "$build-web/test-output"
   COONS_JOBS=$jobs node tests/web/test_wasm.js "$build-web" "$build-core/tools/coons2stl" examples \
