@@ -65,8 +65,8 @@
     }
     // The solid's triangles at `tolerance` for display: {positions
     // (Float32Array xyz), indices (Uint32Array), united, note}.
-    function mesh(model, tolerance) {
-      if (M._cw_preview(model.ptr, tolerance || 0)) throw lastError();
+    function mesh(model, tolerance, resolution) {
+      if (M._cw_preview(model.ptr, tolerance || 0, resolution || 0)) throw lastError();
       const nv = M._cw_preview_vertex_count(), nt = M._cw_preview_triangle_count();
       const pv = M._cw_preview_vertices() >> 3, pt = M._cw_preview_triangles() >> 2;
       const united = !!M._cw_preview_united();
@@ -99,7 +99,17 @@
         parts,
       };
     }
-    return { load, write, mesh, iso, version: () => M.UTF8ToString(M._cw_version()), FORMATS };
+    // The cells: the 12 boundary edges of every body (u = 0..1 at the
+    // corners of the unit cube in v, w; then v; then w), each at n + 1
+    // points of coons_body_eval(): {n, positions (Float64Array xyz; body
+    // b's edge e, point s at 3 ((12 b + e)(n + 1) + s))}.
+    function cells(model, n) {
+      const np = M._cw_cells(model.ptr, n);
+      if (!np && model.bodies()) throw lastError();
+      const p = M._cw_cells_data() >> 3;
+      return { n, positions: M.HEAPF64.slice(p, p + 3 * np) };
+    }
+    return { load, write, mesh, iso, cells, version: () => M.UTF8ToString(M._cw_version()), FORMATS };
   }
 
   const api = { wrap, FORMATS };

@@ -181,6 +181,61 @@ async function main() {
     });
     check(r.detj.length > 0 && worst < 1e-6, `det J of the tapered body is ${worst} off 600 (10 + 10 v)`);
   }
+  // The cells of a lattice (api.cells: every body's 12 boundary edges at
+  // n + 1 points of coons_body_eval()). lattice-ffd.json's bodies are body0
+  // (trilinear): each edge is the straight segment between two of the
+  // body's JSON corners (corner 4i + 2j + k at (u, v, w) = (i, j, k)), its
+  // point s at s / n of the way. Every lattice example: 12 (n + 1) points
+  // per body, and the edges' ends meet in each body's 8 corners.
+  {
+    const n = 16;
+    const doc = JSON.parse(fs.readFileSync(path.join(examplesDir, 'lattice-ffd.json'), 'utf8'));
+    const m = api.load(JSON.stringify(doc), 'lattice-ffd.json');
+    const r = api.cells(m, n);
+    m.free();
+    check(doc.bodies.every((b) => b.type === 'body0') && r.positions.length === 3 * doc.bodies.length * 12 * (n + 1),
+          `lattice-ffd cells: ${r.positions.length / 3} points for ${doc.bodies.length} bodies`);
+    let worst = 0;
+    doc.bodies.forEach((b, bi) => {
+      for (let e = 0; e < 12; e++) {
+        const dir = Math.floor(e / 4), a = e & 1, c = (e >> 1) & 1;
+        const corner = (t) => {
+          const q = [0, 0, 0];
+          q[dir] = t;
+          q[dir === 0 ? 1 : 0] = a;
+          q[dir === 2 ? 1 : 2] = c;
+          return b.corners[4 * q[0] + 2 * q[1] + q[2]];
+        };
+        const A = corner(0), B = corner(1);
+        for (let s = 0; s <= n; s++) {
+          const t = s / n, o = 3 * ((12 * bi + e) * (n + 1) + s);
+          for (let d = 0; d < 3; d++)
+            worst = Math.max(worst, Math.abs(r.positions[o + d] - ((1 - t) * A[d] + t * B[d])));
+        }
+      }
+    });
+    check(worst <= 1e-12 * 40, `lattice-ffd cells are ${worst} off the segments between the JSON corners`);
+    for (const f of ['chair-lattice.json', 'lattice-ffd.json', 'lattice-l-bracket.json', 'lattice-ring.json',
+                     'lattice-instanced.json']) {
+      const mm = api.load(fs.readFileSync(path.join(examplesDir, f), 'utf8'), f);
+      const nb = mm.bodies(), x = api.cells(mm, n).positions;
+      mm.free();
+      check(x.length === 3 * nb * 12 * (n + 1), `${f}: ${x.length / 3} cell points for ${nb} bodies`);
+      let gap = 0, span = 0;
+      for (let bi = 0; bi < nb; bi++) {
+        // corner (i, j, k) as the end of its edges along u, v, w
+        const end = (e, t) => x.subarray(3 * ((12 * bi + e) * (n + 1) + t * n), 3 * ((12 * bi + e) * (n + 1) + t * n) + 3);
+        for (let i = 0; i < 2; i++) for (let j = 0; j < 2; j++) for (let k = 0; k < 2; k++) {
+          const pu = end(0 + j + 2 * k, i), pv = end(4 + i + 2 * k, j), pw = end(8 + i + 2 * j, k);
+          for (let d = 0; d < 3; d++) {
+            gap = Math.max(gap, Math.abs(pu[d] - pv[d]), Math.abs(pu[d] - pw[d]));
+            span = Math.max(span, Math.abs(pu[d]));
+          }
+        }
+      }
+      check(gap <= 1e-12 * span, `${f}: the cells' edges meet ${gap} apart at the corners`);
+    }
+  }
   // A definition placed twice, the second place shared with a third body:
   // moving the first place's corner moves the definition, so the second
   // place moves too, and the third body's corner there must follow it.

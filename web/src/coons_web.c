@@ -79,11 +79,18 @@ CW_EXPORT int cw_set_time(coons_model *m, double t)
 }
 
 /* The solid of coons2stl -o: every body, repaired and united as the model
- * says, sampled at `tolerance` (<= 0: the model's). */
-static coons_status make_solid(const coons_model *m, double tolerance, coons_mesh **out)
+ * says, sampled at `tolerance` (<= 0: the model's), or, with `resolution`
+ * > 0, on a fixed lattice of that many intervals along u, v, w, unmeasured
+ * (a preview). */
+static coons_status make_solid(const coons_model *m, double tolerance, unsigned resolution,
+                               coons_mesh **out)
 {
     coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
     so.tolerance = tolerance > 0 ? tolerance : coons_model_tolerance(m);
+    if (resolution) {
+        so.resolution = resolution;
+        so.flags = COONS_SAMPLE_UNMEASURED;
+    }
     coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
     copts.repair = 1;
     copts.threads = 1;
@@ -152,7 +159,7 @@ CW_EXPORT int cw_write_surface(const coons_model *m, int format, const char *nam
         return sink_close(&s, rc);
     }
     coons_mesh *mesh = NULL;
-    coons_status rc = make_solid(m, tolerance, &mesh);
+    coons_status rc = make_solid(m, tolerance, 0, &mesh);
     if (rc != COONS_OK) {
         coons_mesh_free(mesh);
         return rc;
@@ -218,17 +225,21 @@ CW_EXPORT int cw_write_volume(const coons_model *m, int format, const char *name
  * cw_error_message() says why. */
 static int preview_united;
 
-CW_EXPORT int cw_preview(const coons_model *m, double tolerance)
+CW_EXPORT int cw_preview(const coons_model *m, double tolerance, unsigned resolution)
 {
     coons_mesh_free(preview);
     preview = NULL;
     preview_united = 1;
-    coons_status rc = make_solid(m, tolerance, &preview);
+    coons_status rc = make_solid(m, tolerance, resolution, &preview);
     if (rc != COONS_E_UNSUPPORTED || coons_csg_is_available()) return rc;
     coons_mesh_free(preview);
     preview = NULL;
     coons_sample_options so = COONS_SAMPLE_OPTIONS_INIT;
     so.tolerance = tolerance > 0 ? tolerance : coons_model_tolerance(m);
+    if (resolution) {
+        so.resolution = resolution;
+        so.flags = COONS_SAMPLE_UNMEASURED;
+    }
     coons_error why = last_error;
     /* each body alone (coons_model_sample() refuses overlapping bodies too) */
     rc = coons_mesh_new(&preview, &last_error);
@@ -340,3 +351,51 @@ CW_EXPORT size_t cw_iso_part_triangles(size_t i)
     if (iso) coons_mesh_part_range(iso, i, &tf, &tc, &vf, &vc);
     return tc;
 }
+
+/*
+ * The cells of a lattice: the 12 boundary edges of every body's unit cube
+ * of parameters, each sampled at n + 1 points by coons_body_eval() (the
+ * points of the body itself, not of a mesh), kept until the next call.
+ * Body b's edge e, point s (0..n) is at ((b 12 + e)(n + 1) + s) 3 in
+ * cw_cells_data(): edges 0-3 along u at (v, w) = (0,0) (1,0) (0,1) (1,1),
+ * 4-7 along v at (u, w) = (0,0) (1,0) (0,1) (1,1), 8-11 along w at
+ * (u, v) = (0,0) (1,0) (0,1) (1,1); the parameter of point s is s / n.
+ * Returns the number of points, 0 on error (cw_error_message()).
+ */
+static double *cells;
+
+CW_EXPORT size_t cw_cells(const coons_model *m, int n)
+{
+    free(cells);
+    cells = NULL;
+    size_t nb = coons_model_body_count(m);
+    if (n < 1 || n > 4096) {
+        set_error("the samples per edge must be 1 to 4096");
+        return 0;
+    }
+    size_t np = nb * 12 * (size_t)(n + 1);
+    cells = malloc((np ? np : 1) * 3 * sizeof *cells);
+    if (!cells) {
+        set_error("out of memory");
+        return 0;
+    }
+    double *x = cells;
+    for (size_t b = 0; b < nb; b++) {
+        const coons_body *body = coons_model_body(m, b);
+        for (int e = 0; e < 12; e++) {
+            int dir = e / 4; /* the parameter along the edge */
+            double a = e & 1, c = (e >> 1) & 1; /* the other two, in order */
+            for (int s = 0; s <= n; s++, x += 3) {
+                double t = (double)s / n, q[3];
+                q[dir] = t;
+                q[dir == 0 ? 1 : 0] = a;
+                q[dir == 2 ? 1 : 2] = c;
+                coons_body_eval(body, q[0], q[1], q[2], x);
+            }
+        }
+    }
+    memset(&last_error, 0, sizeof last_error);
+    return np;
+}
+
+CW_EXPORT const double *cw_cells_data(void) { return cells; }
