@@ -9,15 +9,29 @@ import * as THREE from 'three';
 import { OrbitControls } from './three/OrbitControls.js';
 
 const $ = (id) => document.getElementById(id);
-// The preview tolerance during a drag, in model tolerances: starts at 8 and
-// doubles (up to 256) while a preview takes longer than 40 ms, so that a
-// drag follows the pointer; the model's own tolerance when the drag ends.
-let preview = 8;
+// The preview during a drag (issue 29: a drag remeshes within 50 ms), chosen
+// per model when it is loaded, by timing it (previewPlan()): the adaptive
+// sampler at a coarse tolerance, PREVIEW_MIN model tolerances or more (x2
+// while the full-tolerance mesh's time predicts more than PREVIEW_MS), when
+// that takes at most PREVIEW_MS; else, when faster, a fixed lattice of
+// PREVIEW_RES intervals per direction (halved down to 2 while slower than
+// PREVIEW_MS), unmeasured: the adaptive sampler measures its deviation,
+// which costs 10-90 ms even at 256 tolerances for the morphs (every
+// evaluation evaluates their keys) and chair-lattice's 26 bodies. A preview
+// that still takes longer than PREVIEW_MS makes the next ones coarser
+// (tolerance x2 up to 256, lattice /2 down to 2). The model's own tolerance
+// (in the worker) when a drag ends.
+// PREVIEW_MS: a third of the 50 ms, as a preview's time varies by 2-3 times
+// from one pointer move to the next on a busy machine.
+const PREVIEW_MS = 15, PREVIEW_MIN = 8, PREVIEW_MAX = 256, PREVIEW_RES = 8;
 const PICK_PX = 12;
+// the samples per edge of the cells (coons_body_eval() at 33 points)
+const CELL_SAMPLES = 32;
 
 const state = {
   text: '', doc: null, name: 'model', model: null, cps: null, tol: 0, diag: 1,
   undo: [], redo: [], selected: -1, time: null, stats: { remesh: [] }, meshSeq: 0, note: '',
+  preview: { factor: PREVIEW_MIN, resolution: 0 },
 };
 let api = null;
 
@@ -60,7 +74,12 @@ const isoMat = new THREE.MeshStandardMaterial({ color: 0xe0a040, side: THREE.Dou
 const isoColourMat = new THREE.MeshStandardMaterial({ vertexColors: true, side: THREE.DoubleSide, flatShading: true });
 const interior = new THREE.Mesh(new THREE.BufferGeometry(), [boundaryMat, isoMat]);
 interior.visible = false;
-scene.add(solid, wire, nets, points, chosen, interior);
+// the cells: every body's 12 boundary edges, seen through the solid
+const cellLines = new THREE.LineSegments(new THREE.BufferGeometry(),
+  new THREE.LineBasicMaterial({ color: 0x0a7d3b, depthTest: false, transparent: true, opacity: 0.85 }));
+cellLines.renderOrder = 1;
+cellLines.visible = false;
+scene.add(solid, wire, nets, points, chosen, interior, cellLines);
 
 let renderPending = false;
 function requestRender() {
@@ -115,9 +134,9 @@ function showError(e) {
 }
 function status(s) { $('status').textContent = s; }
 
-function setMesh(tol) {
+function setMesh(tol, resolution = 0) {
   const t0 = performance.now();
-  const m = api.mesh(state.model, tol);
+  const m = api.mesh(state.model, tol, resolution);
   const ms = performance.now() - t0;
   state.meshSeq++;
   showMesh(m);
@@ -158,10 +177,36 @@ function showMesh(m) {
   g.setIndex(new THREE.BufferAttribute(m.indices, 1));
   solid.geometry.dispose();
   solid.geometry = g;
-  wire.geometry.dispose();
-  wire.geometry = new THREE.WireframeGeometry(g);
+  updateWire();
   state.triangles = m.indices.length / 3;
   state.note = m.united ? '' : ` (shown unmerged: ${m.note})`;
+  requestRender();
+}
+
+// the triangles' edges, made only while shown
+function updateWire() {
+  wire.geometry.dispose();
+  wire.geometry = wire.visible ? new THREE.WireframeGeometry(solid.geometry) : new THREE.BufferGeometry();
+}
+
+// The cells of a lattice: each body's 12 boundary edges (u, v, w at the
+// corners of the unit cube), CELL_SAMPLES segments each, evaluated by the
+// module (cw_cells: coons_body_eval), made only while shown.
+function updateCells() {
+  cellLines.visible = $('show-cells').checked;
+  if (!cellLines.visible || !state.model) { requestRender(); return; }
+  const n = CELL_SAMPLES;
+  let r;
+  try { r = api.cells(state.model, n); } catch (e) { showError(e); return; }
+  const x = r.positions, np = x.length / 3, seg = new Float32Array(6 * (np / (n + 1)) * n);
+  let o = 0;
+  for (let e = 0; e < np; e += n + 1)
+    for (let s = 0; s < n; s++) {
+      for (let d = 0; d < 6; d++) seg[o++] = x[3 * (e + s) + d];
+    }
+  cellLines.geometry.dispose();
+  cellLines.geometry = new THREE.BufferGeometry();
+  cellLines.geometry.setAttribute('position', new THREE.BufferAttribute(seg, 3));
   requestRender();
 }
 
@@ -265,7 +310,7 @@ function updateSelected() {
 
 // Makes `text` the model (it loads, else throws the loader's error and
 // nothing changes); tol: the mesh tolerance, 0 for the model's.
-function commit(text, doc, { tol = 0, fit = false, keepText = false } = {}) {
+function commit(text, doc, { tol = 0, resolution = 0, fit = false, keepText = false } = {}) {
   const model = api.load(text, state.name + '.json');
   if (state.model) state.model.free();
   state.model = model;
@@ -278,14 +323,44 @@ function commit(text, doc, { tol = 0, fit = false, keepText = false } = {}) {
   if (!keepText) $('json').value = text;
   updatePoints();
   if (fit) fitCamera();
-  const ms = setMesh(tol > 0 ? tol : state.tol);
+  const ms = setMesh(tol > 0 ? tol : state.tol, resolution);
   updateInterior(tol > 0 ? tol : state.tol);
+  updateCells();
   showError(null);
+  const how = resolution ? `preview lattice ${resolution}` : `${tol > 0 ? 'preview ' : ''}tolerance ${(tol > 0 ? tol : state.tol).toPrecision(3)}`;
   status(`${state.name}: ${model.bodies()} bod${model.bodies() === 1 ? 'y' : 'ies'}, ` +
-         `${state.cps.points.length} control points, ${state.triangles} triangles ` +
-         `(${tol > 0 ? 'preview ' : ''}tolerance ${(tol > 0 ? tol : state.tol).toPrecision(3)}), ${ms.toFixed(0)} ms` +
+         `${state.cps.points.length} control points, ${state.triangles} triangles (${how}), ${ms.toFixed(0)} ms` +
          state.note);
   return ms;
+}
+
+// The preview of the model just loaded, whose full-tolerance mesh took
+// fullMs (see PREVIEW_MS), timed: {factor (model tolerances), resolution
+// (0: adaptive), ms (its time at load)}.
+function previewPlan(fullMs) {
+  let factor = PREVIEW_MIN;
+  while (factor < PREVIEW_MAX && fullMs / factor > PREVIEW_MS) factor *= 2;
+  const time = (tol, resolution) => {
+    const t0 = performance.now();
+    api.mesh(state.model, tol, resolution);
+    return performance.now() - t0;
+  };
+  try {
+    const ta = time(factor * state.tol, 0);
+    if (ta <= PREVIEW_MS) return { factor, resolution: 0, ms: ta };
+    let resolution = PREVIEW_RES, tr = time(state.tol, resolution);
+    while (tr > PREVIEW_MS && resolution > 2) { resolution >>= 1; tr = time(state.tol, resolution); }
+    return tr < ta ? { factor: 1, resolution, ms: tr } : { factor, resolution: 0, ms: ta };
+  } catch (_) {
+    return { factor, resolution: 0 };
+  }
+}
+// after a preview of ms: coarser when it took longer than PREVIEW_MS
+function previewAdapt(ms) {
+  const p = state.preview;
+  if (ms <= PREVIEW_MS) return;
+  if (p.resolution) p.resolution = Math.max(2, p.resolution >> 1);
+  else p.factor = Math.min(PREVIEW_MAX, 2 * p.factor);
 }
 
 function pushUndo(text) {
@@ -301,7 +376,8 @@ function loadText(text, name) {
     const before = state.text;
     state.time = null;
     $('time').value = 0;
-    commit(text, doc, { fit: true });
+    const ms = commit(text, doc, { fit: true });
+    state.preview = previewPlan(ms);
     pushUndo(before);
     state.selected = -1;
     updateSelected();
@@ -325,10 +401,11 @@ function selectInText(e) {
 // Moves control point id to xyz with its links; tol: preview tolerance or 0.
 // Returns the remesh time; throws (and changes nothing) when the moved model
 // does not load.
-function moveTo(id, xyz, tol) {
+// resolution: > 0 for a preview on a fixed lattice (tol then is the model's).
+function moveTo(id, xyz, tol, resolution = 0) {
   const doc = structuredClone(state.doc);
   CoonsLinks.move(doc, id, xyz);
-  const ms = commit(format(doc), doc, { tol });
+  const ms = commit(format(doc), doc, { tol, resolution });
   return ms;
 }
 
@@ -400,9 +477,10 @@ function stepDrag() {
   if (!to) return;
   drag.pending = null;
   try {
-    const ms = moveTo(drag.id, to, preview * state.tol);
+    const p = state.preview;
+    const ms = moveTo(drag.id, to, p.resolution ? state.tol : p.factor * state.tol, p.resolution);
     state.stats.remesh.push(ms);
-    if (ms > 40 && preview < 256) preview *= 2;
+    previewAdapt(ms);
     drag.moved = true;
     drag.id = nearest(to);
     state.selected = drag.id;
@@ -459,17 +537,21 @@ for (const id of ['show-solid', 'show-points', 'show-nets', 'show-wire']) {
     solid.visible = $('show-solid').checked && !interior.visible;
     points.visible = chosen.visible = $('show-points').checked;
     nets.visible = $('show-nets').checked;
-    wire.visible = $('show-wire').checked;
+    if (wire.visible !== $('show-wire').checked) {
+      wire.visible = $('show-wire').checked;
+      updateWire();
+    }
     requestRender();
   };
 }
+$('show-cells').onchange = updateCells;
 wire.visible = false;
 $('iso-dir').onchange = $('detj').onchange = () => updateInterior(state.tol);
 $('iso-n').oninput = () => { $('iso-n-value').textContent = $('iso-n').value; updateInterior(state.tol); };
 $('time').oninput = () => {
   state.time = Number($('time').value);
   $('time-value').textContent = state.time.toFixed(2);
-  try { state.model.setTime(state.time); setMesh(state.tol); updateInterior(state.tol); } catch (e) { showError(e); }
+  try { state.model.setTime(state.time); setMesh(state.tol); updateInterior(state.tol); updateCells(); } catch (e) { showError(e); }
 };
 for (const b of document.querySelectorAll('[data-export]')) {
   b.onclick = async () => {
@@ -541,7 +623,8 @@ const coons = {
   // for the tests: a control point's place on the screen (client pixels),
   // and the remesh times of the drags so far
   screen: (id) => { const s = toScreen(state.cps.points[id].xyz); return { x: s.x, y: s.y, visible: s.z <= 1 }; },
-  stats: () => ({ remesh: state.stats.remesh.slice(), lastFull: state.stats.lastFull, triangles: state.triangles }),
+  stats: () => ({ remesh: state.stats.remesh.slice(), lastFull: state.stats.lastFull, triangles: state.triangles,
+                  preview: { ...state.preview }, selected: state.selected }),
   // resolves when the worker has delivered the last full-tolerance mesh
   idle: () => (state.busy || Promise.resolve()).then(() => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res)))),
   rendered: () => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res))),
