@@ -12,18 +12,20 @@ const $ = (id) => document.getElementById(id);
 // The preview during a drag (issue 29: a drag remeshes within 50 ms), chosen
 // per model when it is loaded, by timing it (previewPlan()): the adaptive
 // sampler at a coarse tolerance, PREVIEW_MIN model tolerances or more (x2
-// while the full-tolerance mesh's time predicts more than PREVIEW_MS), when
-// that takes at most PREVIEW_MS; else, when faster, a fixed lattice of
-// PREVIEW_RES intervals per direction (halved down to 2 while slower than
-// PREVIEW_MS), unmeasured: the adaptive sampler measures its deviation,
-// which costs 10-90 ms even at 256 tolerances for the morphs (every
-// evaluation evaluates their keys) and chair-lattice's 26 bodies. A preview
-// that still takes longer than PREVIEW_MS makes the next ones coarser
-// (tolerance x2 up to 256, lattice /2 down to 2). The model's own tolerance
-// (in the worker) when a drag ends.
+// while the full-tolerance mesh's time predicts more than PREVIEW_MS); when
+// that takes more than PREVIEW_MS / 2, a fixed lattice of 2, 4 or 8
+// intervals per direction, unmeasured, is timed too, and taken when the
+// adaptive preview is over PREVIEW_MS and the lattice twice as fast. The
+// adaptive sampler measures its deviation, which costs 10-90 ms even at 256
+// tolerances for the morphs (every evaluation evaluates their keys) and for
+// the lattices of many bodies. A preview that still takes longer than
+// PREVIEW_MS makes the next ones coarser: the lattice when it was timed at
+// less than half that preview's time, else tolerance x2 (up to 256) or
+// lattice /2 (down to 2). The model's own tolerance (in the worker) when a
+// drag ends.
 // PREVIEW_MS: a third of the 50 ms, as a preview's time varies by 2-3 times
 // from one pointer move to the next on a busy machine.
-const PREVIEW_MS = 15, PREVIEW_MIN = 8, PREVIEW_MAX = 256, PREVIEW_RES = 8;
+const PREVIEW_MS = 15, PREVIEW_MIN = 8, PREVIEW_MAX = 256;
 const PICK_PX = 12;
 // the samples per edge of the cells (coons_body_eval() at 33 points)
 const CELL_SAMPLES = 32;
@@ -336,7 +338,8 @@ function commit(text, doc, { tol = 0, resolution = 0, fit = false, keepText = fa
 
 // The preview of the model just loaded, whose full-tolerance mesh took
 // fullMs (see PREVIEW_MS), timed: {factor (model tolerances), resolution
-// (0: adaptive), ms (its time at load)}.
+// (> 0: the lattice's, now; 0: adaptive), lattice (the lattice timed, 0:
+// none), ta and tr (the times of both at load)}.
 function previewPlan(fullMs) {
   let factor = PREVIEW_MIN;
   while (factor < PREVIEW_MAX && fullMs / factor > PREVIEW_MS) factor *= 2;
@@ -345,21 +348,34 @@ function previewPlan(fullMs) {
     api.mesh(state.model, tol, resolution);
     return performance.now() - t0;
   };
+  const plan = { factor, resolution: 0, lattice: 0, ta: 0, tr: Infinity };
   try {
-    const ta = time(factor * state.tol, 0);
-    if (ta <= PREVIEW_MS) return { factor, resolution: 0, ms: ta };
-    let resolution = PREVIEW_RES, tr = time(state.tol, resolution);
-    while (tr > PREVIEW_MS && resolution > 2) { resolution >>= 1; tr = time(state.tol, resolution); }
-    return tr < ta ? { factor: 1, resolution, ms: tr } : { factor, resolution: 0, ms: ta };
-  } catch (_) {
-    return { factor, resolution: 0 };
-  }
+    plan.ta = time(factor * state.tol, 0);
+    if (plan.ta <= PREVIEW_MS / 2) return plan;
+    // the lattice: 4 intervals, 8 when that is cheap, 2 when 4 is slow
+    let r = 4, tr = time(state.tol, r);
+    if (tr <= PREVIEW_MS / 3) {
+      const t8 = time(state.tol, 8);
+      if (t8 <= PREVIEW_MS) { r = 8; tr = t8; }
+    } else if (tr > PREVIEW_MS) {
+      r = 2;
+      tr = time(state.tol, r);
+    }
+    plan.lattice = r;
+    plan.tr = tr;
+    // the adaptive sampler (the better shape) unless it is slow and the
+    // lattice twice as fast
+    if (plan.ta > PREVIEW_MS && 2 * tr <= plan.ta) plan.resolution = r;
+  } catch (_) { /* the adaptive plan */ }
+  return plan;
 }
 // after a preview of ms: coarser when it took longer than PREVIEW_MS
+// (to the lattice when it was timed faster than this preview)
 function previewAdapt(ms) {
   const p = state.preview;
   if (ms <= PREVIEW_MS) return;
   if (p.resolution) p.resolution = Math.max(2, p.resolution >> 1);
+  else if (p.lattice && p.tr < ms / 2) p.resolution = p.lattice;
   else p.factor = Math.min(PREVIEW_MAX, 2 * p.factor);
 }
 
