@@ -27,8 +27,9 @@
 #            example's outputs against the C-only coons2stl (the core
 #            build's, built here if the core stage did not run), byte for
 #            byte; tests/web/test_page.js drives the page in Debian's
-#            headless chromium (puppeteer-core): render, a mouse drag, the
-#            exported STL (screenshots in build-web/test-output)
+#            headless chromium (puppeteer-core): render, the cells, a
+#            mouse drag and its previews' times, the exported STL
+#            (screenshots in build-web/test-output)
 # The tests: tests/unit/<stage>/test_<concept>.c (cmocka; ctest name
 # <stage>/test_<concept>, e.g. ctest -R '^csg/'), tests/cli/test_<concept>.py
 # (one harness, tests/cli/clitest.py; ctest name cli/test_<concept>), the fuzz
