@@ -10,7 +10,7 @@ static const char *bad_alloc_entry;
 static unsigned long bad_alloc_count;
 static int csg_failure;
 static int csg_whole;
-static int occt_wrong_knot;
+static int occt_wrong_spline;
 
 void coons__cxx_inject_bad_alloc(const char *entry) { bad_alloc_entry = entry; }
 
@@ -31,6 +31,6 @@ void coons__csg_whole_corefinement(int on) { csg_whole = on != 0; }
 
 int coons__csg_whole_corefinement_set(void) { return csg_whole; }
 
-void coons__occt_inject_wrong_knot(int on) { occt_wrong_knot = on != 0; }
+void coons__occt_inject_wrong_spline(int on) { occt_wrong_spline = on != 0; }
 
-int coons__occt_wrong_knot_injected(void) { return occt_wrong_knot; }
+int coons__occt_wrong_spline_injected(void) { return occt_wrong_spline; }
