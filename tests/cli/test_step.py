@@ -329,6 +329,7 @@ def main():
 
     formats(tmp)
     wrong_spline(tmp)
+    mirrored(tmp)
     refusals(tmp)
     T.finish()
 
@@ -402,6 +403,41 @@ def wrong_spline(tmp):
             f"fails (worst {max(dist) if dist else 0:.3g}, limit {1e-9 * size:.3g})",
             p.returncode == 0 and rc2 == 0 and solids and solids[0][1]
             and dist and max(dist) > 1e-9 * size, p.stderr)
+
+
+def mirrored(tmp):
+    """A left-handed body (the spool mirrored: det J < 0, coons_body_volume
+    negative) is written outward: the faces' own orientation gives a
+    positive volume (an inside-out solid would integrate to the negative),
+    and Open CASCADE finds it valid. Read from BREP, which keeps the
+    orientation as written: Open CASCADE's STEP reader turns an inside-out
+    solid outward itself, so a STEP file cannot show the mistake."""
+    with open(os.path.join(T.src, "examples", "spool.json")) as f:
+        doc = json.load(f)
+
+    def flip(node, pts=False):
+        """x -> -x in every point list (points, corners), weights kept."""
+        if isinstance(node, list):
+            if pts and len(node) == 3 and all(isinstance(x, (int, float)) for x in node):
+                return [-node[0], node[1], node[2]]
+            return [flip(x, pts) for x in node]
+        if isinstance(node, dict):
+            return {k: flip(v, pts or k in ("points", "corners")) for k, v in node.items()}
+        return node
+
+    doc["bodies"] = flip(doc["bodies"])
+    model = os.path.join(tmp, "spool-mirrored.json")
+    with open(model, "w") as f:
+        json.dump(doc, f)
+    rc, out, err = T.run([model, "--info", "--no-solid"])
+    vol = json.loads(out)["bodies"][0]["volume"] if rc == 0 else 0
+    path = os.path.join(tmp, "spool-mirrored.brep")
+    rc, _, err = T.run([model, "-o", path])
+    _, solids, _ = occt_check(path)
+    T.check(f"a left-handed body (volume {vol:.10g}) is a valid solid with outward faces "
+            f"(volume by its faces {solids[0][3] if solids else 0:.10g})",
+            vol < 0 and rc == 0 and len(solids) == 1 and solids[0][1]
+            and abs(solids[0][3] + vol) <= 1e-6 * abs(vol), err)
 
 
 def refusals(tmp):
