@@ -18,8 +18,10 @@
 #   fuzz     the loader fuzz target for COONS_FUZZ_SECONDS (default 60) s
 #            (tools/fuzz.sh)
 #   python   the Python package (python/, issue 28): a wheel built from the
-#            tree (the C core), installed into a fresh virtual environment,
-#            its pytest suite (python/tests) run there
+#            tree (the full library: unions through CGAL), installed into a
+#            fresh virtual environment, its pytest suite (python/tests) run
+#            there; then a C-core wheel in a second environment, where the
+#            calls that need CGAL must raise saying so
 # The tests: tests/unit/<stage>/test_<concept>.c (cmocka; ctest name
 # <stage>/test_<concept>, e.g. ctest -R '^csg/'), tests/cli/test_<concept>.py
 # (one harness, tests/cli/clitest.py; ctest name cli/test_<concept>), the fuzz
@@ -117,29 +119,43 @@ if want fuzz; then
   end fuzz
 fi
 
-# 6. The Python package: `pip wheel ./python` builds the C core (the union
-#    tests then check that a union says it needs CGAL), the wheel goes into
-#    a fresh venv (Debian's numpy and meshio through --system-site-packages;
+# 6. The Python package: `pip wheel ./python` builds the full library (the
+#    union tests compare with coons2stl's unions), the wheel goes into a
+#    fresh venv (Debian's numpy and meshio through --system-site-packages;
 #    cffi and pytest from PyPI), pytest runs from outside the tree so that
-#    the installed package is the one tested. Exit 5 (no tests ran) fails.
+#    the installed package is the one tested. Then the C core alone in a
+#    second venv (`-k` the tests of meshing and of the missing parts, and
+#    the lifetime torture under valgrind, which cannot run CGAL): a call
+#    that needs CGAL must raise naming it. COONS_EXPECT_CGAL makes
+#    the tests check which build they were given. Exit 5 (no tests ran)
+#    fails.
 if want python; then
   begin "Python package"
   pyenv_dir=$(mktemp -d)
   trap 'rm -rf "$pyenv_dir"' EXIT
-  /usr/bin/python3 -m venv --system-site-packages "$pyenv_dir/venv"
-  py="$pyenv_dir/venv/bin/python"
-  "$py" -m pip install -q "scikit-build-core>=0.8" "cffi>=1.15" "pytest>=7"
-  CMAKE_C_COMPILER_LAUNCHER=$(command -v ccache || true) \
-    "$py" -m pip wheel -q --no-deps --no-build-isolation -w "$pyenv_dir/wheels" \
-      --config-settings=cmake.define.COONS_WITH_OPENMESH=OFF \
-      --config-settings=cmake.define.COONS_WITH_CGAL=OFF \
-      --config-settings=build-dir="$here/$build-python" ./python
-  "$py" -m pip install -q --no-deps "$pyenv_dir"/wheels/coons-*.whl
-  rc=0
-  (cd "$pyenv_dir" && COONS_EXAMPLES="$here/examples" \
-     "$py" -m pytest -q -p no:cacheprovider "$here/python/tests") || rc=$?
-  if [ "$rc" -eq 5 ]; then echo "test.sh: python: pytest collected no tests" >&2; fi
-  [ "$rc" -eq 0 ] || exit 1
+  py_stage() {  # name, expect_cgal, pytest args..., with cmake defines in $defines
+    local name=$1 expect=$2 rc=0
+    shift 2
+    /usr/bin/python3 -m venv --system-site-packages "$pyenv_dir/$name"
+    local py="$pyenv_dir/$name/bin/python"
+    "$py" -m pip install -q "scikit-build-core>=0.8" "cffi>=1.15" "pytest>=7"
+    CMAKE_C_COMPILER_LAUNCHER=$(command -v ccache || true) \
+    CMAKE_CXX_COMPILER_LAUNCHER=$(command -v ccache || true) \
+      "$py" -m pip wheel -q --no-deps --no-build-isolation -w "$pyenv_dir/wheels-$name" \
+        "${defines[@]}" --config-settings=build-dir="$here/$build-$name" ./python
+    "$py" -m pip install -q --no-deps "$pyenv_dir/wheels-$name"/coons-*.whl
+    (cd "$pyenv_dir" && COONS_EXAMPLES="$here/examples" COONS_EXPECT_CGAL=$expect \
+       "$py" -m pytest -q -p no:cacheprovider "$@") || rc=$?
+    if [ "$rc" -eq 5 ]; then echo "test.sh: python ($name): pytest collected no tests" >&2; fi
+    [ "$rc" -eq 0 ] || exit 1
+  }
+  defines=()
+  py_stage python 1 -k "not under_valgrind" "$here/python/tests"
+  defines=(--config-settings=cmake.define.COONS_WITH_OPENMESH=OFF
+           --config-settings=cmake.define.COONS_WITH_CGAL=OFF)
+  py_stage python-core 0 -k "union or mesh_equals_cli or features or under_valgrind" \
+    "$here/python/tests/test_errors.py" "$here/python/tests/test_mesh.py" \
+    "$here/python/tests/test_lifetime.py"
   end python
 fi
 

@@ -219,6 +219,25 @@ COONS_EXPORT coons_status coons_body_eval_grid(const coons_body *b, const double
                                                const double *v, size_t nv, const double *w,
                                                size_t nw, double *out, coons_error *err);
 
+/**
+ * Points at n scattered parameter triples uvw[3i], uvw[3i+1], uvw[3i+2]
+ * (clamped to [0,1]) in one call: xyz[3i..3i+2] is what coons_body_eval()
+ * gives there, bitwise. With `jac` or `det` not NULL, the Jacobians too:
+ * jac[9i + 3r + c] = d x_r / d q_c and det[i] = det J, and then xyz is
+ * what coons_body_eval_jacobian() gives (the same point to rounding).
+ * No allocation; no per-point call overhead for bindings (Python, the
+ * browser) that evaluate arrays.
+ * @param[in]  uvw  3 n parameters
+ * @param[out] xyz  3 n coordinates
+ * @param[out] jac  NULL or 9 n partials (row-major 3 x 3 per point)
+ * @param[out] det  NULL or n determinants
+ * @return ::COONS_OK, ::COONS_E_INVALID (NULL body; NULL uvw or xyz with
+ *         n > 0).
+ */
+COONS_EXPORT coons_status coons_body_eval_points(const coons_body *b, size_t n,
+                                                 const double *uvw, double *xyz, double *jac,
+                                                 double *det, coons_error *err);
+
 /** Box of the body's control data (corners, curve or patch control points, net). */
 COONS_EXPORT void coons_body_control_bbox(const coons_body *b, double lo[3], double hi[3]);
 

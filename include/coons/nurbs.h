@@ -43,7 +43,8 @@
  *   the others (a shell is linear through its thickness). exact is 0.
  *
  * An exact form is claimed (exact 1) only when its measured deviation is
- * also at most 1e-10 of its control net's size; one that is not (data that
+ * also at most 1e-10 of its size (the larger of the object's and the
+ * form's control boxes and of their coordinates); one that is not (data that
  * failed to report a breakpoint) is refitted within `tol` when `tol` > 0, or
  * returned as it is, with exact 0 either way.
  *
@@ -72,8 +73,8 @@
 extern "C" {
 #endif
 
-/** Largest number of control points of a fitted form; a fit that would
- * need more stops with ::COONS_E_LIMIT. */
+/** Largest number of control points of a form, exact or fitted; one that
+ * would need more is ::COONS_E_LIMIT. */
 #define COONS_NURBS_MAX_POINTS 2097152
 
 /**

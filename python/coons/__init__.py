@@ -12,11 +12,15 @@ volume-meshed into hexahedra for meshio, PyVista, CalculiX and FEniCS.
 See docs/python.md.
 """
 from . import _features, _lib
-from .builders import bezier_volume, body, body0, bspline_volume
+from .builders import (bezier, bezier_surface, bezier_volume, bilinear, body, body0, body1, body2,
+                       bspline, bspline_surface, bspline_volume, clamped_cubic, coons,
+                       coons_cubic, coons_patch, hermite, hermite_coons, line, morph, network,
+                       polyline, ruled, shell)
 from .errors import (ClosedError, DomainError, Error, FileError, GeometryError, InvalidError,
                      LimitError, LoadError, LoadGeometryError, LoadLimitError, UnsupportedError)
 from .mesh import Mesh, VolumeMesh
 from .model import Body, Model, load, loads
+from .shapes import Curve, Patch
 
 __version__ = _lib.version()
 
@@ -29,7 +33,10 @@ def features():
             "lib3mf": _features.LIB3MF}
 
 
-__all__ = ["Body", "ClosedError", "DomainError", "Error", "FileError", "GeometryError",
-           "InvalidError", "LimitError", "LoadError", "LoadGeometryError", "LoadLimitError",
-           "Mesh", "Model", "UnsupportedError", "VolumeMesh", "bezier_volume", "body", "body0",
-           "bspline_volume", "features", "load", "loads"]
+__all__ = ["Body", "ClosedError", "Curve", "DomainError", "Error", "FileError",
+           "GeometryError", "InvalidError", "LimitError", "LoadError", "LoadGeometryError",
+           "LoadLimitError", "Mesh", "Model", "Patch", "UnsupportedError", "VolumeMesh",
+           "bezier", "bezier_surface", "bezier_volume", "bilinear", "body", "body0", "body1",
+           "body2", "bspline", "bspline_surface", "bspline_volume", "clamped_cubic", "coons",
+           "coons_cubic", "coons_patch", "features", "hermite", "hermite_coons", "line", "load",
+           "loads", "morph", "network", "polyline", "ruled", "shell"]

@@ -35,6 +35,10 @@ for _name in dir(lib):
 FACE_NAMES = ("u0", "u1", "v0", "v1", "w0", "w1")
 
 
+def _dp(a):
+    return ffi.NULL if a is None else ffi.cast("double *", ffi.from_buffer(a))
+
+
 def _str(p):
     return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
 
@@ -178,30 +182,30 @@ def body_at_time(b, t):
 
 
 def body_eval(b, q):
-    """q: C-contiguous float64 (n, 3) in [0,1] -> (n, 3)."""
+    """q: C-contiguous float64 (n, 3) in [0,1] -> (n, 3), in one C call
+    (coons_body_eval_points: bitwise coons_body_eval at each point)."""
     n = q.shape[0]
     res = np.empty((n, 3), dtype=np.float64)
-    pq = ffi.cast("double *", ffi.from_buffer(q))
-    po = ffi.cast("double *", ffi.from_buffer(res, require_writable=True))
-    f = lib.coons_body_eval
-    for i in range(n):
-        f(b, pq[3 * i], pq[3 * i + 1], pq[3 * i + 2], po + 3 * i)
+    err = new_error()
+    check(lib.coons_body_eval_points(b, n, _dp(q), _dp_out(res), ffi.NULL, ffi.NULL, err), err)
     return res
 
 
 def body_eval_jacobian(b, q):
-    """-> points (n, 3), jacobians (n, 3, 3) [row x_r, column q_c], det (n,)."""
+    """-> points (n, 3), jacobians (n, 3, 3) [row x_r, column q_c], det (n,):
+    coons_body_eval_jacobian at each point, in one C call."""
     n = q.shape[0]
     x = np.empty((n, 3), dtype=np.float64)
     jac = np.empty((n, 3, 3), dtype=np.float64)
     det = np.empty(n, dtype=np.float64)
-    pq = ffi.cast("double *", ffi.from_buffer(q))
-    px = ffi.cast("double *", ffi.from_buffer(x, require_writable=True))
-    pj = ffi.cast("double (*)[3]", ffi.from_buffer(jac, require_writable=True))
-    f = lib.coons_body_eval_jacobian
-    for i in range(n):
-        det[i] = f(b, pq[3 * i], pq[3 * i + 1], pq[3 * i + 2], px + 3 * i, pj + 3 * i)
+    err = new_error()
+    check(lib.coons_body_eval_points(b, n, _dp(q), _dp_out(x), _dp_out(jac), _dp_out(det), err),
+          err)
     return x, jac, det
+
+
+def _dp_out(a):
+    return ffi.cast("double *", ffi.from_buffer(a, require_writable=True))
 
 
 def body_eval_grid(b, u, v, w):
@@ -267,6 +271,170 @@ def body_new_bspline(degree, points, ku, kv, kw, weights):
     check(lib.coons_body_new_bspline(deg, dp(points), n, dp(ku), dp(kv), dp(kw), dp(weights),
                                      out, err), err)
     return out[0]
+
+
+# ---- curves and patches (coons/curve.h, coons/patch.h) ---------------------
+
+def _made(kind, fn, *args):
+    out = ffi.new("coons_%s **" % kind)
+    err = new_error()
+    check(fn(*args, out, err), err)
+    return out[0]
+
+
+def _handles(kind, ptrs):
+    return ffi.new("coons_%s *[]" % kind, list(ptrs))
+
+
+def curve_free(c):
+    lib.coons_curve_free(c)
+
+
+def curve_type(c):
+    return _str(lib.coons_curve_type_name(lib.coons_curve_kind(c)))
+
+
+def curve_new(type, points, closed=False, degree=0, knots=None, weights=None):
+    """points: C-contiguous float64 (n, 3); the arrays are checked by the caller."""
+    p, n = _dp(points), points.shape[0]
+    if type == "line":
+        return _made("curve", lib.coons_curve_new_line, p, p + 3)
+    if type == "polyline":
+        return _made("curve", lib.coons_curve_new_polyline, p, n)
+    if type == "bezier":
+        return _made("curve", lib.coons_curve_new_bezier, p, n)
+    if type == "coons-cubic":
+        return _made("curve", lib.coons_curve_new_coons_cubic, p, n, 1 if closed else 0)
+    if type == "clamped-cubic":
+        return _made("curve", lib.coons_curve_new_clamped_cubic, p, n)
+    if type == "bspline":
+        return _made("curve", lib.coons_curve_new_bspline, degree, p, n, _dp(knots),
+                     _dp(weights))
+    raise errors.InvalidError("unknown curve type %r" % (type,))
+
+
+def curve_new_hermite(points, tangents):
+    p, t = _dp(points), _dp(tangents)
+    return _made("curve", lib.coons_curve_new_hermite, p, t, p + 3, t + 3)
+
+
+def curve_eval(c, t, order):
+    """t: C-contiguous float64 (n,) in [0,1] -> (n, order + 1, 3): the point
+    and its derivatives d/dt up to order (<= 2)."""
+    n = t.shape[0]
+    res = np.empty((n, order + 1, 3), dtype=np.float64)
+    po = ffi.cast("double (*)[3]", ffi.from_buffer(res, require_writable=True))
+    f = lib.coons_curve_eval_derivs
+    for i in range(n):
+        f(c, float(t[i]), order, po + (order + 1) * i)
+    return res
+
+
+def patch_free(p):
+    lib.coons_patch_free(p)
+
+
+def patch_type(p):
+    return _str(lib.coons_patch_type_name(lib.coons_patch_kind(p)))
+
+
+def patch_new_bilinear(corners):
+    return _made("patch", lib.coons_patch_new_bilinear, _dp(corners))
+
+
+def patch_new_ruled(c0, c1):
+    return _made("patch", lib.coons_patch_new_ruled, c0, c1)
+
+
+def _blend(cubic):
+    return lib.COONS_BLEND_CUBIC if cubic else lib.COONS_BLEND_LINEAR
+
+
+_TWISTS = {"zero": "COONS_TWIST_ZERO", "adini": "COONS_TWIST_ADINI",
+           "bessel": "COONS_TWIST_BESSEL"}
+
+
+def patch_new_coons(boundary, cubic):
+    return _made("patch", lib.coons_patch_new_coons, _handles("curve", boundary),
+                 _blend(cubic), 0.0)
+
+
+def patch_new_hermite_coons(boundary, cross, twist, twists):
+    o = ffi.new("coons_hermite_options *")
+    lib.coons_hermite_options_init(o)
+    if cross is not None:
+        for i, c in enumerate(cross):
+            o.cross[i] = c
+    if twists is not None:
+        o.twist = lib.COONS_TWIST_EXPLICIT
+        for i in range(4):
+            for r in range(3):
+                o.twists[i][r] = float(twists[i, r])
+    else:
+        o.twist = getattr(lib, _TWISTS[twist])
+    return _made("patch", lib.coons_patch_new_hermite_coons, _handles("curve", boundary), o)
+
+
+def patch_new_bezier(points):
+    return _made("patch", lib.coons_patch_new_bezier, _dp(points), points.shape[0],
+                 points.shape[1])
+
+
+def patch_new_bspline(degree, points, ks, kt, weights):
+    return _made("patch", lib.coons_patch_new_bspline, degree[0], degree[1], _dp(points),
+                 points.shape[0], points.shape[1], _dp(ks), _dp(kt), _dp(weights))
+
+
+def patch_new_network(rows, columns, s_nodes, t_nodes, twist, cubic):
+    o = ffi.new("coons_network_options *")
+    lib.coons_network_options_init(o)
+    o.s_nodes, o.t_nodes = _dp(s_nodes), _dp(t_nodes)
+    o.twist = getattr(lib, _TWISTS[twist])
+    o.blend = _blend(cubic)
+    return _made("patch", lib.coons_patch_new_network, _handles("curve", rows), len(rows),
+                 _handles("curve", columns), len(columns), o)
+
+
+def patch_eval(p, st, order):
+    """st: C-contiguous float64 (n, 2) in [0,1] -> (n, k, 3): the point and,
+    with order 1, x_s and x_t; with order 2 also x_ss, x_st, x_tt."""
+    n, k = st.shape[0], (1, 3, 6)[order]
+    res = np.empty((n, 6, 3), dtype=np.float64)
+    po = ffi.cast("double (*)[3]", ffi.from_buffer(res, require_writable=True))
+    f = lib.coons_patch_eval_derivs
+    for i in range(n):
+        f(p, float(st[i, 0]), float(st[i, 1]), order, po + 6 * i)
+    return res[:, :k]
+
+
+def patch_eval_grid(p, s, t):
+    out = np.empty((len(s), len(t), 3), dtype=np.float64)
+    err = new_error()
+    check(lib.coons_patch_eval_grid(p, _dp(s), len(s), _dp(t), len(t),
+                                    ffi.cast("double *", ffi.from_buffer(out, require_writable=True)),
+                                    err), err)
+    return out
+
+
+def body_new_body1(edges, cubic):
+    return _made("body", lib.coons_body_new_body1, _handles("curve", edges), _blend(cubic), 0.0)
+
+
+def body_new_body2(faces, cubic):
+    return _made("body", lib.coons_body_new_body2, _handles("patch", faces), _blend(cubic), 0.0)
+
+
+_SIDES = {"both": "COONS_SHELL_BOTH", "front": "COONS_SHELL_FRONT", "back": "COONS_SHELL_BACK"}
+
+
+def body_new_shell(surface, thickness, side):
+    return _made("body", lib.coons_body_new_shell, surface, thickness, getattr(lib, _SIDES[side]))
+
+
+def body_new_morph(keys, at, smooth, t):
+    path = lib.COONS_MORPH_SMOOTH if smooth else lib.COONS_MORPH_LINEAR
+    return _made("body", lib.coons_body_new_morph, _handles("body", keys), len(keys), _dp(at),
+                 path, t)
 
 
 # ---- triangle meshes ------------------------------------------------------

@@ -2,6 +2,7 @@
 """Every error class is raised by a real bad input and carries the
 library's message; misuse raises instead of crashing."""
 import json
+import os
 
 import numpy as np
 import pytest
@@ -125,3 +126,13 @@ def test_model_file_is_never_overwritten(tmp_path):
     with pytest.raises(coons.InvalidError):
         m.write(f)
     assert f.read_text() == open(example("nail.json")).read()
+
+
+def test_features_as_built():
+    """tools/test.sh says which build it installed (COONS_EXPECT_CGAL): the
+    full library in one environment, the C core in another."""
+    f = coons.features()
+    want = os.environ.get("COONS_EXPECT_CGAL")
+    if want is not None:
+        assert f["cgal"] == (want == "1"), f
+    assert f["openmesh"] or not f["cgal"]

@@ -5,6 +5,8 @@
  * the type's row (kinds.h). The types live in body0.c (T), body1.c (C1),
  * body2.c (C2) and tensor_volume.c (the tensor-product solid of section 2).
  */
+#include <string.h>
+
 #include "body_impl.h"
 
 coons_status coons__body_alloc(const coons__body_kind *kind, coons_blend blend,
@@ -71,6 +73,29 @@ double coons_body_eval_jacobian(const coons_body *b, double u, double v, double 
     double x[3];
     v3_cross(x, d[1], d[2]);
     return v3_dot(d[0], x);
+}
+
+coons_status coons_body_eval_points(const coons_body *b, size_t n, const double *uvw,
+                                    double *xyz, double *jac, double *det, coons_error *err)
+{
+    if (!b) return coons__error_set(err, COONS_E_INVALID, "body points: NULL body");
+    if (n && (!uvw || !xyz))
+        return coons__error_set(err, COONS_E_INVALID, "body points: NULL parameters or output");
+    if (!jac && !det) {
+        for (size_t i = 0; i < n; i++) {
+            const double *q = uvw + 3 * i;
+            b->kind->eval(b, clamp01(q[0]), clamp01(q[1]), clamp01(q[2]), xyz + 3 * i, NULL);
+        }
+        return COONS_OK;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const double *q = uvw + 3 * i;
+        double J[3][3];
+        double d = coons_body_eval_jacobian(b, q[0], q[1], q[2], xyz + 3 * i, J);
+        if (jac) memcpy(jac + 9 * i, J, sizeof J);
+        if (det) det[i] = d;
+    }
+    return COONS_OK;
 }
 
 coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t nu,

@@ -53,12 +53,27 @@ void coons__trilinear(const double c[8][3], const double bu[4], const double bv[
             }
 }
 
+/* The point grouped as the grid groups it (the same operations in the
+ * same order, so a grid point equals the point evaluated alone bitwise):
+ * u first, then v, then w. */
+static void point(const double c[8][3], const double bu[2], const double bv[2],
+                  const double bw[2], double out[3])
+{
+    for (int r = 0; r < 3; r++) {
+        double A[4];
+        for (int jk = 0; jk < 4; jk++) A[jk] = bu[0] * c[jk][r] + bu[1] * c[4 + jk][r];
+        double q0 = bv[0] * A[0] + bv[1] * A[2], q1 = bv[0] * A[1] + bv[1] * A[3];
+        out[r] = bw[0] * q0 + bw[1] * q1;
+    }
+}
+
 static void eval(const coons_body *b, double u, double v, double w, double out[3],
                  double d[3][3])
 {
-    double bu[5], bv[5], bw[5];
+    double bu[5], bv[5], bw[5], t[3];
     coons__blends_at(b->blend, u, v, w, bu, bv, bw);
-    coons__trilinear(b->corner, bu, bv, bw, out, d);
+    if (d) coons__trilinear(b->corner, bu, bv, bw, t, d);
+    point(b->corner, bu, bv, bw, out);
 }
 
 /* Per (u,v) the body is the blend of two points Q_k along w; the w-line

@@ -690,6 +690,49 @@ static void test_grid_matches_points(void **state)
     }
 }
 
+/* coons_body_eval_points: bitwise coons_body_eval() point by point, and
+ * coons_body_eval_jacobian() with the Jacobians; bad arguments refused. */
+static void test_eval_points(void **state)
+{
+    (void)state;
+    coons_error err = COONS_ERROR_INIT;
+    coons_body *bodies[TB_MAX_BODIES];
+    int nb = tb_all_bodies(bodies);
+    enum { N = 40 };
+    double uvw[3 * N], xyz[3 * N], xj[3 * N], jac[9 * N], det[N];
+    for (int m = 0; m < nb; m++) {
+        tb_rng rng = {77u + (unsigned)m};
+        for (int i = 0; i < 3 * N; i++) uvw[i] = 1.2 * tb_rand(&rng) - 0.1; /* some clamped */
+        assert_coons_ok(coons_body_eval_points(bodies[m], N, uvw, xyz, NULL, NULL, &err), &err);
+        assert_coons_ok(coons_body_eval_points(bodies[m], N, uvw, xj, jac, det, &err), &err);
+        for (int i = 0; i < N; i++) {
+            double y[3], x[3], J[3][3];
+            const double *q = uvw + 3 * i;
+            coons_body_eval(bodies[m], q[0], q[1], q[2], y);
+            if (memcmp(y, xyz + 3 * i, sizeof y))
+                fail_msg("body %d (%s) point %d differs from coons_body_eval", m,
+                         tb_body_label(m), i);
+            double d = coons_body_eval_jacobian(bodies[m], q[0], q[1], q[2], x, J);
+            if (memcmp(x, xj + 3 * i, sizeof x) || memcmp(J, jac + 9 * i, sizeof J) ||
+                memcmp(&d, det + i, sizeof d))
+                fail_msg("body %d (%s) point %d differs from coons_body_eval_jacobian", m,
+                         tb_body_label(m), i);
+        }
+        /* det alone, no Jacobian array: the same determinants */
+        double det2[N];
+        assert_coons_ok(coons_body_eval_points(bodies[m], N, uvw, xj, NULL, det2, &err), &err);
+        assert_memory_equal(det2, det, sizeof det);
+        assert_int_equal(coons_body_eval_points(bodies[m], N, NULL, xyz, NULL, NULL, &err),
+                         COONS_E_INVALID);
+        assert_int_equal(coons_body_eval_points(bodies[m], N, uvw, NULL, jac, NULL, &err),
+                         COONS_E_INVALID);
+        assert_coons_ok(coons_body_eval_points(bodies[m], 0, NULL, NULL, NULL, NULL, &err), &err);
+        coons_body_free(bodies[m]);
+    }
+    assert_int_equal(coons_body_eval_points(NULL, 1, uvw, xyz, NULL, NULL, &err),
+                     COONS_E_INVALID);
+}
+
 /* coons_body_min_jacobian (tabulated det J, a separate path for body 2)
  * against det J point by point on the same lattice. */
 static void test_min_jacobian_matches_points(void **state)
@@ -801,6 +844,7 @@ int main(void)
         cmocka_unit_test(test_bspline_volume_exact),
         cmocka_unit_test(test_jacobian_fd),
         cmocka_unit_test(test_grid_matches_points),
+        cmocka_unit_test(test_eval_points),
         cmocka_unit_test(test_min_jacobian_matches_points),
         cmocka_unit_test(test_copy),
         cmocka_unit_test(test_alloc_failures),
