@@ -449,7 +449,7 @@ coons_status write(const coons_model *m, coons_format format, const coons__wopts
         double mtol = coons_model_tolerance(m);
         if (mtol > 0) fuse.SetFuzzyValue(1e-3 * mtol);
         if (glue) fuse.SetGlue(BOPAlgo_GlueShift);
-        fuse.SetRunParallel(Standard_False);
+        fuse.SetRunParallel(Standard_True);
         fuse.Build();
         if (!fuse.IsDone() || fuse.HasErrors())
             throw failure{COONS_E_CSG, "Open CASCADE's Boolean (BRepAlgoAPI_Fuse) could not "
