@@ -330,6 +330,7 @@ def main():
     formats(tmp)
     wrong_spline(tmp)
     mirrored(tmp)
+    info_faces()
     refusals(tmp)
     T.finish()
 
@@ -438,6 +439,26 @@ def mirrored(tmp):
             f"(volume by its faces {solids[0][3] if solids else 0:.10g})",
             vol < 0 and rc == 0 and len(solids) == 1 and solids[0][1]
             and abs(solids[0][3] + vol) <= 1e-6 * abs(vol), err)
+
+
+def info_faces():
+    """--info's "faces": exact and rational (the spool: rational B-spline
+    faces), fitted with a measured deviation (the hood shell: an offset
+    surface, fitted within the finer of the tolerance and 1e-5 of the size)."""
+    got = {}
+    for name in ["spool", "deformed-cube", "hood-shell"]:
+        rc, out, _ = T.run([os.path.join(T.src, "examples", name + ".json"), "--info", "--no-solid"])
+        got[name] = json.loads(out)["bodies"][0] if rc == 0 else None
+    sp, dc, hs = got["spool"]["faces"], got["deformed-cube"]["faces"], got["hood-shell"]
+    T.check("--info: the spool's faces are exact and rational, none fitted",
+            sp["exact"] and sp["rational"] and sp["fitted"] == [] and sp["deviation"] == 0, str(sp))
+    T.check("--info: the deformed cube's faces are exact polynomials",
+            dc["exact"] and not dc["rational"], str(dc))
+    size = diagonal(hs["control_bbox"])
+    f = hs["faces"]
+    T.check(f"--info: the hood shell's six faces are fitted, deviation {f['deviation']:.3g} "
+            f"within 1e-5 of its size",
+            not f["exact"] and len(f["fitted"]) == 6 and 0 < f["deviation"] <= 1e-5 * size, str(f))
 
 
 def refusals(tmp):
