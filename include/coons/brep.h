@@ -10,7 +10,8 @@
  * deviation coons_body_face_to_nurbs() measured within the model's
  * tolerance. One solid per body:
  * - the faces are sewn along their shared edges (Open CASCADE's sewing at
- *   1e-7 of the body's size, capped by the model's tolerance);
+ *   1e-7 of the body's size, or 4 times the deviation of fitted faces when
+ *   larger, capped by the model's tolerance);
  * - a collapsed face (an apex: all its control points coincide) is left
  *   out, and the edges of its neighbours that collapse to the apex become
  *   degenerate edges: 5 faces;
@@ -44,6 +45,10 @@
  * "cm", "m", "um", "in", "ft" and their spelled-out names; none means
  * millimetres. Coordinates are written as they are (no scaling).
  *
+ * The same model gives the same bytes: the STEP time stamp is
+ * 1970-01-01T00:00:00 and the IGES dates 19700101.000000, the author and
+ * organisation are empty, the originating system is libcoons and its
+ * version, the file's name is coons_write_options::name.
  * The file is written atomically, as every writer of coons/io.h does.
  * The Open CASCADE layer never prints (its message printers are removed).
  * A library built without it refuses these formats with

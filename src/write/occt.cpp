@@ -29,6 +29,7 @@
  *   before writing (faces reversed), not left to readers. */
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -50,6 +51,8 @@
 #include <Geom_BSplineSurface.hxx>
 #include <IGESCAFControl_Writer.hxx>
 #include <IGESControl_Controller.hxx>
+#include <APIHeaderSection_MakeHeader.hxx>
+#include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESModel.hxx>
 #include <IGESData_IGESWriter.hxx>
 #include <IGESSelect_WorkLibrary.hxx>
@@ -70,6 +73,7 @@
 #include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TCollection_ExtendedString.hxx>
+#include <TCollection_HAsciiString.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
 #include <TopExp_Explorer.hxx>
@@ -85,6 +89,7 @@
 #include "cxx_guard.hpp"
 
 extern "C" {
+#include "coons/version.h"
 #include "writer.h"
 }
 
@@ -249,6 +254,13 @@ std::string first_failed_check(const BRepCheck_Analyzer &ana, const TopoDS_Shape
     return "a sub-shape in context (BRepCheck_Analyzer::IsValid is false)";
 }
 
+std::string short_number(double x)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
+
 /* The solid of one body. */
 TopoDS_Solid solid_of(const coons_model *m, size_t index, const char *name)
 {
@@ -302,7 +314,7 @@ TopoDS_Solid solid_of(const coons_model *m, size_t index, const char *name)
     if (sew.NbFreeEdges() > 0)
         throw failure{COONS_E_CSG, std::string("body '") + name + "': its faces do not close (" +
                                        std::to_string(sew.NbFreeEdges()) +
-                                       " free edges after sewing at " + std::to_string(sew_tol) +
+                                       " free edges after sewing at " + short_number(sew_tol) +
                                        ")"};
     TopoDS_Shell shell;
     int nshells = 0;
@@ -376,7 +388,8 @@ Handle(TDocStd_Document) document_of(const std::vector<part> &parts)
     return doc;
 }
 
-void send_step(const std::vector<part> &parts, bool ap242, const char *unit, std::ostream &os)
+void send_step(const std::vector<part> &parts, bool ap242, const char *unit, const char *name,
+               std::ostream &os)
 {
     STEPControl_Controller::Init();
     Interface_Static::SetCVal("write.step.unit", unit);
@@ -391,13 +404,21 @@ void send_step(const std::vector<part> &parts, bool ap242, const char *unit, std
     if (!w.Transfer(doc, STEPControl_AsIs))
         throw failure{COONS_E_CSG, "Open CASCADE's STEP translation failed"};
     Handle(StepData_StepModel) model = w.ChangeWriter().Model();
+    /* The same bytes for the same model: no clock, no user name. */
+    APIHeaderSection_MakeHeader header(model);
+    header.SetName(new TCollection_HAsciiString(name));
+    header.SetTimeStamp(new TCollection_HAsciiString("1970-01-01T00:00:00"));
+    header.SetAuthorValue(1, new TCollection_HAsciiString(""));
+    header.SetOrganizationValue(1, new TCollection_HAsciiString(""));
+    header.SetOriginatingSystem(new TCollection_HAsciiString("libcoons " COONS_VERSION_STRING));
     StepData_StepWriter sw(model);
     sw.FloatWriter().SetFormat("%#.17G", Standard_True);
     sw.SendModel(StepAP214::Protocol());
     if (!sw.Print(os)) throw failure{COONS_E_IO, "Open CASCADE's STEP output failed"};
 }
 
-void send_iges(const std::vector<part> &parts, const char *unit, std::ostream &os)
+void send_iges(const std::vector<part> &parts, const char *unit, const char *name,
+               std::ostream &os)
 {
     IGESControl_Controller::Init();
     Interface_Static::SetCVal("write.iges.unit", unit);
@@ -408,6 +429,15 @@ void send_iges(const std::vector<part> &parts, const char *unit, std::ostream &o
     Handle(TDocStd_Document) doc = document_of(parts);
     if (!w.Transfer(doc)) throw failure{COONS_E_CSG, "Open CASCADE's IGES translation failed"};
     w.ComputeModel();
+    /* The same bytes for the same model: no clock, no user name. */
+    IGESData_GlobalSection gs = w.Model()->GlobalSection();
+    gs.SetDate(new TCollection_HAsciiString("19700101.000000"));
+    gs.SetLastChangeDate(new TCollection_HAsciiString("19700101.000000"));
+    gs.SetAuthorName(new TCollection_HAsciiString(""));
+    gs.SetCompanyName(new TCollection_HAsciiString(""));
+    gs.SetFileName(new TCollection_HAsciiString(name));
+    gs.SetSystemId(new TCollection_HAsciiString("libcoons " COONS_VERSION_STRING));
+    w.Model()->SetGlobalSection(gs);
     IGESData_IGESWriter iw(w.Model());
     iw.FloatWriter().SetFormat("%#.17G", Standard_True);
     iw.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
@@ -475,9 +505,9 @@ coons_status write(const coons_model *m, coons_format format, const coons__wopts
     {
         std::lock_guard<std::mutex> lock(occt_mutex());
         if (format == COONS_FORMAT_STEP || format == COONS_FORMAT_STEP_AP242) {
-            send_step(parts, format == COONS_FORMAT_STEP_AP242, unit, os);
+            send_step(parts, format == COONS_FORMAT_STEP_AP242, unit, o->name, os);
         } else if (format == COONS_FORMAT_IGES) {
-            send_iges(parts, unit, os);
+            send_iges(parts, unit, o->name, os);
         } else {
             BRep_Builder bb;
             TopoDS_Compound c;

@@ -356,6 +356,18 @@ def formats(tmp):
                 got is not None and all(g["valid"] and g["solids"] >= 1 for g in got.values()),
                 err or str(got))
     spool = os.path.join(T.src, "examples", "spool.json")
+    same = []
+    for ext in ["step", "igs", "brep"]:
+        texts = []
+        for d in ["a", "b"]:
+            os.makedirs(os.path.join(tmp, d), exist_ok=True)
+            path = os.path.join(tmp, d, "spool." + ext)
+            T.run([spool, "-o", path])
+            with open(path, "rb") as f:
+                texts.append(f.read())
+        same.append(texts[0] == texts[1] and len(texts[0]) > 1000)
+    T.check("STEP, IGES and BREP files are the same bytes for the same model (no clock, no "
+            "user name)", all(same), str(same))
     p214, p242 = os.path.join(tmp, "s214.step"), os.path.join(tmp, "s242.stp")
     T.run([spool, "-o", p214])
     rc, _, err = T.run([spool, "-f", "step-ap242", "-o", p242])
