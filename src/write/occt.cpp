@@ -396,7 +396,12 @@ void send_step(const std::vector<part> &parts, bool ap242, const char *unit, con
     Interface_Static::SetCVal("xstep.cascade.unit", unit);
     /* 4: AP214 IS, 5: AP242 DIS; after Init, before the model is made. */
     Interface_Static::SetIVal("write.step.schema", ap242 ? 5 : 4);
-    Interface_Static::SetIVal("write.surfacecurve.mode", 1);
+    /* No parameter curves in the file: each reader makes its own from the
+     * 3-D edges. With them (mode 1) FreeCAD's Boolean check found
+     * BOPAlgo_InvalidCurveOnSurface on the three-body union after the round
+     * trip (the re-derived edge tolerance below the pcurves' deviation);
+     * without, it is clean, and the file half the size. */
+    Interface_Static::SetIVal("write.surfacecurve.mode", 0);
     STEPCAFControl_Writer w;
     w.SetNameMode(Standard_True);
     w.ChangeWriter().Model(Standard_True);

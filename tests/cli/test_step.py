@@ -37,6 +37,7 @@ import json
 import math
 import os
 import random
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -248,6 +249,7 @@ def main():
         rc, _, err = T.run([spool, "-o", out])
         T.check("without Open CASCADE, .step is refused naming it (exit 3, no file)",
                 rc == 3 and "Open CASCADE" in err and not os.path.exists(out), err)
+        shutil.rmtree(tmp, ignore_errors=True)
         T.finish()
     T.check("tests/tools/occt_check is built",
             os.path.exists(os.path.join(T.build, "tests", "occt_check")))
@@ -332,6 +334,7 @@ def main():
     mirrored(tmp)
     info_faces()
     refusals(tmp)
+    shutil.rmtree(tmp, ignore_errors=True)
     T.finish()
 
 
@@ -339,6 +342,7 @@ def formats(tmp):
     """IGES and BREP read back like STEP; AP242; names, units, digits."""
     for name in ["spool", "nail", "union-three-bodies"]:
         model = os.path.join(T.src, "examples", name + ".json")
+        union = name.startswith("union")
         vols = {}
         for ext in ["step", "igs", "brep"]:
             path = os.path.join(tmp, f"{name}-f.{ext}")
@@ -347,9 +351,14 @@ def formats(tmp):
             T.check(f"{name}: .{ext} written and read back as valid solids",
                     rc == 0 and out == "" and rc2 == 0 and solids and all(s[1] for s in solids),
                     err)
-            vols[ext] = sum(s[2] for s in solids)
-        T.check(f"{name}: IGES and BREP have the STEP volume {vols['step']:.12g}",
-                all(abs(v - vols["step"]) <= 1e-9 * abs(vols["step"]) for v in vols.values()),
+            # faces untrimmed: the volume by their spans; the union's trimmed
+            # faces: BRepGProp's (which differs with the parameter curves
+            # each reader makes, 3e-6 on the nail's apex)
+            vols[ext] = sum(s[2] if union else s[3] for s in solids)
+        rel = 1e-6 if union else 1e-12
+        T.check(f"{name}: IGES and BREP have the STEP volume {vols['step']:.12g} "
+                f"(relative {rel:g})",
+                all(abs(v - vols["step"]) <= rel * abs(vols["step"]) for v in vols.values()),
                 str(vols))
         got, err = freecad([os.path.join(tmp, f"{name}-f.igs"), os.path.join(tmp, f"{name}-f.brep")])
         T.check(f"{name}: FreeCAD reads the IGES and BREP files as valid solids",
