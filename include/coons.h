@@ -44,5 +44,6 @@
 #include "coons/volume.h"
 #include "coons/csg.h"
 #include "coons/io.h"
+#include "coons/brep.h"
 
 #endif

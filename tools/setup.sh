@@ -21,6 +21,12 @@ PKGS=(
   # For the people who print (issue 16): slicing and mesh checks by the
   # programs users run, the 3MF library, and ccache for faster rebuilds.
   prusa-slicer admesh lib3mf-dev ccache
+  # Exact solids (issue 26): Open CASCADE for the STEP, IGES and BREP
+  # writer (its CMake config needs TBB and the visualization package),
+  # FreeCAD headless to read them back in the tests.
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
+  libocct-visualization-dev libocct-ocaf-dev libocct-data-exchange-dev libtbb-dev
+  freecad-python3
   # The Python package (issue 28): test.sh's python stage makes a venv;
   # scikit-build-core, cffi and pytest come from PyPI into it.
   python3-venv

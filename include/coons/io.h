@@ -157,14 +157,19 @@ typedef enum coons_format {
     COONS_FORMAT_VTU = 8,        /**< VTK XML UnstructuredGrid, version 1.0 (volume) */
     COONS_FORMAT_INP = 9,        /**< Abaqus / CalculiX input deck (volume) */
     COONS_FORMAT_VTU_ASCII = 10, /**< VTK XML UnstructuredGrid, ASCII data (volume) */
-    COONS_FORMAT_3MF = 11        /**< 3MF package, core specification 1.x (needs lib3mf) */
+    COONS_FORMAT_3MF = 11,       /**< 3MF package, core specification 1.x (needs lib3mf) */
+    COONS_FORMAT_STEP = 12,      /**< STEP AP214 exact solids (needs OCCT; coons/brep.h) */
+    COONS_FORMAT_STEP_AP242 = 13, /**< STEP AP242 exact solids (needs OCCT) */
+    COONS_FORMAT_IGES = 14,      /**< IGES 5.3 BRep solids (needs OCCT) */
+    COONS_FORMAT_BREP = 15       /**< Open CASCADE BREP text (needs OCCT) */
 } coons_format;
 
 /** The kind of mesh a format holds (coons_format_kind()). */
 typedef enum coons_mesh_kind {
     COONS_MESH_KIND_NONE = 0,    /**< not a format */
     COONS_MESH_KIND_SURFACE = 1, /**< a triangle mesh, ::coons_mesh */
-    COONS_MESH_KIND_VOLUME = 2   /**< a volume mesh, ::coons_volume_mesh */
+    COONS_MESH_KIND_VOLUME = 2,  /**< a volume mesh, ::coons_volume_mesh */
+    COONS_MESH_KIND_SOLID = 3    /**< exact solids of a model, coons_model_write_solid() */
 } coons_mesh_kind;
 
 /** Version of ::coons_write_options this header describes. Version 2:
@@ -268,7 +273,8 @@ COONS_EXPORT const char *coons_format_name(coons_format format);
 
 /**
  * The kind of mesh a format holds: ::COONS_MESH_KIND_SURFACE (STL, OFF,
- * SCAD) or ::COONS_MESH_KIND_VOLUME (VTK); ::COONS_MESH_KIND_NONE for
+ * SCAD), ::COONS_MESH_KIND_VOLUME (VTK) or ::COONS_MESH_KIND_SOLID (STEP,
+ * IGES, BREP: exact solids, no mesh); ::COONS_MESH_KIND_NONE for
  * ::COONS_FORMAT_AUTO and values that are no format. The formats are
  * numbered 1, 2, ... without gaps, so a program lists them all by counting
  * up from 1 until this returns ::COONS_MESH_KIND_NONE.

@@ -34,6 +34,16 @@ int coons__csg_failure_injected(void);
 void coons__csg_whole_corefinement(int on);
 int coons__csg_whole_corefinement_set(void);
 
+/* Nonzero: the solid writer (src/write/occt.cpp) builds every face that
+ * has interior control points with the middle one moved by 1e-4 of the
+ * body's size (a knot moved instead changes the edges, and the writer then
+ * refuses the body: its faces no longer close): a wrong spline that Open
+ * CASCADE still finds valid, for the tests to see their point-distance
+ * check fail. Set by the test-only coons2stl
+ * (tests/tools/coons2stl_wrong_spline.c). */
+void coons__occt_inject_wrong_spline(int on);
+int coons__occt_wrong_spline_injected(void);
+
 /* The count of coons_mesh_count_self_intersections() on `m` as it is (no
  * scaling), on `threads` threads; with `old_tri` (one flag per triangle, or
  * NULL) the local count of the union's final check, where pairs of two

@@ -10,6 +10,7 @@ static const char *bad_alloc_entry;
 static unsigned long bad_alloc_count;
 static int csg_failure;
 static int csg_whole;
+static int occt_wrong_spline;
 
 void coons__cxx_inject_bad_alloc(const char *entry) { bad_alloc_entry = entry; }
 
@@ -29,3 +30,7 @@ int coons__csg_failure_injected(void) { return csg_failure; }
 void coons__csg_whole_corefinement(int on) { csg_whole = on != 0; }
 
 int coons__csg_whole_corefinement_set(void) { return csg_whole; }
+
+void coons__occt_inject_wrong_spline(int on) { occt_wrong_spline = on != 0; }
+
+int coons__occt_wrong_spline_injected(void) { return occt_wrong_spline; }

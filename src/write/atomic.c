@@ -44,6 +44,16 @@ coons_status coons__write_prepare(coons__write_job *job, int mesh_given, coons_f
     /* A volume format may also hold triangle meshes (VTU): its row then
      * names a surface writer. */
     int surface_too = kind == COONS_MESH_KIND_SURFACE && job->row->write_surface;
+    if (job->row->kind == COONS_MESH_KIND_SOLID && kind != COONS_MESH_KIND_SOLID)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "the format '%s' holds exact solids, not a mesh (write the "
+                                "model with coons_model_write_solid())",
+                                job->row->name);
+    if (kind == COONS_MESH_KIND_SOLID && job->row->kind != COONS_MESH_KIND_SOLID)
+        return coons__error_set(err, COONS_E_INVALID,
+                                "the format '%s' holds meshes, not exact solids (step, "
+                                "step-ap242, iges or brep)",
+                                job->row->name);
     if (job->row->kind != kind && !surface_too)
         return coons__error_set(err, COONS_E_INVALID,
                                 kind == COONS_MESH_KIND_SURFACE
@@ -77,6 +87,7 @@ static coons_status run_writer(const coons__write_job *job, coons__sink *s)
     if (job->surface && r->write_surface) return r->write_surface(job->surface, &job->o, s);
     if (job->volume && r->write_volume)
         return r->write_volume(job->volume, &job->o, s);
+    if (job->model && r->write_solid) return r->write_solid(job->model, r->format, &job->o, s);
     return s->status = coons__error_set(s->err, COONS_E_INTERNAL, "no writer for the format '%s'",
                                         r->name);
 }
@@ -241,4 +252,20 @@ void coons_write_options_init(coons_write_options *o)
 {
     const coons_write_options d = COONS_WRITE_OPTIONS_INIT;
     if (o) *o = d;
+}
+
+coons_status coons_model_write_solid(const coons_model *m, const char *path, coons_format format,
+                                     const coons_write_options *opts, coons_error *err)
+{
+    coons__write_job job = {0};
+    if (!m) return coons__error_set(err, COONS_E_INVALID, "no model given");
+    coons_status st = coons__write_resolve(path, &format, err);
+    if (st != COONS_OK) return st;
+    st = coons__write_prepare(&job, m != NULL, format, COONS_MESH_KIND_SOLID, opts, err);
+    if (st != COONS_OK) return st;
+    if ((st = coons__check_solid(err)) != COONS_OK) return st;
+    job.model = m;
+    if (!(opts && opts->units && opts->units[0])) job.o.units = coons_model_units(m);
+    if (!job.o.units) job.o.units = "";
+    return coons__write_path(&job, path, opts, err);
 }

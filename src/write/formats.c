@@ -9,6 +9,7 @@
 
 #define SURFACE COONS_MESH_KIND_SURFACE
 #define VOLUME COONS_MESH_KIND_VOLUME
+#define SOLID COONS_MESH_KIND_SOLID
 
 /* In enum order; write/test_write checks that every row maps back to itself. */
 static const coons__format_row ROWS[] = {
@@ -38,6 +39,14 @@ static const coons__format_row ROWS[] = {
     {.format = COONS_FORMAT_3MF, .name = "3mf", .title = "3MF", .extensions = {".3mf"},
      .kind = SURFACE, .max_triangles = UINT32_MAX, .write_surface = coons__write_3mf,
      .check_surface = coons__check_3mf},
+    {.format = COONS_FORMAT_STEP, .name = "step", .title = "STEP AP214", .aliases = {"stp"},
+     .extensions = {".step", ".stp"}, .kind = SOLID, .write_solid = coons__write_solid},
+    {.format = COONS_FORMAT_STEP_AP242, .name = "step-ap242", .title = "STEP AP242",
+     .kind = SOLID, .write_solid = coons__write_solid},
+    {.format = COONS_FORMAT_IGES, .name = "iges", .title = "IGES", .aliases = {"igs"},
+     .extensions = {".igs", ".iges"}, .kind = SOLID, .write_solid = coons__write_solid},
+    {.format = COONS_FORMAT_BREP, .name = "brep", .title = "Open CASCADE BREP",
+     .extensions = {".brep"}, .kind = SOLID, .write_solid = coons__write_solid},
 };
 #define NROWS (sizeof ROWS / sizeof ROWS[0])
 

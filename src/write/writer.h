@@ -95,6 +95,10 @@ typedef coons_status (*coons__volume_writer)(const coons_volume_mesh *m, const c
 /* Format-specific limits, checked before any output exists; NULL: none. */
 typedef coons_status (*coons__surface_check)(const coons_mesh *m, coons_error *err);
 typedef coons_status (*coons__volume_check)(const coons_volume_mesh *m, coons_error *err);
+/* Exact solids of a model (kind SOLID): the row's format tells the writer
+ * which file to make (occt.cpp, or noocct/occt.c refusing). */
+typedef coons_status (*coons__solid_writer)(const coons_model *m, coons_format format,
+                                            const coons__wopts *o, coons__sink *s);
 
 typedef struct coons__format_row {
     coons_format format;
@@ -108,6 +112,7 @@ typedef struct coons__format_row {
     coons__surface_check check_surface;
     coons__volume_writer write_volume;   /* kind VOLUME */
     coons__volume_check check_volume;
+    coons__solid_writer write_solid;     /* kind SOLID */
 } coons__format_row;
 
 /* The row of a format, or NULL (COONS_FORMAT_AUTO and unknown values). */
@@ -137,6 +142,13 @@ coons_status coons__check_inp(const coons_volume_mesh *m, coons_error *err);
  * COONS_E_UNSUPPORTED in the check, before any output exists). */
 coons_status coons__write_3mf(const coons_mesh *m, const coons__wopts *o, coons__sink *s);
 coons_status coons__check_3mf(const coons_mesh *m, coons_error *err);
+/* STEP, IGES and BREP solids (occt.cpp with Open CASCADE; without it
+ * noocct/occt.c refuses with COONS_E_UNSUPPORTED before any output). */
+coons_status coons__write_solid(const coons_model *m, coons_format format, const coons__wopts *o,
+                                coons__sink *s);
+/* COONS_OK when solids can be written, else COONS_E_UNSUPPORTED naming
+ * Open CASCADE (checked before a temporary file is made). */
+coons_status coons__check_solid(coons_error *err);
 
 /* ---- OpenSCAD identifiers (scad.c), for every writer of .scad text ----- */
 
@@ -161,6 +173,7 @@ typedef struct coons__write_job {
     const coons__format_row *row;
     const coons_mesh *surface;       /* row->kind == COONS_MESH_KIND_SURFACE */
     const coons_volume_mesh *volume; /* row->kind == COONS_MESH_KIND_VOLUME */
+    const coons_model *model;        /* row->kind == COONS_MESH_KIND_SOLID */
     coons__wopts o;
 } coons__write_job;
 

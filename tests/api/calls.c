@@ -261,6 +261,17 @@ static void models_and_meshes(void)
     coons_status st = coons_model_solidify(model, &so, &co, &m, &rep, &err);
     check("model solidify", st == COONS_OK && coons_mesh_triangle_count(m) == 12);
     coons_mesh_free(m);
+    /* Exact solids: a STEP file when the library has Open CASCADE, else
+     * the refusal naming it; a mesh format is no solid format. */
+    const char *step = "coons-calls-solid.step";
+    st = coons_model_write_solid(model, step, COONS_FORMAT_AUTO, NULL, &err);
+    check("write solid", coons_solid_formats_available()
+                             ? st == COONS_OK
+                             : st == COONS_E_UNSUPPORTED && strstr(err.message, "Open CASCADE"));
+    remove(step);
+    check("solid format", coons_format_kind(COONS_FORMAT_STEP) == COONS_MESH_KIND_SOLID &&
+                              coons_model_write_solid(model, "x.stl", COONS_FORMAT_AUTO, NULL,
+                                                      &err) == COONS_E_INVALID);
     coons_model_free(model);
     model = NULL;
     check("load file (missing)", coons_model_load_file("/nonexistent/m.json", NULL, &model,

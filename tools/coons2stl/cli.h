@@ -197,6 +197,9 @@ int cli_write_iso(const coons_model *m, long body, const cli_iso *iso,
 /* output.c: writes a surface mesh made elsewhere (and frees it) as -o
  * writes the solid; `shown` names the output in messages. */
 int cli_write_surface(coons_mesh *mesh, const cli_output *out, const char *shown);
+/* output.c: the model's bodies as exact solids (STEP, IGES, BREP) to
+ * out->path; the exit status. */
+int cli_write_solid(const coons_model *m, long body, const cli_output *out);
 
 /* output.c: -o of a boundary mesh: the solid of `body` (< 0: all) sampled
  * with `so`, repaired (`repair`) and united on `jobs` threads (0: the

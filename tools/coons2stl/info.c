@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cli.h"
 
@@ -207,6 +208,52 @@ static int print_networks(const coons_body *b, size_t i, const char *name)
     return 0;
 }
 
+/* The body's "faces": whether all six boundary faces have an exact
+ * B-spline or NURBS form (coons_body_face_to_nurbs()), whether any is
+ * rational, and the largest deviation of the fitted ones (those without an
+ * exact form, fitted as the solid writer fits them: within the model's
+ * tolerance or 1e-5 of the body's size, whichever is finer), with their
+ * names. These are the faces of the STEP, IGES and BREP solids. */
+static int print_spline_faces(const coons_model *m, const coons_body *b, size_t i,
+                              const char *name)
+{
+    double lo[3], hi[3];
+    coons_body_control_bbox(b, lo, hi);
+    double size = box_diagonal(lo, hi);
+    if (!(size > 0) || !isfinite(size)) size = 1.0;
+    double tol = coons_model_tolerance(m);
+    tol = tol > 0 && tol < 1e-5 * size ? tol : 1e-5 * size;
+    int exact = 1, rational = 0;
+    double dev = 0;
+    char fitted[64] = "";
+    for (int f = 0; f < 6; f++) {
+        coons_nurbs n;
+        coons_error err = COONS_ERROR_INIT;
+        if (coons_body_face_to_nurbs(b, f, tol, &n, &err) != COONS_OK) {
+            cli_message(0, "body %zu (%s), face %s: %s", i, name, coons_body_face_name(f),
+                        err.message);
+            return 1;
+        }
+        rational |= n.weights != NULL;
+        if (!n.exact) {
+            exact = 0;
+            if (n.deviation > dev) dev = n.deviation;
+            size_t len = strlen(fitted);
+            snprintf(fitted + len, sizeof fitted - len, "%s\"%s\"", len ? ", " : "",
+                     coons_body_face_name(f));
+        }
+        coons_nurbs_free(&n);
+    }
+    printf(",\n     \"faces\": {");
+    json_bool("exact", exact);
+    printf(", ");
+    json_bool("rational", rational);
+    printf(", \"fitted\": [%s], \"deviation\": ", fitted);
+    json_number(dev);
+    printf("}");
+    return 0;
+}
+
 /* One entry of "bodies"; *vol receives its volume (relative accuracy
  * `rel`). */
 static int info_body(const coons_model *m, size_t i, int first, double rel,
@@ -244,6 +291,7 @@ static int info_body(const coons_model *m, size_t i, int first, double rel,
     printf(", \"min_det_jacobian\": ");
     json_number(mindet);
     printf(", \"min_det_jacobian_at\": [%.17g, %.17g, %.17g]", where[0], where[1], where[2]);
+    if (print_spline_faces(m, b, i, name)) return EXIT_GEOMETRY;
     if (print_networks(b, i, name)) return EXIT_GEOMETRY;
     int rc = coons_body_morph_keys(b) ? cli_print_morph_info(b, FOLD_REL * d3, name, i) : 0;
     if (rc) return rc;

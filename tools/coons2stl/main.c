@@ -60,6 +60,7 @@ static int run_mode(const options *o, coons_model *m, long body)
                                    "give --time T, or --frames N");
         return cli_write_scad_animation(m, body, o, &so);
     }
+    if (coons_format_kind(o->format) == COONS_MESH_KIND_SOLID) return cli_write_solid(m, body, &out);
     if (cli_is_volume_format(o->format)) {
         if (o->output && strcmp(o->output, "-") != 0 && strcmp(o->input, "-") != 0 &&
             cli_is_model_file(o->output, o->input)) {

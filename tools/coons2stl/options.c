@@ -58,9 +58,11 @@ static const option_row OPTIONS[] = {
      "write the mesh to FILE (default: standard output)", NULL, 0, 0, NULL},
     {"format", 'f', "FMT", V_TEXT, AT(format_arg),
      "surface: stl (binary), stl-ascii, off, scad or 3mf; volume:\n"
-     "msh (Gmsh 2.2), msh4, vtu, vtu-ascii, inp or vtk; by default\n"
+     "msh (Gmsh 2.2), msh4, vtu, vtu-ascii, inp or vtk; exact\n"
+     "solids: step (AP214), step-ap242, iges or brep; by default\n"
      "taken from the extension of FILE (.stl, .off, .scad, .3mf,\n"
-     ".msh, .vtu, .inp, .vtk), else stl",
+     ".msh, .vtu, .inp, .vtk, .step, .stp, .igs, .iges, .brep),\n"
+     "else stl",
      NULL, 0, 0, NULL},
     {"tolerance", 't', "D", V_REAL, AT(tolerance),
      "largest distance between mesh and surface (> 0),\n"

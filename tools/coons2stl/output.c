@@ -311,3 +311,46 @@ static int write_named(coons_mesh *mesh, const cli_output *out, const char *show
     }
     return 0;
 }
+
+/*
+ * Writes the model's bodies as exact solids (STEP, IGES, BREP:
+ * coons_model_write_solid()) to out->path, in the model's units. Solids go
+ * to a file only, all bodies at once, unscaled.
+ */
+int cli_write_solid(const coons_model *m, long body, const cli_output *out)
+{
+    coons_error err = COONS_ERROR_INIT;
+    if (!out->path || strcmp(out->path, "-") == 0)
+        return cli_usage_error("STEP, IGES and BREP solids are written to a file: give -o FILE");
+    if (body >= 0)
+        return cli_usage_error("--body cannot select one body of a STEP, IGES or BREP file: "
+                               "every body is written (the model's \"operation\" decides their "
+                               "union)");
+    if (out->scale != 1.0)
+        return cli_usage_error("--scale-to cannot rescale exact solids: STEP, IGES and BREP "
+                               "files carry the model's units");
+    int from_file = out->input && strcmp(out->input, "-") != 0;
+    if (from_file && cli_is_model_file(out->path, out->input)) {
+        fprintf(stderr, "%s: the output '%s' is the model file '%s'; refusing to overwrite it\n",
+                PROG, out->path, out->input);
+        return EXIT_USAGE;
+    }
+    char name[256];
+    model_name(out->path, name, sizeof name);
+    coons_write_options wopts = COONS_WRITE_OPTIONS_INIT;
+    wopts.units = out->units;
+    wopts.name = name[0] ? name : NULL;
+    wopts.protect_path = from_file ? out->input : NULL;
+    wopts.cancel = write_cancelled;
+    struct sigaction old[NSIG_HANDLED];
+    catch_signals(old);
+    coons_status rc = coons_model_write_solid(m, out->path, out->format, &wopts, &err);
+    restore_signals(old);
+    cli_progress_end();
+    if (caught_signal) cli_die_of_caught_signal(rc, out->path);
+    if (rc != COONS_OK) {
+        cli_message(0, "%s: %s; nothing was written", out->path, err.message);
+        return EXIT_GEOMETRY;
+    }
+    return 0;
+}

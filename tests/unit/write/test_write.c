@@ -573,7 +573,7 @@ static void test_format_table(void **state)
     (void)state;
     coons_error e = COONS_ERROR_INIT;
     char names[256] = "", exts[256] = "";
-    int f = 1, surface = 0, volume = 0;
+    int f = 1, surface = 0, volume = 0, solid = 0;
     for (; coons_format_kind((coons_format)f) != COONS_MESH_KIND_NONE; f++) {
         coons_format fmt = (coons_format)f, got = COONS_FORMAT_AUTO;
         const char *name = coons_format_name(fmt);
@@ -605,8 +605,10 @@ static void test_format_table(void **state)
         }
         surface += coons_format_kind(fmt) == COONS_MESH_KIND_SURFACE;
         volume += coons_format_kind(fmt) == COONS_MESH_KIND_VOLUME;
+        solid += coons_format_kind(fmt) == COONS_MESH_KIND_SOLID;
     }
-    assert_int_equal(f - 1, surface + volume);
+    assert_int_equal(f - 1, surface + volume + solid);
+    assert_int_equal(solid, 4); /* STEP AP214 and AP242, IGES, BREP */
     assert_int_equal(surface, 5); /* STL binary and ASCII, OFF, SCAD, 3MF */
     assert_true(volume >= 1);
     assert_int_equal(coons_format_kind(COONS_FORMAT_AUTO), COONS_MESH_KIND_NONE);
