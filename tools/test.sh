@@ -161,7 +161,7 @@ if want python; then
   py_stage python 1 -k "not under_valgrind" "$here/python/tests"
   defines=(--config-settings=cmake.define.COONS_WITH_OPENMESH=OFF
            --config-settings=cmake.define.COONS_WITH_CGAL=OFF)
-  py_stage python-core 0 -k "union or mesh_equals_cli or features or under_valgrind" \
+  py_stage python-core 0 -k "union or mesh_equals_cli or features or under_valgrind or solid" \
     "$here/python/tests/test_errors.py" "$here/python/tests/test_mesh.py" \
     "$here/python/tests/test_lifetime.py"
   end python

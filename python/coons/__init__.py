@@ -27,10 +27,11 @@ __version__ = _lib.version()
 
 def features():
     """Which optional parts this build of libcoons has: {"openmesh": bool,
-    "cgal": bool (repair and union), "lib3mf": bool (3MF output)}. Calls that
+    "cgal": bool (repair and union), "lib3mf": bool (3MF output), "occt": bool
+    (exact STEP, IGES and BREP solids)}. Calls that
     need a missing part raise UnsupportedError naming it."""
     return {"openmesh": _features.OPENMESH, "cgal": _features.CGAL and _lib.csg_available(),
-            "lib3mf": _features.LIB3MF}
+            "lib3mf": _features.LIB3MF, "occt": _lib.solid_formats_available()}
 
 
 __all__ = ["Body", "ClosedError", "Curve", "DomainError", "Error", "FileError",

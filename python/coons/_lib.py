@@ -508,7 +508,8 @@ def format_of(path, name):
     else:
         check(lib.coons_format_from_path(_enc(path), f, err), err)
     kind = lib.coons_format_kind(f[0])
-    return int(f[0]), ("volume" if kind == lib.COONS_MESH_KIND_VOLUME else "surface")
+    return int(f[0]), ("volume" if kind == lib.COONS_MESH_KIND_VOLUME else
+                       "solid" if kind == lib.COONS_MESH_KIND_SOLID else "surface")
 
 
 def format_is_stl(fmt):
@@ -526,6 +527,18 @@ def _write_options(name, units, protect):
     lib.coons_write_options_init(o)
     o.name, o.units, o.protect_path = keep
     return o, keep
+
+
+def model_write_solid(m, path, fmt, name, units, protect):
+    """STEP, IGES or BREP solids of every body (coons_model_write_solid)."""
+    o, keep = _write_options(name, units, protect)
+    err = new_error()
+    check(lib.coons_model_write_solid(m, _enc(path), fmt, o, err), err)
+    del keep
+
+
+def solid_formats_available():
+    return bool(lib.coons_solid_formats_available())
 
 
 def stl_rounding_crossings(p):

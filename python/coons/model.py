@@ -286,12 +286,22 @@ class Model:
         ``-f FORMAT``, ``--body``, ``-t``, ``--resolution``, ``--element``,
         ``--allow-inverted``, ``--no-repair`` as the keywords say). The
         format comes from the extension unless `format` names one; volume
-        formats write the volume mesh. A model file is never overwritten."""
+        formats write the volume mesh; STEP, IGES and BREP (``.step``,
+        ``.stp``, ``.igs``, ``.iges``, ``.brep``, ``format="step-ap242"``) the
+        exact solids of every body, when the library has Open CASCADE
+        (``features()["occt"]``). A model file is never overwritten."""
         path = os.fspath(path)
         fmt, kind = _lib.format_of(path, format)
         index = None if body is None else self._index_of(body)
         name = output_name(path)
         protect = self._path
+        if kind == "solid":  # STEP, IGES, BREP: every body, exact (coons/brep.h)
+            if index is not None:
+                raise InvalidError("body=: STEP, IGES and BREP files hold every body (the "
+                                   "model's \"operation\" decides their union)")
+            with self._h.use() as m:
+                _lib.model_write_solid(m, path, fmt, name, self.units, protect)
+            return
         if kind == "volume":
             vm = self._volume(index, element, resolution, tolerance, max_cells=0)
             try:

@@ -135,4 +135,5 @@ def test_features_as_built():
     want = os.environ.get("COONS_EXPECT_CGAL")
     if want is not None:
         assert f["cgal"] == (want == "1"), f
+        assert f["occt"] == (want == "1"), f  # the full build has Open CASCADE too
     assert f["openmesh"] or not f["cgal"]

@@ -90,3 +90,23 @@ def test_progress_callback_is_called():
     seen = []
     coons.load(example("spool.json")).mesh(progress=lambda stage, f: seen.append((stage, f)))
     assert all(isinstance(s, str) and 0 <= f <= 1 for s, f in seen)
+
+
+@pytest.mark.parametrize("ext", ["step", "igs", "brep"])
+@pytest.mark.parametrize("name", ["spool.json", "union-three-bodies.json"])
+def test_write_solid_equals_cli_bytes(name, ext, tmp_path):
+    """Exact solids (Open CASCADE): the bytes coons2stl writes; without the
+    layer, refused naming it, nothing written."""
+    a, b = tmp_path / "cli" / ("x." + ext), tmp_path / "py" / ("x." + ext)
+    os.makedirs(a.parent)
+    os.makedirs(b.parent)
+    m = coons.load(example(name))
+    if not coons.features()["occt"]:
+        with pytest.raises(coons.UnsupportedError) as e:
+            m.write(b)
+        assert "Open CASCADE" in str(e.value) and not b.exists()
+        return
+    run_cli(example(name), "-o", a)
+    m.write(b)
+    assert filecmp.cmp(a, b, shallow=False)
+    assert a.stat().st_size > 1000

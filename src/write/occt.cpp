@@ -429,6 +429,10 @@ void send_iges(const std::vector<part> &parts, const char *unit, const char *nam
     Interface_Static::SetCVal("write.iges.unit", unit);
     Interface_Static::SetCVal("xstep.cascade.unit", unit);
     Interface_Static::SetIVal("write.iges.brep.mode", 1);
+    /* Process-wide, and send_step sets it to 0: IGES keeps its parameter
+     * curves (mode 1, the default), whatever was written before in this
+     * process (a STEP file first changed the next IGES file's bytes). */
+    Interface_Static::SetIVal("write.surfacecurve.mode", 1);
     IGESCAFControl_Writer w;
     w.SetNameMode(Standard_True);
     Handle(TDocStd_Document) doc = document_of(parts);
