@@ -99,20 +99,27 @@ coons_status coons_body_eval_points(const coons_body *b, size_t n, const double 
     return COONS_OK;
 }
 
+/* The arguments of a non-empty grid: arrays present, and nu*nv*nw points
+ * of 3 doubles whose every product fits in a size_t counted in bytes. */
+static coons_status grid_args(const double *u, size_t nu, const double *v, size_t nv,
+                              const double *w, size_t nw, const double *out, coons_error *err)
+{
+    if (!u || !v || !w || !out)
+        return coons__error_set(err, COONS_E_INVALID, "body grid: NULL parameter or output");
+    size_t lim = SIZE_MAX / (3 * sizeof(double));
+    if (nv > lim / nu || nw > lim / (nu * nv))
+        return coons__error_set(err, COONS_E_LIMIT,
+                                "body grid of %zu x %zu x %zu points is too large", nu, nv, nw);
+    return COONS_OK;
+}
+
 coons_status coons_body_eval_grid(const coons_body *b, const double *u, size_t nu,
                                   const double *v, size_t nv, const double *w, size_t nw,
                                   double *out, coons_error *err)
 {
     if (nu == 0 || nv == 0 || nw == 0) return COONS_OK;
-    if (!u || !v || !w || !out)
-        return coons__error_set(err, COONS_E_INVALID, "body grid: NULL parameter or output");
-    /* The output holds nu*nv*nw points of 3 doubles: every product must fit
-     * in a size_t counted in bytes. */
-    size_t lim = SIZE_MAX / (3 * sizeof(double));
-    if (nv > lim / nu || nw > lim / (nu * nv))
-        return coons__error_set(err, COONS_E_LIMIT,
-                                "body grid of %zu x %zu x %zu points is too large", nu, nv, nw);
-    return b->kind->grid(b, u, nu, v, nv, w, nw, out, err);
+    coons_status rc = grid_args(u, nu, v, nv, w, nw, out, err);
+    return rc ? rc : b->kind->grid(b, u, nu, v, nv, w, nw, out, err);
 }
 
 typedef struct grid_run {
@@ -139,12 +146,8 @@ coons_status coons_body_eval_grid_threads(const coons_body *b, const double *u, 
     unsigned k = coons__thread_count(threads);
     if (k <= 1 || nu <= 1 || nv == 0 || nw == 0)
         return coons_body_eval_grid(b, u, nu, v, nv, w, nw, out, err);
-    if (!u || !v || !w || !out)
-        return coons__error_set(err, COONS_E_INVALID, "body grid: NULL parameter or output");
-    size_t lim = SIZE_MAX / (3 * sizeof(double));
-    if (nv > lim / nu || nw > lim / (nu * nv))
-        return coons__error_set(err, COONS_E_LIMIT,
-                                "body grid of %zu x %zu x %zu points is too large", nu, nv, nw);
+    coons_status rc = grid_args(u, nu, v, nv, w, nw, out, err);
+    if (rc) return rc;
     if (k > nu) k = (unsigned)nu;
     coons_status *st = coons__calloc(k, sizeof *st);
     coons_error *errs = coons__calloc(k, sizeof *errs);
@@ -155,7 +158,6 @@ coons_status coons_body_eval_grid_threads(const coons_body *b, const double *u, 
     }
     grid_run g = {b, u, v, w, nv, nw, out, st, errs};
     coons__parallel_for(nu, k, grid_chunk, &g);
-    coons_status rc = COONS_OK;
     for (unsigned c = 0; c < k && !rc; c++)
         if ((rc = st[c]) && err) *err = errs[c];
     coons__free(st);
