@@ -85,8 +85,9 @@ COONS_EXPORT coons_status coons_body_deform_mesh_report(const coons_body *b, con
                                                         coons_deform_report *report,
                                                         coons_error *err);
 
-/** Version of ::coons_deform_options this header describes. */
-#define COONS_DEFORM_OPTIONS_VERSION 1
+/** Version of ::coons_deform_options this header describes. Version 2:
+ *  `threads`; records of version 1 are still accepted (as one thread). */
+#define COONS_DEFORM_OPTIONS_VERSION 2
 
 /** How coons_body_deform() deforms a mesh. */
 typedef struct coons_deform_options {
@@ -112,6 +113,12 @@ typedef struct coons_deform_options {
     coons_progress_fn progress;
     /** Passed to `progress`. */
     void *userdata;
+    /** (version 2) Threads that map and measure: 0 or 1, the calling
+     *  thread only (the default); N > 1, N threads (at most 1024).
+     *  The mesh does not depend on it, byte for byte. Progress is reported
+     *  from the calling thread; an allocator set with coons_set_allocator()
+     *  must be thread-safe. */
+    unsigned int threads;
 } coons_deform_options;
 
 #ifndef __cplusplus

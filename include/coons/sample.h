@@ -21,8 +21,9 @@ extern "C" {
 #define COONS_SAMPLE_DEFAULT_MAX_ASPECT 4.0
 
 /** Version of ::coons_sample_options this header describes. Version 2:
- *  `progress` and `userdata`; records of version 1 are still accepted. */
-#define COONS_SAMPLE_OPTIONS_VERSION 2
+ *  `progress` and `userdata`; version 3: `threads`. Records of versions 1
+ *  and 2 are still accepted (as one thread). */
+#define COONS_SAMPLE_OPTIONS_VERSION 3
 
 /**
  * How a body's boundary is sampled. Initialise with
@@ -66,6 +67,12 @@ typedef struct coons_sample_options {
     coons_progress_fn progress;
     /** (version 2) Passed to `progress`. */
     void *userdata;
+    /** (version 3) Threads that evaluate and measure a body: 0 or 1, the
+     *  calling thread only (the default); N > 1, N threads (at most
+     *  1024). The mesh does not depend on it, byte for byte. With more than
+     *  one, progress is still reported from the calling thread, and an
+     *  allocator set with coons_set_allocator() must be thread-safe. */
+    unsigned int threads;
 } coons_sample_options;
 
 /**

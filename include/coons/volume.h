@@ -323,8 +323,9 @@ COONS_EXPORT const char *coons_volume_mesh_face_set(const coons_volume_mesh *vm,
 #define COONS_VOLUME_MAX_CELLS ((size_t)1 << 22)
 
 /** Version of ::coons_volume_options this header describes. Version 2:
- *  `progress` and `userdata`; records of version 1 are still accepted. */
-#define COONS_VOLUME_OPTIONS_VERSION 2
+ *  `progress` and `userdata`; version 3: `threads`. Records of versions 1
+ *  and 2 are still accepted (as one thread). */
+#define COONS_VOLUME_OPTIONS_VERSION 3
 
 /**
  * How bodies are meshed. Initialise with ::COONS_VOLUME_OPTIONS_INIT;
@@ -355,6 +356,12 @@ typedef struct coons_volume_options {
     coons_progress_fn progress;
     /** (version 2) Passed to `progress`. */
     void *userdata;
+    /** (version 3) Threads that sample, evaluate and measure the bodies
+     *  and make the cells: 0 or 1, the calling thread only (the default);
+     *  N > 1, N threads (at most 1024). The mesh does not depend on
+     *  it, byte for byte. Progress is reported from the calling thread; an
+     *  allocator set with coons_set_allocator() must be thread-safe. */
+    unsigned int threads;
 } coons_volume_options;
 
 #ifndef __cplusplus

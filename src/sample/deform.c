@@ -320,8 +320,12 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     if (report && COONS__RECORD_CHECK(err, "deform report", report->version, COONS_DEFORM_REPORT))
         return COONS_E_INVALID;
     if (!opts) return coons__error_set(err, COONS_E_INVALID, "deform: options is NULL");
-    if (COONS__RECORD_CHECK(err, "deform options", opts->version, COONS_DEFORM_OPTIONS))
+    /* version 1 has no `threads` */
+    if (coons__record_version_check("deform options", opts->version, 1,
+                                    COONS_DEFORM_OPTIONS_VERSION, "COONS_DEFORM_OPTIONS_INIT", err))
         return COONS_E_INVALID;
+    unsigned threads = coons__record_threads(opts->version >= 2 ? opts->threads : 1);
+    (void)threads;
     if (!b || !in) return coons__error_set(err, COONS_E_INVALID, "deform: NULL body or mesh");
     const double *lo = opts->lo, *hi = opts->hi;
     double tolerance = opts->tolerance;

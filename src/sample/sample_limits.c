@@ -225,6 +225,7 @@ coons_status coons__sample_opts_resolve(const coons_sample_options *in, coons__s
     out->max_cells = 0;
     out->progress = in->version >= 2 ? in->progress : NULL;
     out->userdata = in->version >= 2 ? in->userdata : NULL;
+    out->threads = coons__record_threads(in->version >= 3 ? in->threads : 1);
     return COONS_OK;
 }
 

@@ -26,6 +26,8 @@ typedef struct coons__sample_opts {
     /* coons_sample_options.progress (version 2), or NULL: "measure" */
     void (*progress)(void *, const char *, double);
     void *userdata;
+    /* coons_sample_options.threads (version 3), at least 1 */
+    unsigned threads;
 } coons__sample_opts;
 
 /* Internal flag of coons__sample_opts: coons__body_sample_into() stores

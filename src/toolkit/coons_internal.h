@@ -46,6 +46,13 @@ coons_status coons__record_version_check(const char *record, unsigned version, u
     coons__record_version_check(record, version, PREFIX##_VERSION, PREFIX##_VERSION,               \
                                 #PREFIX "_INIT", err)
 
+/* The `threads` field of an options record (0 or 1: the calling thread)
+ * as a count for coons__parallel_for(): at least 1, at most 1024. */
+static inline unsigned coons__record_threads(unsigned threads)
+{
+    return threads < 1 ? 1u : threads > 1024u ? 1024u : threads;
+}
+
 #include "geom.h"
 
 /* All values of an array finite? */

@@ -94,9 +94,13 @@ static coons_status opts_resolve(const coons_volume_options *in, coons_volume_op
         for (int d = 0; d < 3; d++) out->resolution[d] = in->resolution[d];
         out->tolerance = in->tolerance;
         out->max_cells = in->max_cells;
+    } else if (in->version == 2) { /* no `threads` to read */
+        *out = def;
+        memcpy(out, in, offsetof(coons_volume_options, threads));
     } else {
         *out = *in;
     }
+    out->threads = coons__record_threads(out->threads);
     if (out->element == 0) out->element = COONS_ELEMENT_HEX8;
     if (out->element != COONS_ELEMENT_HEX8 && out->element != COONS_ELEMENT_HEX20 &&
         out->element != COONS_ELEMENT_HEX27)

@@ -91,7 +91,10 @@ typedef struct cli_volume {
     unsigned resolution[3]; /* intervals along u, v, w; 0s: the sampled lattice */
     double tolerance;       /* > 0, or 0: the model's */
     int allow_inverted;
+    unsigned threads;       /* cli_threads(-j) */
 } cli_volume;
+/* solid.c: the thread count of -j N (0: the online cores). */
+unsigned cli_threads(unsigned jobs);
 /* volume.c: the cli_volume of the options. */
 cli_volume cli_volume_of(const options *o);
 

@@ -205,6 +205,7 @@ int cli_deform(const coons_model *m, long body, const options *o)
     dopts.lo = lo;
     dopts.hi = hi;
     dopts.progress = cli_progress_on() ? cli_on_deform : NULL;
+    dopts.threads = cli_threads(o->jobs);
     coons_status rc = coons_body_deform(b, in, &dopts, &out, &rep, &err);
     if (rc != COONS_OK) {
         cli_message(0, "%s: %s%s; nothing was written", rc == COONS_E_DOMAIN ? o->deform : shown,

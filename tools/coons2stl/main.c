@@ -26,6 +26,7 @@ static coons_sample_options sample_options(const options *o, const coons_model *
     /* A fixed lattice is measured too (cheaply: libcoons(3)), so that a
      * deviation above the tolerance is warned about. */
     so.progress = cli_progress_on() ? cli_on_measure : NULL;
+    so.threads = cli_threads(o->jobs);
     return so;
 }
 

@@ -133,8 +133,9 @@ static const option_row OPTIONS[] = {
      "if their boundary crosses itself",
      NULL, 0, 0, NULL},
     {"jobs", 'j', "N", V_UNSIGNED, AT(jobs),
-     "sample, check and unite on N threads (default: the\n"
-     "number of cores); the output does not depend on N",
+     "sample, check, unite, mesh volumes and deform on N\n"
+     "threads (default: the number of cores); the output\n"
+     "does not depend on N",
      "a whole number from 1 to {max}", 0, 1024, NULL},
     {"progress", 0, NULL, V_FLAG, AT(force_progress),
      "report progress on standard error even when it is not\n"

@@ -13,14 +13,19 @@
 
 #include "cli.h"
 
+unsigned cli_threads(unsigned jobs)
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    return jobs ? jobs : (cores > 0 ? (unsigned)cores : 1u);
+}
+
 coons_status cli_make_solid(const coons_model *m, long body, const coons_sample_options *so,
                             int repair, unsigned jobs, coons_mesh **out, coons_csg_report *rep,
                             coons_error *err)
 {
     coons_csg_options copts = COONS_CSG_OPTIONS_INIT;
     copts.repair = repair;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    copts.threads = jobs ? jobs : (cores > 0 ? (unsigned)cores : 1u);
+    copts.threads = cli_threads(jobs);
     copts.progress = cli_progress_on() ? cli_on_progress : NULL;
     copts.userdata = (void *)(uintptr_t)"repair and union";
     coons_csg_report_init(rep);

@@ -19,7 +19,7 @@
 cli_volume cli_volume_of(const options *o)
 {
     cli_volume v = {o->element, {o->resolution3[0], o->resolution3[1], o->resolution3[2]},
-                    o->tolerance, o->allow_inverted};
+                    o->tolerance, o->allow_inverted, cli_threads(o->jobs)};
     return v;
 }
 
@@ -32,6 +32,7 @@ coons_status cli_volume_mesh(const coons_model *m, long body, const cli_volume *
     vo.tolerance = v->tolerance > 0 ? v->tolerance : coons_model_tolerance(m);
     vo.progress = cli_progress_on() ? cli_on_progress : NULL;
     vo.userdata = (void *)(uintptr_t)"volume mesh";
+    vo.threads = v->threads;
     if (body < 0) return coons_model_volume_mesh(m, &vo, out, err);
     return coons_body_volume_mesh(coons_model_body(m, (size_t)body), &vo,
                                   coons_model_body_name(m, (size_t)body), out, err);

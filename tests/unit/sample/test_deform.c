@@ -308,7 +308,7 @@ static void test_options_progress(void **state)
     assert_int_equal(coons_body_deform(b, in, &o, &out, NULL, &err), COONS_E_INVALID);
     assert_null(out);
     assert_string_equal(err.message,
-                        "deform options version 7, expected 1 (use COONS_DEFORM_OPTIONS_INIT)");
+                        "deform options version 7, expected 2 (use COONS_DEFORM_OPTIONS_INIT)");
     assert_int_equal(coons_body_deform(b, in, NULL, &out, NULL, &err), COONS_E_INVALID);
     coons_mesh_free(old);
     coons_mesh_free(in);

@@ -25,7 +25,7 @@ static void test_sample_options_init(void **state)
     (void)state;
     FROM_INIT(coons_sample_options, coons_sample_options_init, COONS_SAMPLE_OPTIONS_INIT);
     SAME(version), SAME(tolerance), SAME(resolution), SAME(max_triangles), SAME(max_aspect),
-        SAME(flags), SAME(progress), SAME(userdata);
+        SAME(flags), SAME(progress), SAME(userdata), SAME(threads);
     assert_null(a.progress);
     assert_int_equal(a.version, COONS_SAMPLE_OPTIONS_VERSION);
 }
@@ -295,7 +295,7 @@ static void test_volume_options_progress(void **state)
     (void)state;
     FROM_INIT(coons_volume_options, coons_volume_options_init, COONS_VOLUME_OPTIONS_INIT);
     SAME(version), SAME(element), SAME(resolution), SAME(tolerance), SAME(max_cells),
-        SAME(progress), SAME(userdata);
+        SAME(progress), SAME(userdata), SAME(threads);
     assert_null(a.progress);
     coons_model *m = cube();
     coons_error err = COONS_ERROR_INIT;
