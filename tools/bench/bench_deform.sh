@@ -11,17 +11,31 @@
 # against the I/O floor: a small program (built here against the library)
 # that reads the same STL with coons_mesh_read_file() and writes it back with
 # coons_mesh_write() (the atomic writer, fsync included), as coons2stl does.
+# and against the raw I/O floor: the same bytes read and written back with
+# fsync by a plain C program (no parsing, no welding).
+# With --blender (or BLENDER=1), also Blender's Lattice modifier (a 5 x 5 x 5
+# B-spline lattice over the same cube, pinched like the spool) on the same
+# STL, headless (tools/bench/blender_lattice.py): its modifier alone (the
+# evaluation with the modifier minus without it) and its whole process
+# (start, STL import, deform, STL export). Blender is installed with apt
+# when asked and missing; the test command never runs this.
 # Each is the minimum of REPEAT runs, as wall time and as CPU time (user +
 # system, /usr/bin/time); the machine is shared, so the load average is
 # printed: compare ratios, and CPU times.
-# Usage: tools/bench/bench_deform.sh [BUILD_DIR [N [REPEAT]]]
+# Usage: tools/bench/bench_deform.sh [--blender] [BUILD_DIR [N [REPEAT]]]
 set -euo pipefail
+blender=${BLENDER:-0}
+if [ "${1:-}" = --blender ]; then blender=1; shift; fi
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=$(cd "${1:-$here/build}" && pwd)
 n=${2:-289}
 repeat=${3:-3}
 bin=$build/tools/coons2stl
 cmake --build "$build" --target coons2stl coons >/dev/null
+if [ "$blender" = 1 ] && ! command -v blender >/dev/null; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO=sudo
+  $SUDO apt-get -o DPkg::Lock::Timeout=600 install -y -qq --no-install-recommends blender >/dev/null
+fi
 work=$(mktemp -d "$build/bench-deform.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 min() { printf '%s\n' "$@" | sort -g | head -1; }
@@ -30,8 +44,11 @@ min() { printf '%s\n' "$@" | sort -g | head -1; }
 timed() {
   local var=$1 t
   shift
+  local t0=$EPOCHREALTIME
   /usr/bin/time -f "%e %U %S" -o "$work/time" "$@" >/dev/null
+  local t1=$EPOCHREALTIME
   read -r w u s <"$work/time"
+  w=$(python3 -c "print('%.4f' % ($t1 - $t0))")
   eval "${var}_wall+=($w)"
   t=$(python3 -c "print('%.2f' % ($u + $s))")
   eval "${var}_cpu+=($t)"
@@ -85,34 +102,167 @@ int main(int argc, char **argv)
     return 0;
 }
 C
+cat >"$work/raw.c" <<'C'
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+/* The raw I/O floor: the file's bytes read and written back, fsync'ed. */
+int main(int argc, char **argv)
+{
+    struct stat st;
+    int in = open(argv[1], O_RDONLY);
+    if (argc != 3 || in < 0 || fstat(in, &st) != 0) return 1;
+    char *buf = malloc((size_t)st.st_size + 1);
+    size_t got = 0;
+    ssize_t r;
+    while (buf && (r = read(in, buf + got, (size_t)st.st_size - got)) > 0) got += (size_t)r;
+    close(in);
+    int out = open(argv[2], O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    size_t put = 0;
+    ssize_t w;
+    while (out >= 0 && put < got && (w = write(out, buf + put, got - put)) > 0) put += (size_t)w;
+    if (out < 0 || put != got || fsync(out) != 0 || close(out) != 0) return 1;
+    free(buf);
+    return 0;
+}
+C
+cat >"$work/map.c" <<'C'
+#include <coons.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include <unistd.h>
+/* The mapping of vertices alone: the STL's vertices (welded, as --deform
+ * reads them) as parameters of the frame of their box, evaluated through
+ * the body with coons_body_eval_points, on one thread and on every core
+ * (contiguous chunks); best of 5 each. Prints seconds and ns per vertex. */
+typedef struct { const coons_body *b; size_t n; const double *q; double *x; } job;
+static void *run(void *a)
+{
+    job *j = a;
+    coons_body_eval_points(j->b, j->n, j->q, j->x, NULL, NULL, NULL);
+    return NULL;
+}
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+static double timed(const coons_body *b, size_t n, const double *q, double *x, int k)
+{
+    double best = 1e30;
+    for (int r = 0; r < 5; r++) {
+        pthread_t t[64];
+        job j[64];
+        double t0 = now();
+        for (int c = 0; c < k; c++) {
+            size_t lo = n * c / k, hi = n * (c + 1) / k;
+            j[c] = (job){b, hi - lo, q + 3 * lo, x + 3 * lo};
+            if (c) pthread_create(&t[c], NULL, run, &j[c]);
+        }
+        run(&j[0]);
+        for (int c = 1; c < k; c++) pthread_join(t[c], NULL);
+        double dt = now() - t0;
+        if (dt < best) best = dt;
+    }
+    return best;
+}
+int main(int argc, char **argv)
+{
+    coons_error err = COONS_ERROR_INIT;
+    coons_model *m = NULL;
+    coons_mesh *mesh = NULL;
+    if (argc != 4 || coons_model_load_file(argv[1], NULL, &m, &err) != COONS_OK ||
+        coons_mesh_read_file(argv[3], NULL, &mesh, &err) != COONS_OK) {
+        fprintf(stderr, "map: %s\n", err.message);
+        return 1;
+    }
+    const coons_body *b = coons_model_body(m, (size_t)coons_model_find_body(m, argv[2]));
+    size_t n = coons_mesh_vertex_count(mesh);
+    const double *v = coons_mesh_vertices(mesh);
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (size_t i = 0; i < 3 * n; i++) {
+        if (v[i] < lo[i % 3]) lo[i % 3] = v[i];
+        if (v[i] > hi[i % 3]) hi[i % 3] = v[i];
+    }
+    double *q = malloc(3 * n * sizeof *q), *x = malloc(3 * n * sizeof *x);
+    for (size_t i = 0; i < 3 * n; i++) q[i] = (v[i] - lo[i % 3]) / (hi[i % 3] - lo[i % 3]);
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int k = cores < 1 ? 1 : cores > 64 ? 64 : (int)cores;
+    double t1 = timed(b, n, q, x, 1), tk = timed(b, n, q, x, k);
+    printf("MAP %zu %.6f %.6f %d\n", n, t1, tk, k);
+    return 0;
+}
+C
+cc -O2 -I"$here/include" -I"$build/include" "$work/map.c" -o "$work/map" \
+  -L"$build/src" -Wl,-rpath,"$build/src" -lcoons -lpthread
+cc -O2 "$work/raw.c" -o "$work/raw"
 cc -O2 -I"$here/include" -I"$build/include" "$work/rw.c" -o "$work/rw" \
   -L"$build/src" -Wl,-rpath,"$build/src" -lcoons
 tris=$(python3 -c "import struct,sys; print(struct.unpack_from('<I', open(sys.argv[1],'rb').read(84), 80)[0])" "$work/cube.stl")
 echo "input: $tris triangles, $(stat -c %s "$work/cube.stl") bytes"
 
 floor_wall=() floor_cpu=() spool_wall=() spool_cpu=() ident_wall=() ident_cpu=()
+raw_wall=() raw_cpu=() j1_wall=() j1_cpu=() blend_wall=() blend_cpu=()
 for _ in $(seq "$repeat"); do
+  timed raw "$work/raw" "$work/cube.stl" "$work/raw.stl"
   timed floor "$work/rw" "$work/cube.stl" "$work/copy.stl"
+  timed j1 "$bin" -q -j 1 "$here/examples/spool.json" --deform "$work/cube.stl" --body spool \
+    -o "$work/spool1.stl"
+  if [ "$blender" = 1 ]; then
+    timed blend blender -b --factory-startup --python "$here/tools/bench/blender_lattice.py" \
+      -- "$work/cube.stl" "$work/blender.stl" 0
+  fi
   timed spool "$bin" -q "$here/examples/spool.json" --deform "$work/cube.stl" --body spool \
     -o "$work/spool.stl"
   timed ident "$bin" -q "$work/identity.json" --deform "$work/cube.stl" -o "$work/ident.stl"
 done
 out_tris=$(python3 -c "import struct,sys; print(struct.unpack_from('<I', open(sys.argv[1],'rb').read(84), 80)[0])" "$work/spool.stl")
+cmp -s "$work/spool.stl" "$work/spool1.stl" || { echo "bench_deform: -j 1 and all cores differ" >&2; exit 1; }
 info=$("$bin" -q "$here/examples/spool.json" --deform "$work/cube.stl" --body spool --info)
 dev=$(python3 -c "import json,sys; d=json.loads(sys.argv[1])['deform']; print('%.4g of tolerance %.4g, %d rounds, output closed: %s' % (d['deviation'], d['tolerance'], d['rounds'], d['output_mesh']['closed']))" "$info")
-python3 - "$tris" "$out_tris" "$dev" "$(min "${floor_wall[@]}")" "$(min "${floor_cpu[@]}")" \
-  "$(min "${spool_wall[@]}")" "$(min "${spool_cpu[@]}")" "$(min "${ident_wall[@]}")" \
-  "$(min "${ident_cpu[@]}")" <<'PY'
+blend_line=""
+if [ "$blender" = 1 ]; then
+  blend_line=$(blender -b --factory-startup --python "$here/tools/bench/blender_lattice.py" \
+    -- "$work/cube.stl" "$work/blender.stl" "$repeat" 2>&1 | grep '^BLENDER' || true)
+fi
+map_line=$("$work/map" "$here/examples/spool.json" spool "$work/cube.stl")
+python3 - "$tris" "$out_tris" "$dev" "$blend_line" "$map_line" \
+  "$(min "${raw_wall[@]}")" "$(min "${raw_cpu[@]}")" \
+  "$(min "${floor_wall[@]}")" "$(min "${floor_cpu[@]}")" \
+  "$(min "${spool_wall[@]}")" "$(min "${spool_cpu[@]}")" \
+  "$(min "${j1_wall[@]}")" "$(min "${j1_cpu[@]}")" \
+  "$(min "${ident_wall[@]}")" "$(min "${ident_cpu[@]}")" \
+  "$(min "${blend_wall[@]:-0}")" "$(min "${blend_cpu[@]:-0}")" <<'PY'
 import sys
-tris, out, dev = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
-fw, fc, sw, sc, iw, ic = map(float, sys.argv[4:10])
-print(f"{'':38s} {'wall':>8s} {'CPU':>8s} {'tri/s (wall)':>13s} {'tri/s (CPU)':>12s} "
-      f"{'x floor (wall)':>15s} {'x floor (CPU)':>14s}")
-for name, w, c in (("I/O floor: read + write the STL", fw, fc),
-                   ("--deform through the spool (body 2)", sw, sc),
-                   ("--deform through the identity body 0", iw, ic)):
-    print(f"{name:38s} {w:7.2f}s {c:7.2f}s {tris / w:13.0f} {tris / max(c, 1e-9):12.0f} "
-          f"{w / fw:15.1f} {c / max(fc, 1e-9):14.1f}")
+tris, out, dev, bl, mp = int(sys.argv[1]), int(sys.argv[2]), *sys.argv[3:6]
+rw, rc, fw, fc, sw, sc, jw, jc, iw, ic, bw, bc = map(float, sys.argv[6:18])
+print(f"{'':44s} {'wall':>8s} {'CPU':>8s} {'tri/s (wall)':>13s} "
+      f"{'x raw floor (wall)':>19s} {'x floor (wall)':>15s}")
+rows = [("raw I/O floor: the bytes read, written, fsync", rw, rc),
+        ("I/O floor: coons_mesh_read_file + write", fw, fc),
+        ("--deform through the spool, all cores", sw, sc),
+        ("--deform through the spool, -j 1", jw, jc),
+        ("--deform through the identity body 0", iw, ic)]
+if bw > 0:
+    rows.append(("Blender: start, import, Lattice, export", bw, bc))
+for name, w, c in rows:
+    print(f"{name:44s} {w:7.3f}s {c:7.3f}s {tris / w:13.0f} {w / rw:19.1f} {w / fw:15.1f}")
 print(f"spool: {tris} triangles in, {out} out; deviation {dev}")
+f = mp.split()
+mn, m1, mk, k = int(f[1]), float(f[2]), float(f[3]), int(f[4])
+print(f"mapping {mn} vertices through the spool (coons_body_eval_points): "
+      f"{m1:.4f} s on 1 thread ({m1 / mn * 1e9:.0f} ns per vertex), {mk:.4f} s on {k}")
+if bl:
+    f = bl.split()
+    nv, mod = int(f[2]), float(f[4])
+    print(f"Blender's Lattice modifier alone: {mod:.4f} s for {nv} vertices "
+          f"({mod / nv * 1e9:.0f} ns per vertex); libcoons' mapping on {k} / Blender's: "
+          f"{mk / mod:.2f}")
+    print(f"coons2stl --deform (all cores) / Blender's whole process: {sw / bw:.3f}")
 PY
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
