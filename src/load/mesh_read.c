@@ -187,6 +187,122 @@ static coons_status weld(reader *r, const double x[3], uint32_t *id)
 
 /* ---- binary STL ------------------------------------------------------- */
 
+/*
+ * Binary STL corners are welded by their float bits (-0 as 0), which is
+ * equality of the doubles they become. The table keeps each vertex's bits
+ * with its index, so a probe reads one 16-byte slot and not the vertex
+ * array, and the slots of a block of corners are prefetched before the
+ * block is welded in order: the vertices are numbered by first occurrence,
+ * as before, whatever the table's layout.
+ */
+typedef struct fslot {
+    uint32_t k[3];
+    uint32_t id; /* vertex index + 1; 0: empty */
+} fslot;
+
+static uint64_t fhash(const uint32_t k[3])
+{
+    uint64_t h = (k[0] * 0x9e3779b97f4a7c15ull) ^ (k[1] * 0xbf58476d1ce4e5b9ull) ^
+                 (k[2] * 0x94d049bb133111ebull);
+    return h ^ (h >> 29) ^ (h >> 41);
+}
+
+static coons_status fslots_grow(reader *r, fslot **tab, size_t *cap, size_t want)
+{
+    size_t c = *cap ? *cap : 1024;
+    while (c < want) c *= 2;
+    fslot *t = coons__calloc(c, sizeof *t);
+    if (!t) return coons__error_nomem(r->err);
+    for (size_t i = 0; i < *cap; i++) {
+        if (!(*tab)[i].id) continue;
+        size_t j = (size_t)fhash((*tab)[i].k) & (c - 1);
+        while (t[j].id) j = (j + 1) & (c - 1);
+        t[j] = (*tab)[i];
+    }
+    coons__free(*tab);
+    *tab = t;
+    *cap = c;
+    return COONS_OK;
+}
+
+static uint32_t le32(const unsigned char *p);
+
+#define WELD_BLOCK 64 /* triangles whose slots are prefetched together */
+
+static coons_status weld_binary(reader *r, size_t count)
+{
+    fslot *tab = NULL;
+    size_t cap = 0;
+    /* a closed mesh has about count / 2 vertices: the table half full at
+     * most, the arrays sized once */
+    coons_status st = fslots_grow(r, &tab, &cap, count < 512 ? 1024 : count);
+    if (!st && count > 256) {
+        r->tri = coons__malloc_array(count, 3 * sizeof *r->tri);
+        r->xyz = coons__malloc_array(count / 2 + 8, 3 * sizeof *r->xyz);
+        if (!r->tri || !r->xyz) st = coons__error_nomem(r->err);
+        r->cap_t = r->tri ? count : 0;
+        r->cap_v = r->xyz ? count / 2 + 8 : 0;
+    }
+    for (size_t t0 = 0; !st && t0 < count; t0 += WELD_BLOCK) {
+        size_t nb = count - t0 < WELD_BLOCK ? count - t0 : WELD_BLOCK, bad = 3 * nb;
+        uint32_t key[3 * WELD_BLOCK][3];
+        uint64_t h[3 * WELD_BLOCK];
+        for (size_t c = 0; c < 3 * nb && bad == 3 * nb; c++) {
+            const unsigned char *f = r->p + 84 + 50 * (t0 + c / 3) + 12 + 12 * (c % 3);
+            for (int k = 0; k < 3; k++) {
+                uint32_t u = le32(f + 4 * k);
+                if ((u & 0x7f800000u) == 0x7f800000u) { /* inf or nan */
+                    bad = c;
+                    break;
+                }
+                key[c][k] = (u & 0x7fffffffu) ? u : 0u; /* -0 welds with 0 */
+            }
+            h[c] = fhash(key[c]);
+            __builtin_prefetch(tab + (h[c] & (cap - 1)));
+        }
+        uint32_t id[3];
+        for (size_t c = 0; c < bad; c++) {
+            if (2 * (r->nv + 1) > cap && (st = fslots_grow(r, &tab, &cap, 2 * cap))) break;
+            size_t i = (size_t)h[c] & (cap - 1);
+            for (; tab[i].id; i = (i + 1) & (cap - 1))
+                if (tab[i].k[0] == key[c][0] && tab[i].k[1] == key[c][1] &&
+                    tab[i].k[2] == key[c][2])
+                    break;
+            if (tab[i].id) {
+                id[c % 3] = tab[i].id - 1;
+            } else {
+                double x[3];
+                for (int k = 0; k < 3; k++) {
+                    float g;
+                    memcpy(&g, &key[c][k], sizeof g);
+                    x[k] = g;
+                }
+                if ((st = push_vertex(r, x))) break;
+                id[c % 3] = (uint32_t)(r->nv - 1);
+                memcpy(tab[i].k, key[c], sizeof key[c]);
+                tab[i].id = (uint32_t)r->nv;
+            }
+            if (c % 3 == 2 && (st = add_triangle(r, id[0], id[1], id[2]))) break;
+        }
+        if (!st && bad < 3 * nb) {
+            size_t t = t0 + bad / 3;
+            int v = (int)(bad % 3), k = 0;
+            const unsigned char *f = r->p + 84 + 50 * t + 12 + 12 * (size_t)v;
+            float g = 0;
+            for (; k < 3; k++) {
+                uint32_t u = le32(f + 4 * k);
+                memcpy(&g, &u, sizeof g);
+                if (!isfinite(g)) break;
+            }
+            st = bin_error(r, COONS_E_PARSE, (size_t)(f - r->p) + 4 * (size_t)k,
+                           "triangle %zu, corner %d: %c = %s is not a finite number", t, v,
+                           "xyz"[k], isnan(g) ? "nan" : g > 0 ? "inf" : "-inf");
+        }
+    }
+    coons__free(tab);
+    return st;
+}
+
 static uint32_t le32(const unsigned char *p)
 {
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
@@ -219,28 +335,7 @@ static coons_status read_binary_stl(reader *r)
                          "%llu triangles, more than the limit of %zu triangles (max_triangles; "
                          "coons2stl --max-triangles N)",
                          (unsigned long long)count, r->max_tri);
-    for (size_t t = 0; t < (size_t)count; t++) {
-        const unsigned char *f = r->p + 84 + 50 * t + 12;
-        uint32_t id[3];
-        for (int v = 0; v < 3; v++) {
-            double x[3];
-            for (int k = 0; k < 3; k++) {
-                uint32_t u = le32(f + 12 * v + 4 * k);
-                float g;
-                memcpy(&g, &u, sizeof g);
-                if (!isfinite(g))
-                    return bin_error(r, COONS_E_PARSE, (size_t)(f - r->p) + 12 * (size_t)v + 4 * (size_t)k,
-                                     "triangle %zu, corner %d: %c = %s is not a finite number", t,
-                                     v, "xyz"[k], isnan(g) ? "nan" : g > 0 ? "inf" : "-inf");
-                x[k] = g;
-            }
-            coons_status st = weld(r, x, &id[v]);
-            if (st) return st;
-        }
-        coons_status st = add_triangle(r, id[0], id[1], id[2]);
-        if (st) return st;
-    }
-    return COONS_OK;
+    return weld_binary(r, (size_t)count);
 }
 
 /* ---- text ---------------------------------------------------------------- */

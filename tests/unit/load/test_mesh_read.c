@@ -111,6 +111,83 @@ static void test_binary(void **state)
     coons_mesh_free(m);
 }
 
+/* A binary STL of the n x n grid of unit squares in z = 0 (two triangles
+ * each), written with -0 for the zeros of every other triangle; with
+ * `soup`, every triangle moved by its index along z, so no corner is shared. */
+static unsigned char *grid_stl(int n, int soup, size_t *size)
+{
+    size_t count = 2 * (size_t)n * (size_t)n;
+    *size = 84 + 50 * count;
+    unsigned char *b = calloc(1, *size);
+    assert_non_null(b);
+    put32(b + 80, (uint32_t)count);
+    size_t t = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            for (int h = 0; h < 2; h++, t++) {
+                const int c[2][3][2] = {{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {1, 1}, {0, 1}}};
+                for (int v = 0; v < 3; v++) {
+                    float x = (float)(i + c[h][v][0]), y = (float)(j + c[h][v][1]);
+                    float z = soup ? (float)t : 0.0f;
+                    if (t % 2) { /* -0 for the zeros */
+                        if (x == 0) x = -0.0f;
+                        if (y == 0) y = -0.0f;
+                        if (z == 0) z = -0.0f;
+                    }
+                    unsigned char *p = b + 84 + 50 * t + 12 + 12 * (size_t)v;
+                    putf(p, x), putf(p + 4, y), putf(p + 8, z);
+                }
+            }
+    return b;
+}
+
+/* Large binary files (the welding table is sized from the count, filled
+ * past half and grown): (n + 1)^2 welded vertices for the grid, 3 per
+ * triangle for the soup; every triangle's corners are the input's, and the
+ * vertices are numbered in the order they first appear. */
+static void test_binary_large(void **state)
+{
+    (void)state;
+    for (int soup = 0; soup < 2; soup++) {
+        int n = soup ? 25 : 40;
+        size_t size, count = 2 * (size_t)n * (size_t)n;
+        unsigned char *b = grid_stl(n, soup, &size);
+        coons_error err = COONS_ERROR_INIT;
+        coons_mesh *m = NULL;
+        assert_coons_ok(read_mem(b, size, "grid.stl", 0, &m, &err), &err);
+        assert_int_equal(coons_mesh_vertex_count(m),
+                         soup ? 3 * count : (size_t)(n + 1) * (size_t)(n + 1));
+        assert_int_equal(coons_mesh_triangle_count(m), count);
+        const double *x = coons_mesh_vertices(m);
+        const uint32_t *tri = coons_mesh_triangles(m);
+        uint32_t next = 0;
+        for (size_t t = 0; t < count; t++)
+            for (int v = 0; v < 3; v++) {
+                uint32_t id = tri[3 * t + v];
+                assert_true(id <= next);
+                if (id == next) next++;
+                for (int k = 0; k < 3; k++) {
+                    uint32_t u = (uint32_t)b[84 + 50 * t + 12 + 12 * v + 4 * k] |
+                                 (uint32_t)b[85 + 50 * t + 12 + 12 * v + 4 * k] << 8 |
+                                 (uint32_t)b[86 + 50 * t + 12 + 12 * v + 4 * k] << 16 |
+                                 (uint32_t)b[87 + 50 * t + 12 + 12 * v + 4 * k] << 24;
+                    float f;
+                    memcpy(&f, &u, sizeof f);
+                    assert_true(x[3 * id + k] == (double)f);
+                }
+            }
+        coons_mesh_free(m);
+        if (!soup) {
+            /* triangle 1500, corner 2, z (past the first blocks):
+             * 84 + 1500 * 50 + 12 + 24 + 8 = 75128 */
+            putf(b + 75128, INFINITY);
+            fails(b, size, "grid.stl", 0, COONS_E_PARSE,
+                  "grid.stl: byte 75128: triangle 1500, corner 2: z = inf");
+        }
+        free(b);
+    }
+}
+
 static void test_binary_errors(void **state)
 {
     (void)state;
@@ -354,14 +431,17 @@ static void test_alloc_failures(void **state)
 {
     (void)state;
     unsigned char b[400];
-    size_t n = binary_tet(b, "t");
+    size_t n = binary_tet(b, "t"), gn;
+    /* a soup of 800 triangles: the arrays sized from the count, the
+     * welding table grown */
+    unsigned char *g = grid_stl(20, 1, &gn);
     const struct {
         const void *d;
         size_t n;
         const char *name;
     } in[] = {{b, n, "b.stl"}, {ASCII_TET, sizeof ASCII_TET - 1, "a.stl"},
-              {OFF_TET, sizeof OFF_TET - 1, "o.off"}};
-    for (size_t i = 0; i < 3; i++) {
+              {OFF_TET, sizeof OFF_TET - 1, "o.off"}, {g, gn, "g.stl"}};
+    for (size_t i = 0; i < 4; i++) {
         int done = 0;
         for (long k = 0; !done && k < 1000; k++) {
             coons_error err = COONS_ERROR_INIT;
@@ -378,6 +458,7 @@ static void test_alloc_failures(void **state)
         }
         assert_true(done);
     }
+    free(g);
 }
 
 /* A file that is not a regular one cannot be measured first: reading stops
@@ -410,7 +491,8 @@ static void test_stream_limit(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_binary),     cmocka_unit_test(test_binary_errors),
+        cmocka_unit_test(test_binary),     cmocka_unit_test(test_binary_large),
+        cmocka_unit_test(test_binary_errors),
         cmocka_unit_test(test_ascii),      cmocka_unit_test(test_ascii_errors),
         cmocka_unit_test(test_off),        cmocka_unit_test(test_off_errors),
         cmocka_unit_test(test_file),       cmocka_unit_test(test_alloc_failures),
