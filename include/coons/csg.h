@@ -161,6 +161,21 @@ COONS_EXPORT coons_status coons_mesh_count_self_intersections_float(const coons_
                                                                     coons_error *err);
 
 /**
+ * coons_mesh_count_self_intersections() (`rounded` 0) or
+ * coons_mesh_count_self_intersections_float() (`rounded` 1) on `threads`
+ * threads (0 or 1: the calling thread only); the count does not depend on
+ * them. An allocator set with coons_set_allocator() must be thread-safe.
+ * @return as those: ::COONS_OK, ::COONS_E_UNSUPPORTED without CGAL,
+ *         ::COONS_E_LIMIT (rounded: a coordinate beyond float32),
+ *         ::COONS_E_NOMEM; ::COONS_E_INVALID for `rounded` other than 0 or 1.
+ */
+COONS_EXPORT coons_status coons_mesh_count_self_intersections_threads(const coons_mesh *m,
+                                                                      int rounded,
+                                                                      unsigned threads,
+                                                                      size_t *pairs,
+                                                                      coons_error *err);
+
+/**
  * Samples every body of a model (see coons_model_sample()) and makes the
  * model's solid: with operation "union" the boundary of the union of all
  * bodies' solids as one part named after `copts->name` (default "union"),

@@ -1009,7 +1009,7 @@ coons_status describe_self_int(coons_error *err, const std::exception &e) noexce
 }
 
 coons_status self_int(const char *entry, const coons_mesh *m, size_t *pairs, bool to_float,
-                      coons_error *err) noexcept
+                      unsigned threads, coons_error *err) noexcept
 {
     *pairs = 0;
     return coons::guard(entry, err, unknown_text, [&]() -> coons_status {
@@ -1030,7 +1030,8 @@ coons_status self_int(const char *entry, const coons_mesh *m, size_t *pairs, boo
         for (double &x : f) x *= scale;
         xyz = f.data();
         *pairs = count_self_intersections(xyz, nv, coons_mesh_triangles(m),
-                                          coons_mesh_triangle_count(m), nullptr, 1);
+                                          coons_mesh_triangle_count(m), nullptr,
+                                          std::max(1u, std::min(threads, 1024u)));
         return COONS_OK;
     }, [](coons_error *e, const std::exception &x) noexcept { return describe_self_int(e, x); });
 }
@@ -1066,13 +1067,26 @@ extern "C" coons_status coons_mesh_solidify(const coons_mesh *in, const coons_cs
 extern "C" coons_status coons_mesh_count_self_intersections(const coons_mesh *m, size_t *pairs,
                                                             coons_error *err)
 {
-    return self_int(__func__, m, pairs, false, err);
+    return self_int(__func__, m, pairs, false, 1, err);
 }
 
 extern "C" coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size_t *pairs,
                                                                   coons_error *err)
 {
-    return self_int(__func__, m, pairs, true, err);
+    return self_int(__func__, m, pairs, true, 1, err);
+}
+
+extern "C" coons_status coons_mesh_count_self_intersections_threads(const coons_mesh *m,
+                                                                    int rounded, unsigned threads,
+                                                                    size_t *pairs,
+                                                                    coons_error *err)
+{
+    if (rounded != 0 && rounded != 1) {
+        *pairs = 0;
+        return coons__error_set(err, COONS_E_INVALID,
+                                "self-intersections: rounded must be 0 or 1, not %d", rounded);
+    }
+    return self_int(__func__, m, pairs, rounded == 1, threads, err);
 }
 
 // Test hook (coons_test_hooks.h): the self-intersection count as the union

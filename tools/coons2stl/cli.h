@@ -80,6 +80,7 @@ typedef struct cli_output {
     /* OpenSCAD background parts (`%`): the boundaries around iso surfaces */
     const size_t *background;
     size_t nbackground;
+    unsigned threads; /* cli_threads(-j): the STL rounding check */
 } cli_output;
 /* output.c: the cli_output of the options (path -o). */
 cli_output cli_output_of(const options *o);

@@ -138,7 +138,8 @@ static int write_named(coons_mesh *mesh, const cli_output *out, const char *show
 
 cli_output cli_output_of(const options *o)
 {
-    cli_output out = {o->output, o->format, o->input, o->scale, o->units_out, NULL, 0};
+    cli_output out = {o->output, o->format, o->input, o->scale, o->units_out, NULL, 0,
+                      cli_threads(o->jobs)};
     return out;
 }
 
@@ -152,15 +153,17 @@ cli_output cli_output_of(const options *o)
  * CGAL there is no exact test and no check. Coordinates outside float32's
  * range are left to the writer, which refuses them with its own message.
  */
-static int stl_rounding_refused(const coons_mesh *mesh, coons_format format, const char *shown)
+static int stl_rounding_refused(const coons_mesh *mesh, coons_format format, unsigned threads,
+                                const char *shown)
 {
     if ((format != COONS_FORMAT_STL_BINARY && format != COONS_FORMAT_STL_ASCII) ||
         !coons_csg_is_available())
         return 0;
     coons_error err = COONS_ERROR_INIT;
     size_t pairs32 = 0, pairs = 0;
-    coons_status rc = coons_mesh_count_self_intersections_float(mesh, &pairs32, &err);
-    if (rc == COONS_OK && pairs32) rc = coons_mesh_count_self_intersections(mesh, &pairs, &err);
+    coons_status rc = coons_mesh_count_self_intersections_threads(mesh, 1, threads, &pairs32, &err);
+    if (rc == COONS_OK && pairs32)
+        rc = coons_mesh_count_self_intersections_threads(mesh, 0, threads, &pairs, &err);
     if (rc == COONS_E_LIMIT) return 0;
     if (rc != COONS_OK) {
         cli_message(0, "%s: checking the STL's float32 coordinates for crossings failed: %s; "
@@ -298,7 +301,7 @@ static int write_named(coons_mesh *mesh, const cli_output *out, const char *show
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }
-    if (stl_rounding_refused(mesh, out->format, shown)) {
+    if (stl_rounding_refused(mesh, out->format, out->threads, shown)) {
         coons_mesh_free(mesh);
         return EXIT_GEOMETRY;
     }

@@ -37,6 +37,15 @@ coons_status coons_mesh_count_self_intersections_float(const coons_mesh *m, size
     return unavailable(err);
 }
 
+coons_status coons_mesh_count_self_intersections_threads(const coons_mesh *m, int rounded,
+                                                        unsigned threads, size_t *pairs,
+                                                        coons_error *err)
+{
+    (void)m, (void)rounded, (void)threads;
+    *pairs = 0;
+    return unavailable(err);
+}
+
 coons_status coons__csg_count_pairs(const coons_mesh *m, const unsigned char *old_tri,
                                     int reference, unsigned threads, size_t *pairs,
                                     size_t *degenerate, coons_error *err)

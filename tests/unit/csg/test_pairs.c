@@ -214,12 +214,70 @@ static void test_known_counts(void **state)
     coons_mesh_free(m);
 }
 
+/* The public threaded count (coons_mesh_count_self_intersections_threads)
+ * against the two one-thread counts: two triangles one float32 step apart
+ * cross only when rounded; a soup of 6000 lattice triangles (past the
+ * 4096 boxes from which threads are used) counts the same on 1, 2 and 3
+ * threads; a bad `rounded` is refused. */
+static void test_threads_api(void **state)
+{
+    (void)state;
+    coons_error err;
+    size_t a = 0, b = 0;
+    /* z = 1 and z = 1 + 1e-9 (1.0f when rounded): parallel, then coplanar
+     * and overlapping */
+    const double two[] = {0, 0, 1, 2, 0, 1, 0, 2, 1, 0.5, 0.5, 1 + 1e-9, 3, 0.5, 1 + 1e-9,
+                          0.5, 3, 1 + 1e-9};
+    const uint32_t tt[] = {0, 1, 2, 3, 4, 5};
+    coons_mesh *m = soup(two, 6, tt, 2);
+    for (unsigned t = 1; t <= 3; t++) {
+        assert_coons_ok(coons_mesh_count_self_intersections_threads(m, 0, t, &a, &err), &err);
+        assert_coons_ok(coons_mesh_count_self_intersections_threads(m, 1, t, &b, &err), &err);
+        assert_int_equal(a, 0);
+        assert_int_equal(b, 1);
+    }
+    assert_int_equal(coons_mesh_count_self_intersections_threads(m, 2, 1, &a, &err),
+                     COONS_E_INVALID);
+    coons_mesh_free(m);
+    enum { N = 5, NT = 6000 };
+    double xyz[3 * N * N * N];
+    for (int i = 0; i < N * N * N; i++) {
+        xyz[3 * i] = i % N + 1e-3 * (i % 7);
+        xyz[3 * i + 1] = (i / N) % N;
+        xyz[3 * i + 2] = i / (N * N) + 0.1;
+    }
+    uint32_t *tri = malloc(3 * NT * sizeof *tri);
+    assert_non_null(tri);
+    for (size_t t = 0; t < NT; t++) {
+        /* small triangles: corners one lattice step apart */
+        uint32_t c = next(N * N * N);
+        uint32_t x = c % N, y = (c / N) % N, z = c / (N * N);
+        uint32_t c1 = (x + 1 < N ? c + 1 : c - 1), c2 = (y + 1 < N ? c + N : c - N);
+        if (next(2)) c2 = (z + 1 < N ? c + N * N : c - N * N);
+        tri[3 * t] = c, tri[3 * t + 1] = c1, tri[3 * t + 2] = c2;
+    }
+    m = soup(xyz, N * N * N, tri, NT);
+    size_t ref = 0, ref32 = 0;
+    assert_coons_ok(coons_mesh_count_self_intersections(m, &ref, &err), &err);
+    assert_coons_ok(coons_mesh_count_self_intersections_float(m, &ref32, &err), &err);
+    assert_true(ref > 0);
+    for (unsigned t = 1; t <= 3; t++) {
+        assert_coons_ok(coons_mesh_count_self_intersections_threads(m, 0, t, &a, &err), &err);
+        assert_coons_ok(coons_mesh_count_self_intersections_threads(m, 1, t, &b, &err), &err);
+        assert_int_equal(a, ref);
+        assert_int_equal(b, ref32);
+    }
+    coons_mesh_free(m);
+    free(tri);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lattice_soups),
         cmocka_unit_test(test_sampled_shells),
         cmocka_unit_test(test_known_counts),
+        cmocka_unit_test(test_threads_api),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
