@@ -81,14 +81,16 @@ static void edge_at(const coons_body *b, int e, double t, double p[3], double *d
     if (dv) v3_copy(dv, r[1]);
 }
 
-void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
-                     const double bv[5], const double bw[5], double out[3], double d[3][3])
+void coons__edge_sum_tab(double E[12][3], double dE[12][3], double sign,
+                         const double bu[5], const double bv[5], const double bw[5],
+                         double out[3], double d[3][3])
 {
     for (int x = 0; x < 2; x++)
         for (int y = 0; y < 2; y++) {
-            double p[3], dp[3], f;
+            const double *p, *dp;
+            double f;
             /* w-edge C(x,y,w): blends a_x(u) a_y(v) */
-            edge(b, 8 + 2 * x + y, bw[4], p, d ? dp : NULL);
+            p = E[8 + 2 * x + y], dp = dE[8 + 2 * x + y];
             v3_axpy(out, sign * bu[x] * bv[y], p);
             if (d) {
                 v3_axpy(d[0], sign * bu[2 + x] * bv[y], p);
@@ -96,7 +98,7 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
                 v3_axpy(d[2], sign * bu[x] * bv[y], dp);
             }
             /* v-edge C(x,v,y): blends a_x(u) a_y(w) */
-            edge(b, 4 + 2 * x + y, bv[4], p, d ? dp : NULL);
+            p = E[4 + 2 * x + y], dp = dE[4 + 2 * x + y];
             f = sign * bu[x] * bw[y];
             v3_axpy(out, f, p);
             if (d) {
@@ -105,7 +107,7 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
                 v3_axpy(d[2], sign * bu[x] * bw[2 + y], p);
             }
             /* u-edge C(u,x,y): blends a_x(v) a_y(w) */
-            edge(b, 2 * x + y, bu[4], p, d ? dp : NULL);
+            p = E[2 * x + y], dp = dE[2 * x + y];
             f = sign * bv[x] * bw[y];
             v3_axpy(out, f, p);
             if (d) {
@@ -114,6 +116,17 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
                 v3_axpy(d[2], sign * bv[x] * bw[2 + y], p);
             }
         }
+}
+
+void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
+                     const double bv[5], const double bw[5], double out[3], double d[3][3])
+{
+    double E[12][3], dE[12][3];
+    for (int e = 0; e < 12; e++) {
+        const double *q = e < 4 ? bu : e < 8 ? bv : bw;
+        edge(b, e, q[4], E[e], d ? dE[e] : NULL);
+    }
+    coons__edge_sum_tab(E, dE, sign, bu, bv, bw, out, d);
 }
 
 /* The point grouped as the grid below groups it (the same operations in

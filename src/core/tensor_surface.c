@@ -43,12 +43,13 @@ static inline void sum_rows(int dim, int deg, const double *N, const double *P, 
     for (int c = 0; c < dim; c++) R[c] = acc[c];
 }
 
-static void eval(const coons_patch *p, double s, double t, int order, double out[][3])
+/* The point and its derivatives up to order from the bases along s (first
+ * index fs, Ns[d*(ps+1) + k]) and t (ft, Nt): the sums of eval. */
+static inline void eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
+                              const double *Nt, int order, double out[][3])
 {
     const int ps = p->ps, pt = p->pt, dim = p->pw ? 4 : 3;
     const double *P = p->pw ? p->pw : p->pts;
-    double Ns[3 * MAXB], Nt[3 * MAXB];
-    size_t fs = basis(p, 0, s, order, Ns), ft = basis(p, 1, t, order, Nt);
     /* R[a][l] = sum_k d^a N_k(s) P[fs+k][ft+l]; A[a][b] = sum_l d^b N_l(t) R[a][l] */
     double R[3][MAXB][4];
     double A[3][3][4] = {{{0}}};
@@ -92,6 +93,57 @@ static void eval(const coons_patch *p, double s, double t, int order, double out
                      A[1][1][3] * S00[c]) / W;
         out[5][c] = (A[0][2][c] - 2.0 * A[0][1][3] * S01[c] - A[0][2][3] * S00[c]) / W;
     }
+}
+
+static void eval(const coons_patch *p, double s, double t, int order, double out[][3])
+{
+    double Ns[3 * MAXB], Nt[3 * MAXB];
+    size_t fs = basis(p, 0, s, order, Ns), ft = basis(p, 1, t, order, Nt);
+    eval_basis(p, fs, Ns, ft, Nt, order, out);
+}
+
+int coons__patch_is_tensor(const coons_patch *p)
+{
+    return p->kind == &coons__bezier_surface_kind || p->kind == &coons__bspline_surface_kind;
+}
+
+size_t coons__tensor_basis(const coons_patch *p, int dir, double x, int nd, double *N)
+{
+    return basis(p, dir, x, nd, N);
+}
+
+void coons__tensor_eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
+                              const double *Nt, int order, double out[][3])
+{
+    eval_basis(p, fs, Ns, ft, Nt, order, out);
+}
+
+void coons__tensor_srow(const coons_patch *p, size_t fs, const double *Ns, double *R)
+{
+    const int dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    const size_t stride = p->nt * (size_t)dim;
+    for (size_t l = 0; l < p->nt; l++)
+        sum_rows(dim, p->ps, Ns, P + (fs * p->nt + l) * (size_t)dim, stride, R + 4 * l);
+}
+
+void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
+                             const double *Nt, int order, double out[3], double *dt)
+{
+    const int pt = p->pt, dim = p->pw ? 4 : 3;
+    double A00[4], A01[4];
+    sum_rows(dim, pt, Nt, R + 4 * ft, 4, A00);
+    if (order >= 1) sum_rows(dim, pt, Nt + (pt + 1), R + 4 * ft, 4, A01);
+    if (!p->pw) {
+        v3_copy(out, A00);
+        if (order >= 1) v3_copy(dt, A01);
+        return;
+    }
+    double W = A00[3], S00[3];
+    for (int c = 0; c < 3; c++) S00[c] = A00[c] / W;
+    v3_copy(out, S00);
+    if (order < 1) return;
+    for (int c = 0; c < 3; c++) dt[c] = (A01[c] - A01[3] * S00[c]) / W;
 }
 
 _Static_assert(_Alignof(size_t) <= _Alignof(double), "size_t packed after doubles");
