@@ -45,11 +45,11 @@ static inline void sum_rows(int dim, int deg, const double *N, const double *P, 
 
 /* The point and its derivatives up to order from the bases along s (first
  * index fs, Ns[d*(ps+1) + k]) and t (ft, Nt): the sums of eval. */
-static inline void eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
-                              const double *Nt, int order, double out[][3])
+static inline void eval_basis_dim(int dim, const coons_patch *p, size_t fs, const double *Ns,
+                                  size_t ft, const double *Nt, int order, double out[][3])
 {
-    const int ps = p->ps, pt = p->pt, dim = p->pw ? 4 : 3;
-    const double *P = p->pw ? p->pw : p->pts;
+    const int ps = p->ps, pt = p->pt;
+    const double *P = dim == 4 ? p->pw : p->pts;
     /* R[a][l] = sum_k d^a N_k(s) P[fs+k][ft+l]; A[a][b] = sum_l d^b N_l(t) R[a][l] */
     double R[3][MAXB][4];
     double A[3][3][4] = {{{0}}};
@@ -61,7 +61,7 @@ static inline void eval_basis(const coons_patch *p, size_t fs, const double *Ns,
     for (int a = 0; a <= order; a++)
         for (int b = 0; a + b <= order; b++)
             sum_rows(dim, pt, Nt + b * (pt + 1), R[a][0], 4, A[a][b]);
-    if (!p->pw) {
+    if (dim == 3) {
         v3_copy(out[0], A[0][0]);
         if (order >= 1) {
             v3_copy(out[1], A[1][0]);
@@ -93,6 +93,17 @@ static inline void eval_basis(const coons_patch *p, size_t fs, const double *Ns,
                      A[1][1][3] * S00[c]) / W;
         out[5][c] = (A[0][2][c] - 2.0 * A[0][1][3] * S01[c] - A[0][2][3] * S00[c]) / W;
     }
+}
+
+/* The sums for a constant dim (3: polynomial, 4: homogeneous), so that
+ * sum_rows unrolls. */
+static void eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
+                       const double *Nt, int order, double out[][3])
+{
+    if (p->pw)
+        eval_basis_dim(4, p, fs, Ns, ft, Nt, order, out);
+    else
+        eval_basis_dim(3, p, fs, Ns, ft, Nt, order, out);
 }
 
 static void eval(const coons_patch *p, double s, double t, int order, double out[][3])
