@@ -221,6 +221,7 @@ static void eval_rows(const coons_body *b, double u, double v, double w, double 
 
 typedef struct fast_face {
     const coons_patch *p;
+    int same[2][2];              /* [dir]: face and dir whose basis at the point is this one's */
     size_t first[2][2];          /* [dir][end]: first control index at s or t = end */
     double N[2][2][FAST_NB];     /* [dir][end]: the basis there, value and derivative rows */
     double *srow[2];             /* the net combined at s = 0, 1 (coons__tensor_srow) */
@@ -228,6 +229,7 @@ typedef struct fast_face {
 
 struct coons__body2_fast {
     fast_face f[6];
+    int src[12][2][3]; /* edge_source of edge e, source m: face, run, fixed */
     double *mem;
 };
 
@@ -240,6 +242,18 @@ static void fast_free(coons_body *b)
     coons__free(b->fast->mem);
     coons__free(b->fast);
     b->fast = NULL;
+}
+
+/* Whether p along dp and q along dq have the same basis: both Bezier or
+ * both B-spline, the same degree and control count, the same knots bit
+ * for bit (then the same parameter gives the same basis). */
+static int same_basis(const coons_patch *p, int dp, const coons_patch *q, int dq)
+{
+    int pd = dp ? p->pt : p->ps, qd = dq ? q->pt : q->ps;
+    size_t pn = dp ? p->nt : p->ns, qn = dq ? q->nt : q->ns;
+    const double *pk = dp ? p->kt : p->ks, *qk = dq ? q->kt : q->ks;
+    if (p->kind != q->kind || pd != qd || pn != qn || !pk != !qk) return 0;
+    return !pk || !memcmp(pk, qk, (pn + (size_t)pd + 1) * sizeof(double));
 }
 
 static coons_status fast_build(coons_body *b, coons_error *err)
@@ -266,9 +280,21 @@ static coons_status fast_build(coons_body *b, coons_error *err)
         return coons__error_nomem(err);
     }
     double *m = F->mem;
+    for (int e = 0; e < 12; e++)
+        for (int k = 0; k < 2; k++)
+            edge_source(e, k, &F->src[e][k][0], &F->src[e][k][1], &F->src[e][k][2]);
     for (int f = 0; f < 6; f++) {
         fast_face *ff = &F->f[f];
         ff->p = b->face[f];
+        for (int dir = 0; dir < 2; dir++) {
+            ff->same[dir][0] = f, ff->same[dir][1] = dir;
+            for (int g = 0; g < f; g++)
+                for (int dg = 0; dg < 2; dg++)
+                    if (F->f[g].same[dg][0] == g && F->f[g].same[dg][1] == dg &&
+                        face_par[g][dg] == face_par[f][dir] &&
+                        same_basis(b->face[g], dg, b->face[f], dir))
+                        ff->same[dir][0] = g, ff->same[dir][1] = dg;
+        }
         for (int dir = 0; dir < 2; dir++)
             for (int end = 0; end < 2; end++)
                 ff->first[dir][end] =
@@ -290,18 +316,26 @@ static void eval_fast(const coons_body *b, double u, double v, double w, double 
     const int order = d ? 1 : 0;
     const double x[3] = {u, v, w};
     double bu[5], bv[5], bw[5], E[12][3], dE[12][3];
-    size_t first[6][2];
-    double N[6][2][FAST_NB];
+    size_t first[6][2] = {{0}};
+    double Nb[6][2][FAST_NB];
+    const double *N[6][2] = {{NULL}};
     coons__blends_at(b->blend, u, v, w, bu, bv, bw);
     for (int f = 0; f < 6; f++)
-        for (int dir = 0; dir < 2; dir++)
-            first[f][dir] = coons__tensor_basis(F->f[f].p, dir, x[face_par[f][dir]], order,
-                                                N[f][dir]);
+        for (int dir = 0; dir < 2; dir++) {
+            const int *same = F->f[f].same[dir];
+            if (same[0] == f && same[1] == dir) {
+                first[f][dir] = coons__tensor_basis(F->f[f].p, dir, x[face_par[f][dir]], order,
+                                                    Nb[f][dir]);
+                N[f][dir] = Nb[f][dir];
+            } else {
+                first[f][dir] = first[same[0]][same[1]];
+                N[f][dir] = N[same[0]][same[1]];
+            }
+        }
     for (int e = 0; e < 12; e++) {
         double pv[2][3], pd[2][3];
         for (int m = 0; m < 2; m++) {
-            int f, run, fixed;
-            edge_source(e, m, &f, &run, &fixed);
+            const int f = F->src[e][m][0], run = F->src[e][m][1], fixed = F->src[e][m][2];
             const fast_face *ff = &F->f[f];
             if (run == 0) {
                 double r[3][3];

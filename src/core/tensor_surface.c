@@ -45,10 +45,16 @@ static inline void sum_rows(int dim, int deg, const double *N, const double *P, 
 
 /* The point and its derivatives up to order from the bases along s (first
  * index fs, Ns[d*(ps+1) + k]) and t (ft, Nt): the sums of eval. */
-static inline void eval_basis_dim(int dim, const coons_patch *p, size_t fs, const double *Ns,
-                                  size_t ft, const double *Nt, int order, double out[][3])
+#if defined(__GNUC__)
+#define COONS__ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define COONS__ALWAYS_INLINE inline
+#endif
+
+static COONS__ALWAYS_INLINE void eval_basis_dim(int dim, int ps, int pt, const coons_patch *p, size_t fs,
+                                  const double *Ns, size_t ft, const double *Nt, int order,
+                                  double out[][3])
 {
-    const int ps = p->ps, pt = p->pt;
     const double *P = dim == 4 ? p->pw : p->pts;
     /* R[a][l] = sum_k d^a N_k(s) P[fs+k][ft+l]; A[a][b] = sum_l d^b N_l(t) R[a][l] */
     double R[3][MAXB][4];
@@ -100,10 +106,25 @@ static inline void eval_basis_dim(int dim, const coons_patch *p, size_t fs, cons
 static void eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
                        const double *Nt, int order, double out[][3])
 {
-    if (p->pw)
-        eval_basis_dim(4, p, fs, Ns, ft, Nt, order, out);
-    else
-        eval_basis_dim(3, p, fs, Ns, ft, Nt, order, out);
+    /* and for the common low degrees constant ones too (the same sums) */
+#define EVAL(D, PS, PT) eval_basis_dim(D, PS, PT, p, fs, Ns, ft, Nt, order, out)
+    const int ps = p->ps, pt = p->pt;
+    if (p->pw) {
+        if (ps == 2 && pt == 2)
+            EVAL(4, 2, 2);
+        else if (ps == 3 && pt == 3)
+            EVAL(4, 3, 3);
+        else
+            EVAL(4, ps, pt);
+    } else {
+        if (ps == 2 && pt == 2)
+            EVAL(3, 2, 2);
+        else if (ps == 3 && pt == 3)
+            EVAL(3, 3, 3);
+        else
+            EVAL(3, ps, pt);
+    }
+#undef EVAL
 }
 
 static void eval(const coons_patch *p, double s, double t, int order, double out[][3])
