@@ -225,6 +225,8 @@ typedef struct fast_face {
     size_t first[2][2];          /* [dir][end]: first control index at s or t = end */
     double N[2][2][FAST_NB];     /* [dir][end]: the basis there, value and derivative rows */
     double *srow[2];             /* the net combined at s = 0, 1 (coons__tensor_srow) */
+    double *tcol[2];             /* t = 0, 1: the net's column there where the basis picks
+                                  * one (coons__tensor_tcol), else NULL */
 } fast_face;
 
 struct coons__body2_fast {
@@ -256,6 +258,28 @@ static int same_basis(const coons_patch *p, int dp, const coons_patch *q, int dq
     return !pk || !memcmp(pk, qk, (pn + (size_t)pd + 1) * sizeof(double));
 }
 
+/* The index j of a t-basis N (values, pt + 1 of them) that is 1.0 at j
+ * and 0 elsewhere (a clamped end), provided the net's homogeneous
+ * coordinates are at most 1e300 in size (so that every sum of at most 16
+ * of them times basis values in [0,1] is finite, and eval's terms of the
+ * zeros add +-0); else pt + 1. */
+static size_t pick_column(const coons_patch *p, const double *N)
+{
+    size_t j = (size_t)p->pt + 1, ones = 0;
+    for (int k = 0; k <= p->pt; k++) {
+        if (N[k] == 1.0)
+            j = (size_t)k, ones++;
+        else if (N[k] != 0.0)
+            return (size_t)p->pt + 1;
+    }
+    if (ones != 1) return (size_t)p->pt + 1;
+    const int dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    for (size_t i = 0; i < p->ns * p->nt * (size_t)dim; i++)
+        if (!(fabs(P[i]) <= 1e300)) return (size_t)p->pt + 1;
+    return j;
+}
+
 static coons_status fast_build(coons_body *b, coons_error *err)
 {
     b->fast = NULL;
@@ -263,7 +287,7 @@ static coons_status fast_build(coons_body *b, coons_error *err)
     for (int f = 0; f < 6; f++) {
         const coons_patch *p = b->face[f];
         if (!coons__patch_is_tensor(p) || p->ps > FAST_DEG || p->pt > FAST_DEG) return COONS_OK;
-        total += 8 * p->nt; /* net sizes are bounded (COONS_PATCH_MAX_POINTS) */
+        total += 8 * (p->nt + p->ns); /* net sizes are bounded (COONS_PATCH_MAX_POINTS) */
     }
     /* every edge runs with its faces' parameter (agree.h) */
     for (int e = 0; e < 12; e++)
@@ -303,6 +327,12 @@ static coons_status fast_build(coons_body *b, coons_error *err)
             ff->srow[end] = m;
             m += 4 * ff->p->nt;
             coons__tensor_srow(ff->p, ff->first[0][end], ff->N[0][end], ff->srow[end]);
+            size_t j = pick_column(ff->p, ff->N[1][end]);
+            if (j <= (size_t)ff->p->pt) {
+                ff->tcol[end] = m;
+                m += 4 * ff->p->ns;
+                coons__tensor_tcol(ff->p, ff->first[1][end] + j, ff->tcol[end]);
+            }
         }
     }
     b->fast = F;
@@ -337,7 +367,9 @@ static void eval_fast(const coons_body *b, double u, double v, double w, double 
         for (int m = 0; m < 2; m++) {
             const int f = F->src[e][m][0], run = F->src[e][m][1], fixed = F->src[e][m][2];
             const fast_face *ff = &F->f[f];
-            if (run == 0) {
+            if (run == 0 && !d && ff->tcol[fixed]) {
+                coons__tensor_eval_tcol(ff->p, ff->tcol[fixed], first[f][0], N[f][0], pv[m]);
+            } else if (run == 0) {
                 double r[3][3];
                 coons__tensor_eval_basis(ff->p, first[f][0], N[f][0], ff->first[1][fixed],
                                          ff->N[1][fixed], order, r);

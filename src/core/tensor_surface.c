@@ -159,6 +159,29 @@ void coons__tensor_srow(const coons_patch *p, size_t fs, const double *Ns, doubl
         sum_rows(dim, p->ps, Ns, P + (fs * p->nt + l) * (size_t)dim, stride, R + 4 * l);
 }
 
+void coons__tensor_tcol(const coons_patch *p, size_t j, double *T)
+{
+    const int dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    for (size_t k = 0; k < p->ns; k++)
+        for (int c = 0; c < dim; c++) T[4 * k + (size_t)c] = P[(k * p->nt + j) * (size_t)dim + (size_t)c];
+}
+
+void coons__tensor_eval_tcol(const coons_patch *p, const double *T, size_t fs,
+                             const double *Ns, double out[3])
+{
+    const int dim = p->pw ? 4 : 3;
+    double A[4];
+    /* eval's sum over the t-basis: +0 before the 1, then R, then +-0 */
+    sum_rows(dim, p->ps, Ns, T + 4 * fs, 4, A);
+    for (int c = 0; c < dim; c++) A[c] = 0.0 + A[c];
+    if (!p->pw) {
+        v3_copy(out, A);
+        return;
+    }
+    for (int c = 0; c < 3; c++) out[c] = A[c] / A[3];
+}
+
 void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
                              const double *Nt, int order, double out[3], double *dt)
 {
