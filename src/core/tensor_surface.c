@@ -167,29 +167,49 @@ void coons__tensor_tcol(const coons_patch *p, size_t j, double *T)
         for (int c = 0; c < dim; c++) T[4 * k + (size_t)c] = P[(k * p->nt + j) * (size_t)dim + (size_t)c];
 }
 
-void coons__tensor_eval_tcol(const coons_patch *p, const double *T, size_t fs,
-                             const double *Ns, double out[3])
+static COONS__ALWAYS_INLINE void eval_tcol_dim(int dim, int ps, const double *T,
+                                               size_t fs, const double *Ns, double out[3])
 {
-    const int dim = p->pw ? 4 : 3;
     double A[4];
     /* eval's sum over the t-basis: +0 before the 1, then R, then +-0 */
-    sum_rows(dim, p->ps, Ns, T + 4 * fs, 4, A);
+    sum_rows(dim, ps, Ns, T + 4 * fs, 4, A);
     for (int c = 0; c < dim; c++) A[c] = 0.0 + A[c];
-    if (!p->pw) {
+    if (dim == 3) {
         v3_copy(out, A);
         return;
     }
     for (int c = 0; c < 3; c++) out[c] = A[c] / A[3];
 }
 
-void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
-                             const double *Nt, int order, double out[3], double *dt)
+void coons__tensor_eval_tcol(const coons_patch *p, const double *T, size_t fs,
+                             const double *Ns, double out[3])
 {
-    const int pt = p->pt, dim = p->pw ? 4 : 3;
+    const int ps = p->ps;
+    if (p->pw) {
+        if (ps == 2)
+            eval_tcol_dim(4, 2, T, fs, Ns, out);
+        else if (ps == 3)
+            eval_tcol_dim(4, 3, T, fs, Ns, out);
+        else
+            eval_tcol_dim(4, ps, T, fs, Ns, out);
+    } else {
+        if (ps == 2)
+            eval_tcol_dim(3, 2, T, fs, Ns, out);
+        else if (ps == 3)
+            eval_tcol_dim(3, 3, T, fs, Ns, out);
+        else
+            eval_tcol_dim(3, ps, T, fs, Ns, out);
+    }
+}
+
+static COONS__ALWAYS_INLINE void eval_srow_dim(int dim, int pt, const double *R, size_t ft,
+                                               const double *Nt, int order, double out[3],
+                                               double *dt)
+{
     double A00[4], A01[4];
     sum_rows(dim, pt, Nt, R + 4 * ft, 4, A00);
     if (order >= 1) sum_rows(dim, pt, Nt + (pt + 1), R + 4 * ft, 4, A01);
-    if (!p->pw) {
+    if (dim == 3) {
         v3_copy(out, A00);
         if (order >= 1) v3_copy(dt, A01);
         return;
@@ -199,6 +219,27 @@ void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
     v3_copy(out, S00);
     if (order < 1) return;
     for (int c = 0; c < 3; c++) dt[c] = (A01[c] - A01[3] * S00[c]) / W;
+}
+
+void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
+                             const double *Nt, int order, double out[3], double *dt)
+{
+    const int pt = p->pt;
+    if (p->pw) {
+        if (pt == 2)
+            eval_srow_dim(4, 2, R, ft, Nt, order, out, dt);
+        else if (pt == 3)
+            eval_srow_dim(4, 3, R, ft, Nt, order, out, dt);
+        else
+            eval_srow_dim(4, pt, R, ft, Nt, order, out, dt);
+    } else {
+        if (pt == 2)
+            eval_srow_dim(3, 2, R, ft, Nt, order, out, dt);
+        else if (pt == 3)
+            eval_srow_dim(3, 3, R, ft, Nt, order, out, dt);
+        else
+            eval_srow_dim(3, pt, R, ft, Nt, order, out, dt);
+    }
 }
 
 _Static_assert(_Alignof(size_t) <= _Alignof(double), "size_t packed after doubles");
