@@ -133,16 +133,11 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
  * the same order, so a grid point equals the point evaluated alone
  * bitwise; summed term by term it was up to 7 ulp of the body's size off). */
 static void point(const coons_body *b, const double bu[5], const double bv[5],
-                  const double bw[5], double out[3])
+                  const double bw[5], double E[12][3], double out[3])
 {
     const double a0 = bu[0], a1 = bu[1], b0 = bv[0], b1 = bv[1];
     const double(*c)[3] = b->corner;
-    double Cu[4][3], Cv[4][3], Cw[4][3];
-    for (int e = 0; e < 4; e++) {
-        edge_at(b, e, bu[4], Cu[e], NULL);
-        edge_at(b, 4 + e, bv[4], Cv[e], NULL);
-        edge_at(b, 8 + e, bw[4], Cw[e], NULL);
-    }
+    double(*Cu)[3] = E, (*Cv)[3] = E + 4, (*Cw)[3] = E + 8;
     for (int r = 0; r < 3; r++) {
         double h0 = a0 * Cw[0][r] + a1 * Cw[2][r], h1 = a0 * Cw[1][r] + a1 * Cw[3][r], P[2];
         for (int k = 0; k < 2; k++) {
@@ -158,17 +153,22 @@ static void point(const coons_body *b, const double bu[5], const double bv[5],
 static void eval(const coons_body *b, double u, double v, double w, double out[3],
                  double d[3][3])
 {
-    double bu[5], bv[5], bw[5];
+    double bu[5], bv[5], bw[5], E[12][3], dE[12][3];
     coons__blends_at(b->blend, u, v, w, bu, bv, bw);
+    /* each edge once, with its derivative on the Jacobian path */
+    for (int e = 0; e < 12; e++) {
+        const double *q = e < 4 ? bu : e < 8 ? bv : bw;
+        edge_at(b, e, q[4], E[e], d ? dE[e] : NULL);
+    }
     if (d) {
         /* the partials term by term: d(E - 2T) */
         double t[3], dt[3][3];
         coons__trilinear(b->corner, bu, bv, bw, t, dt);
         v3_scale(t, t, -2.0);
         for (int q = 0; q < 3; q++) v3_scale(d[q], dt[q], -2.0);
-        coons__edge_sum(b, edge_at, 1.0, bu, bv, bw, t, d);
+        coons__edge_sum_tab(E, dE, 1.0, bu, bv, bw, t, d);
     }
-    point(b, bu, bv, bw, out);
+    point(b, bu, bv, bw, E, out);
 }
 
 /*
