@@ -246,9 +246,8 @@ COONS_EXPORT coons_status coons_body_eval_grid_threads(const coons_body *b, cons
  * bezier-surface or bspline-surface patches keeps from its construction
  * (read-only after it) what every point shares: each face's bases at its
  * ends and its net combined there; a point then computes each face's two
- * bases once for the face and the edges it carries (about 0.3-0.5 us a
- * point for examples/spool.json on one core, 5-8 times less than a face at
- * a time), with the same floating-point operations, so the same bits.
+ * bases once for the face and the edges it carries (tools/bench/bench_points
+ * times it), with the same floating-point operations, so the same bits.
  * @param[in]  uvw  3 n parameters
  * @param[out] xyz  3 n coordinates
  * @param[out] jac  NULL or 9 n partials (row-major 3 x 3 per point)
