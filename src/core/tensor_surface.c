@@ -107,7 +107,13 @@ static void eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t
                        const double *Nt, int order, double out[][3])
 {
     /* and for the common low degrees constant ones too (the same sums) */
-#define EVAL(D, PS, PT) eval_basis_dim(D, PS, PT, p, fs, Ns, ft, Nt, order, out)
+#define EVAL(D, PS, PT)                                                                    \
+    do {                                                                                   \
+        if (order == 0)                                                                    \
+            eval_basis_dim(D, PS, PT, p, fs, Ns, ft, Nt, 0, out);                          \
+        else                                                                               \
+            eval_basis_dim(D, PS, PT, p, fs, Ns, ft, Nt, order, out);                      \
+    } while (0)
     const int ps = p->ps, pt = p->pt;
     if (p->pw) {
         if (ps == 2 && pt == 2)
