@@ -227,6 +227,7 @@ typedef struct fast_face {
     double *srow[2];             /* the net combined at s = 0, 1 (coons__tensor_srow) */
     double *tcol[2];             /* t = 0, 1: the net's column there where the basis picks
                                   * one (coons__tensor_tcol), else NULL */
+    double pmax;                 /* the largest homogeneous coordinate's size */
 } fast_face;
 
 struct coons__body2_fast {
@@ -258,6 +259,16 @@ static int same_basis(const coons_patch *p, int dp, const coons_patch *q, int dq
     return !pk || !memcmp(pk, qk, (pn + (size_t)pd + 1) * sizeof(double));
 }
 
+/* The largest size of the net's homogeneous coordinates. */
+static double net_max(const coons_patch *p)
+{
+    const int dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    double m = 0.0;
+    for (size_t i = 0; i < p->ns * p->nt * (size_t)dim; i++) m = fmax(m, fabs(P[i]));
+    return m;
+}
+
 /* The index j of a t-basis N (values, pt + 1 of them) that is 1.0 at j
  * and 0 elsewhere (a clamped end), provided the net's homogeneous
  * coordinates are at most 1e300 in size (so that every sum of at most 16
@@ -272,11 +283,7 @@ static size_t pick_column(const coons_patch *p, const double *N)
         else if (N[k] != 0.0)
             return (size_t)p->pt + 1;
     }
-    if (ones != 1) return (size_t)p->pt + 1;
-    const int dim = p->pw ? 4 : 3;
-    const double *P = p->pw ? p->pw : p->pts;
-    for (size_t i = 0; i < p->ns * p->nt * (size_t)dim; i++)
-        if (!(fabs(P[i]) <= 1e300)) return (size_t)p->pt + 1;
+    if (ones != 1 || !(net_max(p) <= 1e300)) return (size_t)p->pt + 1;
     return j;
 }
 
@@ -310,6 +317,7 @@ static coons_status fast_build(coons_body *b, coons_error *err)
     for (int f = 0; f < 6; f++) {
         fast_face *ff = &F->f[f];
         ff->p = b->face[f];
+        ff->pmax = net_max(ff->p);
         for (int dir = 0; dir < 2; dir++) {
             ff->same[dir][0] = f, ff->same[dir][1] = dir;
             for (int g = 0; g < f; g++)
@@ -362,13 +370,26 @@ static void eval_fast(const coons_body *b, double u, double v, double w, double 
                 N[f][dir] = N[same[0]][same[1]];
             }
         }
+    /* On the Jacobian path the column shortcut also needs eval's s-derivative
+     * terms finite: |sum_k N'_k P_k| <= sum_k |N'_k| max |P| <= 1e300. */
+    int tcol_ok[6];
+    for (int f = 0; f < 6; f++) {
+        tcol_ok[f] = 1;
+        if (d) {
+            const int ps = F->f[f].p->ps;
+            double S = 0.0;
+            for (int k = 0; k <= ps; k++) S += fabs(N[f][0][ps + 1 + k]);
+            tcol_ok[f] = S * F->f[f].pmax <= 1e300;
+        }
+    }
     for (int e = 0; e < 12; e++) {
         double pv[2][3], pd[2][3];
         for (int m = 0; m < 2; m++) {
             const int f = F->src[e][m][0], run = F->src[e][m][1], fixed = F->src[e][m][2];
             const fast_face *ff = &F->f[f];
-            if (run == 0 && !d && ff->tcol[fixed]) {
-                coons__tensor_eval_tcol(ff->p, ff->tcol[fixed], first[f][0], N[f][0], pv[m]);
+            if (run == 0 && ff->tcol[fixed] && tcol_ok[f]) {
+                coons__tensor_eval_tcol(ff->p, ff->tcol[fixed], first[f][0], N[f][0], order,
+                                        pv[m], pd[m]);
             } else if (run == 0) {
                 double r[3][3];
                 coons__tensor_eval_basis(ff->p, first[f][0], N[f][0], ff->first[1][fixed],

@@ -174,13 +174,14 @@ void coons__tensor_eval_basis(const coons_patch *p, size_t fs, const double *Ns,
                               const double *Nt, int order, double out[][3]);
 void coons__tensor_srow(const coons_patch *p, size_t fs, const double *Ns, double *R);
 /* - coons__tensor_tcol: column j of the net (t index j), T[4k + c];
- * - coons__tensor_eval_tcol: the point (no derivatives) at the s-basis Ns
- *   (fs) where the t-basis is 1.0 at column j and 0 elsewhere, from that
- *   column: bitwise eval's point provided eval's other terms are finite
- *   (the caller checks the net's size). */
+ * - coons__tensor_eval_tcol: the point and, if order is 1, its derivative
+ *   along s into ds, at the s-basis Ns (fs) where the t-basis is 1.0 at
+ *   column j and 0 elsewhere, from that column: bitwise eval's provided
+ *   eval's other terms are finite (the caller bounds the net's and the
+ *   basis's sizes). */
 void coons__tensor_tcol(const coons_patch *p, size_t j, double *T);
 void coons__tensor_eval_tcol(const coons_patch *p, const double *T, size_t fs,
-                             const double *Ns, double out[3]);
+                             const double *Ns, int order, double out[3], double *ds);
 void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
                              const double *Nt, int order, double out[3], double *dt);
 

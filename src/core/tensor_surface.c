@@ -174,38 +174,56 @@ void coons__tensor_tcol(const coons_patch *p, size_t j, double *T)
 }
 
 static COONS__ALWAYS_INLINE void eval_tcol_dim(int dim, int ps, const double *T,
-                                               size_t fs, const double *Ns, double out[3])
+                                               size_t fs, const double *Ns, int order,
+                                               double out[3], double *ds)
 {
-    double A[4];
+    double A0[4], A1[4];
     /* eval's sum over the t-basis: +0 before the 1, then R, then +-0 */
-    sum_rows(dim, ps, Ns, T + 4 * fs, 4, A);
-    for (int c = 0; c < dim; c++) A[c] = 0.0 + A[c];
+    sum_rows(dim, ps, Ns, T + 4 * fs, 4, A0);
+    for (int c = 0; c < dim; c++) A0[c] = 0.0 + A0[c];
+    if (order >= 1) {
+        sum_rows(dim, ps, Ns + (ps + 1), T + 4 * fs, 4, A1);
+        for (int c = 0; c < dim; c++) A1[c] = 0.0 + A1[c];
+    }
     if (dim == 3) {
-        v3_copy(out, A);
+        v3_copy(out, A0);
+        if (order >= 1) v3_copy(ds, A1);
         return;
     }
-    for (int c = 0; c < 3; c++) out[c] = A[c] / A[3];
+    double W = A0[3], S00[3];
+    for (int c = 0; c < 3; c++) S00[c] = A0[c] / W;
+    v3_copy(out, S00);
+    if (order < 1) return;
+    for (int c = 0; c < 3; c++) ds[c] = (A1[c] - A1[3] * S00[c]) / W;
 }
 
 void coons__tensor_eval_tcol(const coons_patch *p, const double *T, size_t fs,
-                             const double *Ns, double out[3])
+                             const double *Ns, int order, double out[3], double *ds)
 {
+#define TCOL(D, PS)                                                                        \
+    do {                                                                                   \
+        if (order == 0)                                                                    \
+            eval_tcol_dim(D, PS, T, fs, Ns, 0, out, ds);                                   \
+        else                                                                               \
+            eval_tcol_dim(D, PS, T, fs, Ns, 1, out, ds);                                   \
+    } while (0)
     const int ps = p->ps;
     if (p->pw) {
         if (ps == 2)
-            eval_tcol_dim(4, 2, T, fs, Ns, out);
+            TCOL(4, 2);
         else if (ps == 3)
-            eval_tcol_dim(4, 3, T, fs, Ns, out);
+            TCOL(4, 3);
         else
-            eval_tcol_dim(4, ps, T, fs, Ns, out);
+            TCOL(4, ps);
     } else {
         if (ps == 2)
-            eval_tcol_dim(3, 2, T, fs, Ns, out);
+            TCOL(3, 2);
         else if (ps == 3)
-            eval_tcol_dim(3, 3, T, fs, Ns, out);
+            TCOL(3, 3);
         else
-            eval_tcol_dim(3, ps, T, fs, Ns, out);
+            TCOL(3, ps);
     }
+#undef TCOL
 }
 
 static COONS__ALWAYS_INLINE void eval_srow_dim(int dim, int pt, const double *R, size_t ft,
