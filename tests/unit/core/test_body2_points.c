@@ -12,6 +12,8 @@
  *   coons_patch_eval() (each edge the average of its two faces, corners of
  *   three, C2 = D - E + T grouped as body2.c groups it), on lattice faces
  *   of several spans, rational and not, both blends;
+ * - values, Jacobians and determinants bit for bit against the same body
+ *   of wrapped faces, which takes the general path (face by face);
  * - coons_body_eval_points() (values alone, with Jacobians, with
  *   determinants) bit for bit against coons_body_eval() and
  *   coons_body_eval_jacobian(), and a copy of the body against the body.
@@ -345,6 +347,42 @@ static void test_formula_bitwise(void **state)
         }
 }
 
+/* The same body through the general path (each face a wrapper, the
+ * reparametrisation without swap or flips, whose points and partials are
+ * its face's bit for bit) gives the same bits, Jacobians included. */
+static void test_general_path_bitwise(void **state)
+{
+    (void)state;
+    for (int kind = 0; kind < 5; kind++)
+        for (int blend = 0; blend < 2; blend++) {
+            coons_patch *f[6], *g[6];
+            coons_error err;
+            for (int i = 0; i < 6; i++) {
+                f[i] = lattice_face(i, kind < 4 ? kind : i < 2 ? 4 : 0);
+                assert_coons_ok(coons_patch_new_reparametrized(f[i], 0, 0, 0, &g[i], &err),
+                                &err);
+            }
+            coons_blend bl = blend ? COONS_BLEND_CUBIC : COONS_BLEND_LINEAR;
+            coons_body *b = make_body(f, bl), *c = make_body(g, bl);
+            enum { N = 400 };
+            double uvw[3 * N], x1[3 * N], x2[3 * N], j1[9 * N], j2[9 * N], d1[N], d2[N];
+            tb_rng rng = {(unsigned long long)(1001 + kind + 7 * blend)};
+            random_points(&rng, N, uvw);
+            assert_coons_ok(coons_body_eval_points(b, N, uvw, x1, NULL, NULL, &err), &err);
+            assert_coons_ok(coons_body_eval_points(c, N, uvw, x2, NULL, NULL, &err), &err);
+            assert_true(same_bits(x1, x2, 3 * N));
+            assert_coons_ok(coons_body_eval_points(b, N, uvw, x1, j1, d1, &err), &err);
+            assert_coons_ok(coons_body_eval_points(c, N, uvw, x2, j2, d2, &err), &err);
+            assert_true(same_bits(x1, x2, 3 * N));
+            assert_true(same_bits(j1, j2, 9 * N));
+            assert_true(same_bits(d1, d2, N));
+            coons_body_free(b);
+            coons_body_free(c);
+            free_faces(f);
+            free_faces(g);
+        }
+}
+
 /* The Jacobian of the lattice bodies against central differences. */
 static void test_jacobian_differences(void **state)
 {
@@ -380,6 +418,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_form),
         cmocka_unit_test(test_formula_bitwise),
+        cmocka_unit_test(test_general_path_bitwise),
         cmocka_unit_test(test_jacobian_differences),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
