@@ -223,7 +223,7 @@ typedef struct fast_face {
     const coons_patch *p;
     int same[2][2];              /* [dir]: face and dir whose basis at the point is this one's */
     size_t first[2][2];          /* [dir][end]: first control index at s or t = end */
-    double N[2][2][FAST_NB];     /* [dir][end]: the basis there, value and derivative rows */
+    double *N[2][2];             /* [dir][end]: the basis there, value and derivative rows */
     double *srow[2];             /* the net combined at s = 0, 1 (coons__tensor_srow) */
     double *tcol[2];             /* t = 0, 1: the net's column there where the basis picks
                                   * one (coons__tensor_tcol), else NULL */
@@ -294,7 +294,9 @@ static coons_status fast_build(coons_body *b, coons_error *err)
     for (int f = 0; f < 6; f++) {
         const coons_patch *p = b->face[f];
         if (!coons__patch_is_tensor(p) || p->ps > FAST_DEG || p->pt > FAST_DEG) return COONS_OK;
-        total += 8 * (p->nt + p->ns); /* net sizes are bounded (COONS_PATCH_MAX_POINTS) */
+        /* rows at the ends and end bases; net sizes are bounded
+         * (COONS_PATCH_MAX_POINTS), degrees here by FAST_DEG */
+        total += 8 * (p->nt + p->ns) + 4 * (size_t)(p->ps + 1) + 4 * (size_t)(p->pt + 1);
     }
     /* every edge runs with its faces' parameter (agree.h) */
     for (int e = 0; e < 12; e++)
@@ -328,9 +330,12 @@ static coons_status fast_build(coons_body *b, coons_error *err)
                         ff->same[dir][0] = g, ff->same[dir][1] = dg;
         }
         for (int dir = 0; dir < 2; dir++)
-            for (int end = 0; end < 2; end++)
+            for (int end = 0; end < 2; end++) {
+                ff->N[dir][end] = m;
+                m += 2 * (size_t)((dir ? ff->p->pt : ff->p->ps) + 1);
                 ff->first[dir][end] =
                     coons__tensor_basis(ff->p, dir, (double)end, 1, ff->N[dir][end]);
+            }
         for (int end = 0; end < 2; end++) {
             ff->srow[end] = m;
             m += 4 * ff->p->nt;
