@@ -242,7 +242,12 @@ COONS_EXPORT coons_status coons_body_eval_grid_threads(const coons_body *b, cons
  * jac[9i + 3r + c] = d x_r / d q_c and det[i] = det J, and then xyz is
  * what coons_body_eval_jacobian() gives (the same point to rounding).
  * No allocation; no per-point call overhead for bindings (Python, the
- * browser) that evaluate arrays.
+ * browser) that evaluate arrays. A body 2 whose faces are all
+ * bezier-surface or bspline-surface patches keeps from its construction
+ * (read-only after it) what every point shares: each face's bases at its
+ * ends and its net combined there; a point then computes each face's two
+ * bases once for the face and the edges it carries (tools/bench/bench_points
+ * times it), with the same floating-point operations, so the same bits.
  * @param[in]  uvw  3 n parameters
  * @param[out] xyz  3 n coordinates
  * @param[out] jac  NULL or 9 n partials (row-major 3 x 3 per point)

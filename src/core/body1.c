@@ -81,14 +81,16 @@ static void edge_at(const coons_body *b, int e, double t, double p[3], double *d
     if (dv) v3_copy(dv, r[1]);
 }
 
-void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
-                     const double bv[5], const double bw[5], double out[3], double d[3][3])
+void coons__edge_sum_tab(double E[12][3], double dE[12][3], double sign,
+                         const double bu[5], const double bv[5], const double bw[5],
+                         double out[3], double d[3][3])
 {
     for (int x = 0; x < 2; x++)
         for (int y = 0; y < 2; y++) {
-            double p[3], dp[3], f;
+            const double *p, *dp;
+            double f;
             /* w-edge C(x,y,w): blends a_x(u) a_y(v) */
-            edge(b, 8 + 2 * x + y, bw[4], p, d ? dp : NULL);
+            p = E[8 + 2 * x + y], dp = dE[8 + 2 * x + y];
             v3_axpy(out, sign * bu[x] * bv[y], p);
             if (d) {
                 v3_axpy(d[0], sign * bu[2 + x] * bv[y], p);
@@ -96,7 +98,7 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
                 v3_axpy(d[2], sign * bu[x] * bv[y], dp);
             }
             /* v-edge C(x,v,y): blends a_x(u) a_y(w) */
-            edge(b, 4 + 2 * x + y, bv[4], p, d ? dp : NULL);
+            p = E[4 + 2 * x + y], dp = dE[4 + 2 * x + y];
             f = sign * bu[x] * bw[y];
             v3_axpy(out, f, p);
             if (d) {
@@ -105,7 +107,7 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
                 v3_axpy(d[2], sign * bu[x] * bw[2 + y], p);
             }
             /* u-edge C(u,x,y): blends a_x(v) a_y(w) */
-            edge(b, 2 * x + y, bu[4], p, d ? dp : NULL);
+            p = E[2 * x + y], dp = dE[2 * x + y];
             f = sign * bv[x] * bw[y];
             v3_axpy(out, f, p);
             if (d) {
@@ -116,20 +118,26 @@ void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, cons
         }
 }
 
+void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
+                     const double bv[5], const double bw[5], double out[3], double d[3][3])
+{
+    double E[12][3], dE[12][3];
+    for (int e = 0; e < 12; e++) {
+        const double *q = e < 4 ? bu : e < 8 ? bv : bw;
+        edge(b, e, q[4], E[e], d ? dE[e] : NULL);
+    }
+    coons__edge_sum_tab(E, dE, sign, bu, bv, bw, out, d);
+}
+
 /* The point grouped as the grid below groups it (the same operations in
  * the same order, so a grid point equals the point evaluated alone
  * bitwise; summed term by term it was up to 7 ulp of the body's size off). */
 static void point(const coons_body *b, const double bu[5], const double bv[5],
-                  const double bw[5], double out[3])
+                  const double bw[5], double E[12][3], double out[3])
 {
     const double a0 = bu[0], a1 = bu[1], b0 = bv[0], b1 = bv[1];
     const double(*c)[3] = b->corner;
-    double Cu[4][3], Cv[4][3], Cw[4][3];
-    for (int e = 0; e < 4; e++) {
-        edge_at(b, e, bu[4], Cu[e], NULL);
-        edge_at(b, 4 + e, bv[4], Cv[e], NULL);
-        edge_at(b, 8 + e, bw[4], Cw[e], NULL);
-    }
+    double(*Cu)[3] = E, (*Cv)[3] = E + 4, (*Cw)[3] = E + 8;
     for (int r = 0; r < 3; r++) {
         double h0 = a0 * Cw[0][r] + a1 * Cw[2][r], h1 = a0 * Cw[1][r] + a1 * Cw[3][r], P[2];
         for (int k = 0; k < 2; k++) {
@@ -145,17 +153,22 @@ static void point(const coons_body *b, const double bu[5], const double bv[5],
 static void eval(const coons_body *b, double u, double v, double w, double out[3],
                  double d[3][3])
 {
-    double bu[5], bv[5], bw[5];
+    double bu[5], bv[5], bw[5], E[12][3], dE[12][3];
     coons__blends_at(b->blend, u, v, w, bu, bv, bw);
+    /* each edge once, with its derivative on the Jacobian path */
+    for (int e = 0; e < 12; e++) {
+        const double *q = e < 4 ? bu : e < 8 ? bv : bw;
+        edge_at(b, e, q[4], E[e], d ? dE[e] : NULL);
+    }
     if (d) {
         /* the partials term by term: d(E - 2T) */
         double t[3], dt[3][3];
         coons__trilinear(b->corner, bu, bv, bw, t, dt);
         v3_scale(t, t, -2.0);
         for (int q = 0; q < 3; q++) v3_scale(d[q], dt[q], -2.0);
-        coons__edge_sum(b, edge_at, 1.0, bu, bv, bw, t, d);
+        coons__edge_sum_tab(E, dE, 1.0, bu, bv, bw, t, d);
     }
-    point(b, bu, bv, bw, out);
+    point(b, bu, bv, bw, E, out);
 }
 
 /*

@@ -18,6 +18,7 @@
 
 #include "agree.h"
 #include "body_impl.h"
+#include "patch_impl.h"
 
 /* Source m (0, 1) of edge e: face index, which patch parameter runs with
  * the edge (0 = s, 1 = t), and the fixed value of the other. */
@@ -34,6 +35,8 @@ static void source_at(const coons_patch *p, int run, int fixed, double x, double
     v3_copy(out, r[0]);
     if (dx) v3_copy(dx, r[1 + run]);
 }
+
+static coons_status fast_build(coons_body *b, coons_error *err);
 
 coons_status coons_body_new_body2(coons_patch *const *faces_in, coons_blend blend, double tol,
                                   coons_body **out, coons_error *err)
@@ -91,6 +94,10 @@ coons_status coons_body_new_body2(coons_patch *const *faces_in, coons_blend blen
                 double *c = b->corner[4 * i + 2 * j + k];
                 for (int r = 0; r < 3; r++) c[r] = (x[r] + y[r] + z[r]) / 3.0;
             }
+    if ((rc = fast_build(b, err))) {
+        coons_body_free(b);
+        return rc;
+    }
     v3_copy(b->lo, lo);
     v3_copy(b->hi, hi);
     *out = b;
@@ -119,18 +126,13 @@ static void edge_at(const coons_body *b, int e, double x, double p[3], double *d
  * term, as the derivatives below are, differed by up to 17 ulp of the
  * body's size).
  */
-static void point(const coons_body *b, const double bu[5], const double bv[5],
-                  const double bw[5], double X[2][3], double Y[2][3],
-                  double Z[2][3], double out[3])
+static void point_from(const coons_body *b, const double bu[5], const double bv[5],
+                       const double bw[5], double X[2][3], double Y[2][3], double Z[2][3],
+                       double E[12][3], double out[3])
 {
     const double a0 = bu[0], a1 = bu[1], b0 = bv[0], b1 = bv[1], w1 = bw[1];
     const double(*c)[3] = b->corner;
-    double Cu[4][3], Cv[4][3], Cw[4][3];
-    for (int m = 0; m < 4; m++) {
-        edge_at(b, m, bu[4], Cu[m], NULL);
-        edge_at(b, 4 + m, bv[4], Cv[m], NULL);
-        edge_at(b, 8 + m, bw[4], Cw[m], NULL);
-    }
+    double(*Cu)[3] = E, (*Cv)[3] = E + 4, (*Cw)[3] = E + 8;
     for (int r = 0; r < 3; r++) {
         double G[2], P[2];
         for (int j = 0; j < 2; j++) G[j] = Y[j][r] - (a0 * Cw[j][r] + a1 * Cw[2 + j][r]);
@@ -145,43 +147,289 @@ static void point(const coons_body *b, const double bu[5], const double bv[5],
     }
 }
 
-static void eval(const coons_body *b, double u, double v, double w, double out[3],
-                 double d[3][3])
+/* The partials term by term: dC2 = dD - dE + dT, from the faces' values
+ * and partials (Xd[x][q]: q = 0 value, 1 d/ds, 2 d/dt) and the edges with
+ * their derivatives. */
+static void partials(const coons_body *b, const double bu[5], const double bv[5],
+                     const double bw[5], double Xd[2][3][3], double Yd[2][3][3],
+                     double Zd[2][3][3], double E[12][3], double dE[12][3],
+                     double d[3][3])
 {
-    double bu[5], bv[5], bw[5], X[2][3], Y[2][3], Z[2][3];
+    double tmp[3];
+    coons__trilinear(b->corner, bu, bv, bw, tmp, d);
+    for (int x = 0; x < 2; x++) {
+        v3_axpy(d[0], bu[2 + x], Xd[x][0]);
+        v3_axpy(d[0], bv[x], Yd[x][1]);
+        v3_axpy(d[0], bw[x], Zd[x][1]);
+        v3_axpy(d[1], bu[x], Xd[x][1]);
+        v3_axpy(d[1], bv[2 + x], Yd[x][0]);
+        v3_axpy(d[1], bw[x], Zd[x][2]);
+        v3_axpy(d[2], bu[x], Xd[x][2]);
+        v3_axpy(d[2], bv[x], Yd[x][2]);
+        v3_axpy(d[2], bw[2 + x], Zd[x][0]);
+    }
+    coons__edge_sum_tab(E, dE, -1.0, bu, bv, bw, tmp, d);
+}
+
+static void eval(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3]);
+
+/* The general path: every face through its row. */
+static void eval_rows(const coons_body *b, double u, double v, double w, double out[3],
+                      double d[3][3])
+{
+    double bu[5], bv[5], bw[5], X[2][3], Y[2][3], Z[2][3], E[12][3], dE[12][3];
     coons__blends_at(b->blend, u, v, w, bu, bv, bw);
+    for (int e = 0; e < 12; e++) {
+        const double *q = e < 4 ? bu : e < 8 ? bv : bw;
+        edge_at(b, e, q[4], E[e], d ? dE[e] : NULL);
+    }
     if (!d) {
         for (int x = 0; x < 2; x++) {
             coons_patch_eval(b->face[x], v, w, X[x]);
             coons_patch_eval(b->face[2 + x], u, w, Y[x]);
             coons_patch_eval(b->face[4 + x], u, v, Z[x]);
         }
-        point(b, bu, bv, bw, X, Y, Z, out);
+        point_from(b, bu, bv, bw, X, Y, Z, E, out);
         return;
     }
-    /* The partials term by term: dC2 = dD - dE + dT. */
-    double tmp[3];
-    coons__trilinear(b->corner, bu, bv, bw, tmp, d);
+    double Xd[2][3][3], Yd[2][3][3], Zd[2][3][3];
     for (int x = 0; x < 2; x++) {
-        double Xd[3][3], Yd[3][3], Zd[3][3];
-        coons_patch_eval_derivs(b->face[x], v, w, 1, Xd);
-        coons_patch_eval_derivs(b->face[2 + x], u, w, 1, Yd);
-        coons_patch_eval_derivs(b->face[4 + x], u, v, 1, Zd);
-        v3_copy(X[x], Xd[0]);
-        v3_copy(Y[x], Yd[0]);
-        v3_copy(Z[x], Zd[0]);
-        v3_axpy(d[0], bu[2 + x], Xd[0]);
-        v3_axpy(d[0], bv[x], Yd[1]);
-        v3_axpy(d[0], bw[x], Zd[1]);
-        v3_axpy(d[1], bu[x], Xd[1]);
-        v3_axpy(d[1], bv[2 + x], Yd[0]);
-        v3_axpy(d[1], bw[x], Zd[2]);
-        v3_axpy(d[2], bu[x], Xd[2]);
-        v3_axpy(d[2], bv[x], Yd[2]);
-        v3_axpy(d[2], bw[2 + x], Zd[0]);
+        coons_patch_eval_derivs(b->face[x], v, w, 1, Xd[x]);
+        coons_patch_eval_derivs(b->face[2 + x], u, w, 1, Yd[x]);
+        coons_patch_eval_derivs(b->face[4 + x], u, v, 1, Zd[x]);
+        v3_copy(X[x], Xd[x][0]);
+        v3_copy(Y[x], Yd[x][0]);
+        v3_copy(Z[x], Zd[x][0]);
     }
-    coons__edge_sum(b, edge_at, -1.0, bu, bv, bw, tmp, d);
-    point(b, bu, bv, bw, X, Y, Z, out);
+    partials(b, bu, bv, bw, Xd, Yd, Zd, E, dE, d);
+    point_from(b, bu, bv, bw, X, Y, Z, E, out);
+}
+
+/*
+ * The fast path of a body whose six faces are tensor-product surfaces of
+ * degree <= FAST_DEG (bezier-surface, bspline-surface): per point each
+ * face's two bases are computed once and serve the face and the edges it
+ * carries (an edge runs along one of its faces' parameters at the same
+ * value as the face: the body's u, v or w); the bases at the faces' ends
+ * and each face's net combined at s = 0 and s = 1 (the edges along t) are
+ * kept with the body. The same sums as coons_patch_eval_derivs() (kinds.h),
+ * so the points are bitwise those of the general path.
+ */
+#define FAST_DEG 15
+#define FAST_NB (2 * (FAST_DEG + 1))
+
+typedef struct fast_face {
+    const coons_patch *p;
+    int same[2][2];              /* [dir]: face and dir whose basis at the point is this one's */
+    size_t first[2][2];          /* [dir][end]: first control index at s or t = end */
+    double *N[2][2];             /* [dir][end]: the basis there, value and derivative rows */
+    double *srow[2];             /* the net combined at s = 0, 1 (coons__tensor_srow) */
+    double *tcol[2];             /* t = 0, 1: the net's column there where the basis picks
+                                  * one (coons__tensor_tcol), else NULL */
+    double pmax;                 /* the largest homogeneous coordinate's size */
+} fast_face;
+
+struct coons__body2_fast {
+    fast_face f[6];
+    int src[12][2][3]; /* edge_source of edge e, source m: face, run, fixed */
+    double *mem;
+};
+
+/* The (s,t) of face f: X_i (v,w), Y_j (u,w), Z_k (u,v); 0 = u, 1 = v, 2 = w. */
+static const int face_par[6][2] = {{1, 2}, {1, 2}, {0, 2}, {0, 2}, {0, 1}, {0, 1}};
+
+static void fast_free(coons_body *b)
+{
+    if (!b->fast) return;
+    coons__free(b->fast->mem);
+    coons__free(b->fast);
+    b->fast = NULL;
+}
+
+/* Whether p along dp and q along dq have the same basis: both Bezier or
+ * both B-spline, the same degree and control count, the same knots bit
+ * for bit (then the same parameter gives the same basis). */
+static int same_basis(const coons_patch *p, int dp, const coons_patch *q, int dq)
+{
+    int pd = dp ? p->pt : p->ps, qd = dq ? q->pt : q->ps;
+    size_t pn = dp ? p->nt : p->ns, qn = dq ? q->nt : q->ns;
+    const double *pk = dp ? p->kt : p->ks, *qk = dq ? q->kt : q->ks;
+    if (p->kind != q->kind || pd != qd || pn != qn || !pk != !qk) return 0;
+    return !pk || !memcmp(pk, qk, (pn + (size_t)pd + 1) * sizeof(double));
+}
+
+/* The largest size of the net's homogeneous coordinates. */
+static double net_max(const coons_patch *p)
+{
+    const int dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    double m = 0.0;
+    for (size_t i = 0; i < p->ns * p->nt * (size_t)dim; i++) m = fmax(m, fabs(P[i]));
+    return m;
+}
+
+/* The index j of a t-basis N (values, pt + 1 of them) that is 1.0 at j
+ * and 0 elsewhere (a clamped end), provided the net's homogeneous
+ * coordinates are at most 1e300 in size (so that every sum of at most 16
+ * of them times basis values in [0,1] is finite, and eval's terms of the
+ * zeros add +-0); else pt + 1. */
+static size_t pick_column(const coons_patch *p, const double *N)
+{
+    size_t j = (size_t)p->pt + 1, ones = 0;
+    for (int k = 0; k <= p->pt; k++) {
+        if (N[k] == 1.0)
+            j = (size_t)k, ones++;
+        else if (N[k] != 0.0)
+            return (size_t)p->pt + 1;
+    }
+    if (ones != 1 || !(net_max(p) <= 1e300)) return (size_t)p->pt + 1;
+    return j;
+}
+
+static coons_status fast_build(coons_body *b, coons_error *err)
+{
+    b->fast = NULL;
+    size_t total = 0;
+    for (int f = 0; f < 6; f++) {
+        const coons_patch *p = b->face[f];
+        if (!coons__patch_is_tensor(p) || p->ps > FAST_DEG || p->pt > FAST_DEG) return COONS_OK;
+        /* rows at the ends and end bases; net sizes are bounded
+         * (COONS_PATCH_MAX_POINTS), degrees here by FAST_DEG */
+        total += 8 * (p->nt + p->ns) + 4 * (size_t)(p->ps + 1) + 4 * (size_t)(p->pt + 1);
+    }
+    /* every edge runs with its faces' parameter (agree.h) */
+    for (int e = 0; e < 12; e++)
+        for (int m = 0; m < 2; m++) {
+            int f, run, fixed;
+            edge_source(e, m, &f, &run, &fixed);
+            if (face_par[f][run] != e / 4) return COONS_OK;
+        }
+    struct coons__body2_fast *F = coons__calloc(1, sizeof *F);
+    if (!F) return coons__error_nomem(err);
+    F->mem = coons__malloc_array(total, sizeof(double));
+    if (!F->mem) {
+        coons__free(F);
+        return coons__error_nomem(err);
+    }
+    double *m = F->mem;
+    for (int e = 0; e < 12; e++)
+        for (int k = 0; k < 2; k++)
+            edge_source(e, k, &F->src[e][k][0], &F->src[e][k][1], &F->src[e][k][2]);
+    for (int f = 0; f < 6; f++) {
+        fast_face *ff = &F->f[f];
+        ff->p = b->face[f];
+        ff->pmax = net_max(ff->p);
+        for (int dir = 0; dir < 2; dir++) {
+            ff->same[dir][0] = f, ff->same[dir][1] = dir;
+            for (int g = 0; g < f; g++)
+                for (int dg = 0; dg < 2; dg++)
+                    if (F->f[g].same[dg][0] == g && F->f[g].same[dg][1] == dg &&
+                        face_par[g][dg] == face_par[f][dir] &&
+                        same_basis(b->face[g], dg, b->face[f], dir))
+                        ff->same[dir][0] = g, ff->same[dir][1] = dg;
+        }
+        for (int dir = 0; dir < 2; dir++)
+            for (int end = 0; end < 2; end++) {
+                ff->N[dir][end] = m;
+                m += 2 * (size_t)((dir ? ff->p->pt : ff->p->ps) + 1);
+                ff->first[dir][end] =
+                    coons__tensor_basis(ff->p, dir, (double)end, 1, ff->N[dir][end]);
+            }
+        for (int end = 0; end < 2; end++) {
+            ff->srow[end] = m;
+            m += 4 * ff->p->nt;
+            coons__tensor_srow(ff->p, ff->first[0][end], ff->N[0][end], ff->srow[end]);
+            size_t j = pick_column(ff->p, ff->N[1][end]);
+            if (j <= (size_t)ff->p->pt) {
+                ff->tcol[end] = m;
+                m += 4 * ff->p->ns;
+                coons__tensor_tcol(ff->p, ff->first[1][end] + j, ff->tcol[end]);
+            }
+        }
+    }
+    b->fast = F;
+    return COONS_OK;
+}
+
+static void eval_fast(const coons_body *b, double u, double v, double w, double out[3],
+                      double d[3][3])
+{
+    const struct coons__body2_fast *F = b->fast;
+    const int order = d ? 1 : 0;
+    const double x[3] = {u, v, w};
+    double bu[5], bv[5], bw[5], E[12][3], dE[12][3];
+    size_t first[6][2] = {{0}};
+    double Nb[6][2][FAST_NB];
+    const double *N[6][2] = {{NULL}};
+    coons__blends_at(b->blend, u, v, w, bu, bv, bw);
+    for (int f = 0; f < 6; f++)
+        for (int dir = 0; dir < 2; dir++) {
+            const int *same = F->f[f].same[dir];
+            if (same[0] == f && same[1] == dir) {
+                first[f][dir] = coons__tensor_basis(F->f[f].p, dir, x[face_par[f][dir]], order,
+                                                    Nb[f][dir]);
+                N[f][dir] = Nb[f][dir];
+            } else {
+                first[f][dir] = first[same[0]][same[1]];
+                N[f][dir] = N[same[0]][same[1]];
+            }
+        }
+    /* On the Jacobian path the column shortcut also needs eval's s-derivative
+     * terms finite: |sum_k N'_k P_k| <= sum_k |N'_k| max |P| <= 1e300. */
+    int tcol_ok[6];
+    for (int f = 0; f < 6; f++) {
+        tcol_ok[f] = 1;
+        if (d) {
+            const int ps = F->f[f].p->ps;
+            double S = 0.0;
+            for (int k = 0; k <= ps; k++) S += fabs(N[f][0][ps + 1 + k]);
+            tcol_ok[f] = S * F->f[f].pmax <= 1e300;
+        }
+    }
+    for (int e = 0; e < 12; e++) {
+        double pv[2][3], pd[2][3];
+        for (int m = 0; m < 2; m++) {
+            const int f = F->src[e][m][0], run = F->src[e][m][1], fixed = F->src[e][m][2];
+            const fast_face *ff = &F->f[f];
+            if (run == 0 && ff->tcol[fixed] && tcol_ok[f]) {
+                coons__tensor_eval_tcol(ff->p, ff->tcol[fixed], first[f][0], N[f][0], order,
+                                        pv[m], pd[m]);
+            } else if (run == 0) {
+                double r[3][3];
+                coons__tensor_eval_basis(ff->p, first[f][0], N[f][0], ff->first[1][fixed],
+                                         ff->N[1][fixed], order, r);
+                v3_copy(pv[m], r[0]);
+                if (d) v3_copy(pd[m], r[1]);
+            } else {
+                coons__tensor_eval_srow(ff->p, ff->srow[fixed], first[f][1], N[f][1], order,
+                                        pv[m], pd[m]);
+            }
+        }
+        for (int r = 0; r < 3; r++) E[e][r] = 0.5 * (pv[0][r] + pv[1][r]);
+        if (d)
+            for (int r = 0; r < 3; r++) dE[e][r] = 0.5 * (pd[0][r] + pd[1][r]);
+    }
+    double Fd[6][3][3], X[2][3], Y[2][3], Z[2][3];
+    for (int f = 0; f < 6; f++)
+        coons__tensor_eval_basis(F->f[f].p, first[f][0], N[f][0], first[f][1], N[f][1], order,
+                                 Fd[f]);
+    for (int k = 0; k < 2; k++) {
+        v3_copy(X[k], Fd[k][0]);
+        v3_copy(Y[k], Fd[2 + k][0]);
+        v3_copy(Z[k], Fd[4 + k][0]);
+    }
+    if (d) partials(b, bu, bv, bw, Fd, Fd + 2, Fd + 4, E, dE, d);
+    point_from(b, bu, bv, bw, X, Y, Z, E, out);
+}
+
+static void eval(const coons_body *b, double u, double v, double w, double out[3],
+                 double d[3][3])
+{
+    if (b->fast)
+        eval_fast(b, u, v, w, out, d);
+    else
+        eval_rows(b, u, v, w, out, d);
 }
 
 /*
@@ -619,17 +867,19 @@ static void space(const coons_body *b, int d, coons__space *S)
 
 static coons_status copy_data(const coons_body *b, coons_body *d, coons_error *err)
 {
+    d->fast = NULL;
     for (int f = 0; f < 6; f++) d->face[f] = NULL;
     for (int f = 0; f < 6; f++) {
         if (!b->face[f]) continue;
         coons_status rc = coons_patch_copy(b->face[f], &d->face[f], err);
         if (rc) return rc;
     }
-    return COONS_OK;
+    return b->fast ? fast_build(d, err) : COONS_OK;
 }
 
 static void free_data(coons_body *b)
 {
+    fast_free(b);
     for (int f = 0; f < 6; f++) coons_patch_free(b->face[f]);
 }
 

@@ -25,6 +25,9 @@ struct coons_body {
     double corner[8][3];
     coons_curve *edge[12]; /* body 1, in the order of body.h */
     coons_patch *face[6];  /* body 2, in the order of body.h */
+    /* Body 2 of tensor-product faces: what its point evaluation keeps from
+     * one point to the next (body2.c), built with the body, read only after. */
+    struct coons__body2_fast *fast;
     /* Tensor volumes (Bezier = B-spline with knots 0^(n) 1^(n)). */
     int deg[3];
     size_t n[3];
@@ -103,6 +106,11 @@ typedef void (*coons__edge_fn)(const coons_body *b, int e, double x, double p[3]
  * parameter itself at index 4. */
 void coons__edge_sum(const coons_body *b, coons__edge_fn edge, double sign, const double bu[5],
                      const double bv[5], const double bw[5], double out[3], double d[3][3]);
+/* The same sum from the edges' values E[e] and derivatives dE[e] (read
+ * only if d is not NULL), e in body.h order. */
+void coons__edge_sum_tab(double E[12][3], double dE[12][3], double sign,
+                         const double bu[5], const double bv[5], const double bw[5],
+                         double out[3], double d[3][3]);
 
 /* det J of b over the tensor grid u x v x w into det[(i*nv + j)*nw + k]:
  * the type's grid path where it has one, else point by point

@@ -154,6 +154,37 @@ void coons__curve_breaks(const coons_curve *c, coons__breaks *B);
 /* Breakpoints of p along s (dir 0) or t (dir 1) through its row (patch.c). */
 void coons__patch_breaks(const coons_patch *p, int dir, coons__breaks *B);
 
+/* Tensor-product surfaces (tensor_surface.c) evaluated from bases computed
+ * once and reused (body2.c), with the IEEE operations of their eval row, so
+ * bitwise equal to coons_patch_eval_derivs():
+ * - coons__patch_is_tensor: p is a bezier-surface or bspline-surface
+ *   (not a wrapper);
+ * - coons__tensor_basis: the basis along s (dir 0) or t (dir 1) at x in
+ *   [0,1] with derivatives up to nd (<= 2), N[d*(deg+1) + k]; returns the
+ *   first control index;
+ * - coons__tensor_eval_basis: the point and derivatives up to order (<= 2,
+ *   the bases computed to at least that order) from the two bases;
+ * - coons__tensor_srow: the net combined along s with the value basis Ns
+ *   (first index fs): R[4l + c], l < p->nt, c < 3 or 4 (homogeneous);
+ * - coons__tensor_eval_srow: from such a row, the point at the t-basis Nt
+ *   (ft) and, if order >= 1, its derivative along t into dt. */
+int coons__patch_is_tensor(const coons_patch *p);
+size_t coons__tensor_basis(const coons_patch *p, int dir, double x, int nd, double *N);
+void coons__tensor_eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
+                              const double *Nt, int order, double out[][3]);
+void coons__tensor_srow(const coons_patch *p, size_t fs, const double *Ns, double *R);
+/* - coons__tensor_tcol: column j of the net (t index j), T[4k + c];
+ * - coons__tensor_eval_tcol: the point and, if order is 1, its derivative
+ *   along s into ds, at the s-basis Ns (fs) where the t-basis is 1.0 at
+ *   column j and 0 elsewhere, from that column: bitwise eval's provided
+ *   eval's other terms are finite (the caller bounds the net's and the
+ *   basis's sizes). */
+void coons__tensor_tcol(const coons_patch *p, size_t j, double *T);
+void coons__tensor_eval_tcol(const coons_patch *p, const double *T, size_t fs,
+                             const double *Ns, int order, double out[3], double *ds);
+void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
+                             const double *Nt, int order, double out[3], double *dt);
+
 /* The spline space of a curve, of a patch along dir, of a body along d
  * through the row (NONE where the row has no space operation; curve.c,
  * patch.c, body.c). A NULL curve (an absent cross curve) is degree 1 POLY. */

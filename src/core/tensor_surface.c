@@ -43,12 +43,19 @@ static inline void sum_rows(int dim, int deg, const double *N, const double *P, 
     for (int c = 0; c < dim; c++) R[c] = acc[c];
 }
 
-static void eval(const coons_patch *p, double s, double t, int order, double out[][3])
+/* The point and its derivatives up to order from the bases along s (first
+ * index fs, Ns[d*(ps+1) + k]) and t (ft, Nt): the sums of eval. */
+#if defined(__GNUC__)
+#define COONS__ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define COONS__ALWAYS_INLINE inline
+#endif
+
+static COONS__ALWAYS_INLINE void eval_basis_dim(int dim, int ps, int pt, const coons_patch *p, size_t fs,
+                                  const double *Ns, size_t ft, const double *Nt, int order,
+                                  double out[][3])
 {
-    const int ps = p->ps, pt = p->pt, dim = p->pw ? 4 : 3;
-    const double *P = p->pw ? p->pw : p->pts;
-    double Ns[3 * MAXB], Nt[3 * MAXB];
-    size_t fs = basis(p, 0, s, order, Ns), ft = basis(p, 1, t, order, Nt);
+    const double *P = dim == 4 ? p->pw : p->pts;
     /* R[a][l] = sum_k d^a N_k(s) P[fs+k][ft+l]; A[a][b] = sum_l d^b N_l(t) R[a][l] */
     double R[3][MAXB][4];
     double A[3][3][4] = {{{0}}};
@@ -60,7 +67,7 @@ static void eval(const coons_patch *p, double s, double t, int order, double out
     for (int a = 0; a <= order; a++)
         for (int b = 0; a + b <= order; b++)
             sum_rows(dim, pt, Nt + b * (pt + 1), R[a][0], 4, A[a][b]);
-    if (!p->pw) {
+    if (dim == 3) {
         v3_copy(out[0], A[0][0]);
         if (order >= 1) {
             v3_copy(out[1], A[1][0]);
@@ -91,6 +98,171 @@ static void eval(const coons_patch *p, double s, double t, int order, double out
         out[4][c] = (A[1][1][c] - A[1][0][3] * S01[c] - A[0][1][3] * S10[c] -
                      A[1][1][3] * S00[c]) / W;
         out[5][c] = (A[0][2][c] - 2.0 * A[0][1][3] * S01[c] - A[0][2][3] * S00[c]) / W;
+    }
+}
+
+/* The sums for a constant dim (3: polynomial, 4: homogeneous), so that
+ * sum_rows unrolls. */
+static void eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
+                       const double *Nt, int order, double out[][3])
+{
+    /* and for the common low degrees constant ones too (the same sums) */
+#define EVAL(D, PS, PT)                                                                    \
+    do {                                                                                   \
+        if (order == 0)                                                                    \
+            eval_basis_dim(D, PS, PT, p, fs, Ns, ft, Nt, 0, out);                          \
+        else                                                                               \
+            eval_basis_dim(D, PS, PT, p, fs, Ns, ft, Nt, order, out);                      \
+    } while (0)
+    const int ps = p->ps, pt = p->pt;
+    if (p->pw) {
+        if (ps == 2 && pt == 2)
+            EVAL(4, 2, 2);
+        else if (ps == 3 && pt == 3)
+            EVAL(4, 3, 3);
+        else
+            EVAL(4, ps, pt);
+    } else {
+        if (ps == 2 && pt == 2)
+            EVAL(3, 2, 2);
+        else if (ps == 3 && pt == 3)
+            EVAL(3, 3, 3);
+        else
+            EVAL(3, ps, pt);
+    }
+#undef EVAL
+}
+
+static void eval(const coons_patch *p, double s, double t, int order, double out[][3])
+{
+    double Ns[3 * MAXB], Nt[3 * MAXB];
+    size_t fs = basis(p, 0, s, order, Ns), ft = basis(p, 1, t, order, Nt);
+    eval_basis(p, fs, Ns, ft, Nt, order, out);
+}
+
+int coons__patch_is_tensor(const coons_patch *p)
+{
+    return p->kind == &coons__bezier_surface_kind || p->kind == &coons__bspline_surface_kind;
+}
+
+size_t coons__tensor_basis(const coons_patch *p, int dir, double x, int nd, double *N)
+{
+    return basis(p, dir, x, nd, N);
+}
+
+void coons__tensor_eval_basis(const coons_patch *p, size_t fs, const double *Ns, size_t ft,
+                              const double *Nt, int order, double out[][3])
+{
+    eval_basis(p, fs, Ns, ft, Nt, order, out);
+}
+
+void coons__tensor_srow(const coons_patch *p, size_t fs, const double *Ns, double *R)
+{
+    const int dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    const size_t stride = p->nt * (size_t)dim;
+    for (size_t l = 0; l < p->nt; l++)
+        sum_rows(dim, p->ps, Ns, P + (fs * p->nt + l) * (size_t)dim, stride, R + 4 * l);
+}
+
+void coons__tensor_tcol(const coons_patch *p, size_t j, double *T)
+{
+    const int dim = p->pw ? 4 : 3;
+    const double *P = p->pw ? p->pw : p->pts;
+    for (size_t k = 0; k < p->ns; k++)
+        for (int c = 0; c < dim; c++) T[4 * k + (size_t)c] = P[(k * p->nt + j) * (size_t)dim + (size_t)c];
+}
+
+static COONS__ALWAYS_INLINE void eval_tcol_dim(int dim, int ps, const double *T,
+                                               size_t fs, const double *Ns, int order,
+                                               double out[3], double *ds)
+{
+    double A0[4], A1[4];
+    /* eval's sum over the t-basis: +0 before the 1, then R, then +-0 */
+    sum_rows(dim, ps, Ns, T + 4 * fs, 4, A0);
+    for (int c = 0; c < dim; c++) A0[c] = 0.0 + A0[c];
+    if (order >= 1) {
+        sum_rows(dim, ps, Ns + (ps + 1), T + 4 * fs, 4, A1);
+        for (int c = 0; c < dim; c++) A1[c] = 0.0 + A1[c];
+    }
+    if (dim == 3) {
+        v3_copy(out, A0);
+        if (order >= 1) v3_copy(ds, A1);
+        return;
+    }
+    double W = A0[3], S00[3];
+    for (int c = 0; c < 3; c++) S00[c] = A0[c] / W;
+    v3_copy(out, S00);
+    if (order < 1) return;
+    for (int c = 0; c < 3; c++) ds[c] = (A1[c] - A1[3] * S00[c]) / W;
+}
+
+void coons__tensor_eval_tcol(const coons_patch *p, const double *T, size_t fs,
+                             const double *Ns, int order, double out[3], double *ds)
+{
+#define TCOL(D, PS)                                                                        \
+    do {                                                                                   \
+        if (order == 0)                                                                    \
+            eval_tcol_dim(D, PS, T, fs, Ns, 0, out, ds);                                   \
+        else                                                                               \
+            eval_tcol_dim(D, PS, T, fs, Ns, 1, out, ds);                                   \
+    } while (0)
+    const int ps = p->ps;
+    if (p->pw) {
+        if (ps == 2)
+            TCOL(4, 2);
+        else if (ps == 3)
+            TCOL(4, 3);
+        else
+            TCOL(4, ps);
+    } else {
+        if (ps == 2)
+            TCOL(3, 2);
+        else if (ps == 3)
+            TCOL(3, 3);
+        else
+            TCOL(3, ps);
+    }
+#undef TCOL
+}
+
+static COONS__ALWAYS_INLINE void eval_srow_dim(int dim, int pt, const double *R, size_t ft,
+                                               const double *Nt, int order, double out[3],
+                                               double *dt)
+{
+    double A00[4], A01[4];
+    sum_rows(dim, pt, Nt, R + 4 * ft, 4, A00);
+    if (order >= 1) sum_rows(dim, pt, Nt + (pt + 1), R + 4 * ft, 4, A01);
+    if (dim == 3) {
+        v3_copy(out, A00);
+        if (order >= 1) v3_copy(dt, A01);
+        return;
+    }
+    double W = A00[3], S00[3];
+    for (int c = 0; c < 3; c++) S00[c] = A00[c] / W;
+    v3_copy(out, S00);
+    if (order < 1) return;
+    for (int c = 0; c < 3; c++) dt[c] = (A01[c] - A01[3] * S00[c]) / W;
+}
+
+void coons__tensor_eval_srow(const coons_patch *p, const double *R, size_t ft,
+                             const double *Nt, int order, double out[3], double *dt)
+{
+    const int pt = p->pt;
+    if (p->pw) {
+        if (pt == 2)
+            eval_srow_dim(4, 2, R, ft, Nt, order, out, dt);
+        else if (pt == 3)
+            eval_srow_dim(4, 3, R, ft, Nt, order, out, dt);
+        else
+            eval_srow_dim(4, pt, R, ft, Nt, order, out, dt);
+    } else {
+        if (pt == 2)
+            eval_srow_dim(3, 2, R, ft, Nt, order, out, dt);
+        else if (pt == 3)
+            eval_srow_dim(3, 3, R, ft, Nt, order, out, dt);
+        else
+            eval_srow_dim(3, pt, R, ft, Nt, order, out, dt);
     }
 }
 
