@@ -71,6 +71,12 @@ double coons_volume_mesh_cell_scaled_jacobian(const coons_volume_mesh *vm, size_
     return cell_sj(vm, cell, collapsed);
 }
 
+void coons__volume_mesh_scaled_jacobians(const coons_volume_mesh *vm, size_t lo, size_t hi,
+                                         double *out)
+{
+    for (size_t c = lo; c < hi; c++) out[c - lo] = cell_sj(vm, c, NULL);
+}
+
 void coons_volume_quality_init(coons_volume_quality *q)
 {
     const coons_volume_quality d = COONS_VOLUME_QUALITY_INIT;
