@@ -109,7 +109,11 @@ coons_status coons__sampler_eval_face(sampler *s, int f, const double *av, size_
     c[F->a] = na;
     q[F->b] = bv;
     c[F->b] = nb;
-    coons_status st = coons_body_eval_grid(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out, s->err);
+    /* On the options' threads where the grid is worth starting them for
+     * (the same points for any count). */
+    unsigned threads = na * nb >= 4096 ? s->o->threads : 1;
+    coons_status st = coons_body_eval_grid_threads(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out,
+                                                   threads, s->err);
     if (st) return st;
     if (s->scale != 1.0)
         for (size_t i = 0; i < 3 * na * nb; i++) out[i] *= s->scale;

@@ -58,6 +58,10 @@ models = [
     ("boxes none", write_model("boxes-none.json", bodies, operation="none"),
      ["--resolution", "6"]),
     ("boxes apart", write_model("apart.json", apart), ["--resolution", "5"]),
+    # one body: its faces evaluated on the threads (issue 27), on a fixed
+    # lattice and adaptively (the measuring passes)
+    ("spool fixed", os.path.join(T.src, "examples", "spool.json"), ["--resolution", "70"]),
+    ("nail adaptive", os.path.join(T.src, "examples", "nail.json"), []),
 ]
 rc, out, err = T.run(["--info", models[1][1]])
 try:
