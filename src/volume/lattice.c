@@ -364,7 +364,7 @@ static size_t distinct_corners(const uint32_t *c)
 typedef struct node_run {
     const vbuild *v;
     const vbody *B;
-    double *xyz, *par, *det;
+    double *xyz, *par[3], *det; /* the mesh's nodes and node fields u, v, w, det_j */
     long sign[COONS__MAX_RUNS];
     coons_status st[COONS__MAX_RUNS];
     coons_error err[COONS__MAX_RUNS];
@@ -394,9 +394,9 @@ static void node_rows(void *ctx, unsigned chunk, size_t a0, size_t a1)
                     uint32_t n = v->id[r];
                     double d = dg[((a - s0) * B->m[1] + b) * B->m[2] + c];
                     v3_copy(nr->xyz + 3 * (size_t)n, v->pos + 3 * r);
-                    nr->par[3 * (size_t)n] = B->L[0][a];
-                    nr->par[3 * (size_t)n + 1] = B->L[1][b];
-                    nr->par[3 * (size_t)n + 2] = B->L[2][c];
+                    nr->par[0][n] = B->L[0][a];
+                    nr->par[1][n] = B->L[1][b];
+                    nr->par[2][n] = B->L[2][c];
                     nr->det[n] = isfinite(d) ? d : 0.0;
                     sign += d > 0 ? 1 : d < 0 ? -1 : 0;
                 }
@@ -407,9 +407,9 @@ static void node_rows(void *ctx, unsigned chunk, size_t a0, size_t a1)
 }
 
 /* Numbers the nodes (representatives used by some kept cell, in raw
- * order), decides each body's handedness from det J at its nodes. */
-static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **param,
-                                 double **detj)
+ * order) and adds them with their fields u, v, w (parameters) and det_j,
+ * decides each body's handedness from det J at its nodes. */
+static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm)
 {
     memset(v->id, 0xff, v->nraw * sizeof(uint32_t));
     /* Mark every representative some needed point maps to. */
@@ -424,13 +424,14 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
     for (size_t r = 0; r < v->nraw; r++)
         if (v->id[r] == 0) v->id[r] = (uint32_t)nn++;
     double *xyz = coons__volume_mesh_reserve_nodes(vm, nn, v->err);
-    double *par = coons__malloc_array(nn ? nn : 1, 3 * sizeof(double));
-    double *det = coons__malloc_array(nn ? nn : 1, sizeof(double));
-    if (!xyz || !par || !det) {
-        coons__free(par);
-        coons__free(det);
-        return xyz ? coons__error_nomem(v->err) : COONS_E_NOMEM;
-    }
+    if (!xyz) return COONS_E_NOMEM;
+    v->nn = nn;
+    static const char *names[4] = {"u", "v", "w", "det_j"};
+    double *f[4];
+    for (int d = 0; d < 4; d++)
+        if (!(f[d] = coons__volume_mesh_reserve_field(vm, COONS_FIELD_NODE, names[d],
+                                                      COONS_FIELD_FLOAT64, v->err)))
+            return COONS_E_NOMEM;
     coons_status st = COONS_OK;
     for (size_t i = 0; i < v->nb && !st; i++) {
         vbody *B = &v->vb[i];
@@ -438,8 +439,8 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
         nr.v = v;
         nr.B = B;
         nr.xyz = xyz;
-        nr.par = par;
-        nr.det = det;
+        for (int d = 0; d < 3; d++) nr.par[d] = f[d];
+        nr.det = f[3];
         unsigned runs = v->threads < COONS__MAX_RUNS ? v->threads : COONS__MAX_RUNS;
         size_t k = runs < B->m[0] ? runs : B->m[0];
         const coons_error none = COONS_ERROR_INIT;
@@ -452,15 +453,7 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
         }
         B->left = sign < 0;
     }
-    v->nn = nn;
-    if (st) {
-        coons__free(par);
-        coons__free(det);
-        return st;
-    }
-    *param = par;
-    *detj = det;
-    return COONS_OK;
+    return st;
 }
 
 /* The block a cell goes to within its body: 0 hexahedra (with or without
@@ -593,20 +586,9 @@ static void sj_cells(void *ctx, unsigned chunk, size_t lo, size_t hi)
     coons__volume_mesh_scaled_jacobians(r->vm, lo, hi, r->sj + lo);
 }
 
-static coons_status add_fields(vbuild *v, coons_volume_mesh *vm, const double *par,
-                               const double *det)
+/* The cell fields: body (part) and scaled_jacobian. */
+static coons_status add_fields(vbuild *v, coons_volume_mesh *vm)
 {
-    static const char *names[3] = {"u", "v", "w"};
-    for (int d = 0; d < 3; d++) {
-        double *f = coons__volume_mesh_reserve_field(vm, COONS_FIELD_NODE, names[d],
-                                                     COONS_FIELD_FLOAT64, v->err);
-        if (!f) return COONS_E_NOMEM;
-        for (size_t n = 0; n < v->nn; n++) f[n] = par[3 * n + (size_t)d];
-    }
-    double *f = coons__volume_mesh_reserve_field(vm, COONS_FIELD_NODE, "det_j",
-                                                 COONS_FIELD_FLOAT64, v->err);
-    if (!f) return COONS_E_NOMEM;
-    if (v->nn) memcpy(f, det, v->nn * sizeof(double));
     size_t nc = coons_volume_mesh_cell_count(vm);
     int32_t *body = coons__volume_mesh_reserve_field(vm, COONS_FIELD_CELL, "body",
                                                      COONS_FIELD_INT32, v->err);
@@ -772,17 +754,14 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     report(v, "evaluate", 1.0);
     coons_volume_mesh *vm;
     if ((st = coons_volume_mesh_new(v->el, &vm, v->err))) return st;
-    double *par = NULL, *det = NULL;
     uint32_t *cellno = NULL;
-    st = number_nodes(v, vm, &par, &det);
+    st = number_nodes(v, vm);
     report(v, "cells", 0.0);
     if (!st) st = add_cells(v, vm, &cellno);
     if (!st) report(v, "cells", 1.0);
-    if (!st) st = add_fields(v, vm, par, det);
+    if (!st) st = add_fields(v, vm);
     if (!st) st = add_sets(v, vm, cellno);
     if (!st) st = coons__vlattice_check(v, vm);
-    coons__free(par);
-    coons__free(det);
     coons__free(cellno);
     if (st) {
         coons_volume_mesh_free(vm);
