@@ -494,6 +494,13 @@ static void cell_blocks(void *ctx, unsigned chunk, size_t a0, size_t a1)
     for (size_t a = a0; a < a1; a++)
         for (size_t b = 0; b < B->n[1]; b++)
             for (size_t c = 0; c < B->n[2]; c++) {
+                /* A cell with no point on the body's boundary is a
+                 * hexahedron: only boundary points are ever merged. */
+                if (a && b && c && a + 1 < B->n[0] && b + 1 < B->n[1] && c + 1 < B->n[2]) {
+                    cr->no[(a * B->n[1] + b) * B->n[2] + c] = 0;
+                    count[0]++;
+                    continue;
+                }
                 cell_nodes(v, B, a, b, c, row);
                 /* Fewer than 4 distinct corners: no volume at all. */
                 int k = distinct_corners(row) >= 4 ? cell_block(v, row) : 3;
