@@ -667,15 +667,17 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const uint32_t *c
              * of one type are consecutive. */
             size_t np = 0;
             uint32_t row[27];
+            /* The layer of cells on the face, in lattice order. */
+            size_t lo[3] = {0, 0, 0}, up[3] = {B->n[0], B->n[1], B->n[2]};
+            lo[ax] = hi ? B->n[ax] - 1 : 0;
+            up[ax] = glued[ax] ? lo[ax] : lo[ax] + 1;
             for (int tri = 0; tri < 2; tri++) {
-                size_t q = 0;
-                for (size_t a = 0; a < B->n[0]; a++)
-                    for (size_t b = 0; b < B->n[1]; b++)
-                        for (size_t c = 0; c < B->n[2]; c++, q++) {
+                for (size_t a = lo[0]; a < up[0]; a++)
+                    for (size_t b = lo[1]; b < up[1]; b++)
+                        for (size_t c = lo[2]; c < up[2]; c++) {
+                            size_t q = (a * B->n[1] + b) * B->n[2] + c;
                             uint32_t cell = cellno[base + q];
                             if (cell == UINT32_MAX) continue;
-                            size_t idx[3] = {a, b, c};
-                            if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
                             cell_nodes(v, B, a, b, c, row);
                             uint32_t fc[4];
                             for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
