@@ -281,11 +281,25 @@ static int owner(const sampler *s, const size_t ijk[3], unsigned skip)
     return -1;
 }
 
+/* Whether points p and q are surely farther apart than tol along one
+ * coordinate: then v3_dist(p, q) > tol too (sqrt of a sum with d^2 in it
+ * is at least |d| in floating point, where d^2 neither underflows nor
+ * overflows; overflow gives infinity), without the square root. */
+static inline int far_apart(const double *p, const double *q, double tol)
+{
+    for (int d = 0; d < 3; d++) {
+        double x = fabs(p[d] - q[d]);
+        if (x > tol && x > 1e-150) return 1;
+    }
+    return 0;
+}
+
 static void merge_close(sampler *s, uint32_t a, uint32_t b)
 {
     uint32_t ra = coons__uf_find(s->uf, a), rb = coons__uf_find(s->uf, b);
-    if (ra == rb || v3_dist(s->pos + 3 * (size_t)ra, s->pos + 3 * (size_t)rb) > s->merge_tol)
-        return;
+    if (ra == rb) return;
+    const double *p = s->pos + 3 * (size_t)ra, *q = s->pos + 3 * (size_t)rb;
+    if (far_apart(p, q, s->merge_tol) || v3_dist(p, q) > s->merge_tol) return;
     /* The lower id, evaluated first, stays the representative. */
     coons__uf_link(s->uf, ra, rb);
 }
@@ -442,6 +456,9 @@ static void choose_diagonals(sampler *s)
                 double d2 = v3_dist(coons__sampler_rep(s, i10), coons__sampler_rep(s, i01));
                 unsigned char dg = d2 < d1;
                 s->diag[f][p * nb + q] = dg;
+                /* merge_close() of the diagonal measures this distance
+                 * between the same representatives again. */
+                if ((dg ? d2 : d1) > s->merge_tol) continue;
                 if (dg)
                     merge_close(s, i10, i01);
                 else
