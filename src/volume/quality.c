@@ -200,10 +200,20 @@ coons_status coons_volume_mesh_quality(const coons_volume_mesh *vm, size_t part,
     unsigned char *seen = vm->nn ? coons__calloc(vm->nn, 1) : NULL;
     if (vm->nn && !seen) return coons__error_nomem(err);
     double sum = 0, worst = INFINITY;
+    double block[256]; /* the scaled Jacobians of cells [c0, c0 + 256), by lanes */
+    size_t c0 = 0, c1 = 0;
     for (size_t c = 0; c < vm->nc; c++) {
         if (vm->part[c] != part) continue;
-        int col;
-        double sj = cell_sj(vm, c, &col);
+        if (c >= c1) {
+            c0 = c;
+            c1 = vm->nc - c < 256 ? vm->nc : c + 256;
+            coons__volume_mesh_scaled_jacobians(vm, c0, c1, block);
+        }
+        double sj = block[c - c0];
+        const uint32_t *h = vm->cell + vm->npc * c;
+        int col = 0; /* a repeated corner, as cell_sj() says */
+        for (int i = 0; i < 8; i++)
+            for (int j = i + 1; j < 8; j++) col |= h[i] == h[j];
         r.cells++;
         sum += sj;
         if (sj < worst) worst = sj, r.worst_cell = c;
