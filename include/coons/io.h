@@ -320,7 +320,11 @@ COONS_EXPORT const char *coons_format_extension(coons_format format);
  *         closed or renamed, or the write was cancelled (the message names
  *         the file and the system error);
  *         ::COONS_E_NOMEM.
- * Thread safety: safe for concurrent calls on the same mesh.
+ * Thread safety: safe for concurrent calls on the same mesh. A file of
+ * more than one 1 MiB buffer is written by a second thread while the next
+ * buffer is formatted (the same bytes); that thread only calls write(2):
+ * `cancel` and `written` run on the calling thread, and it allocates
+ * nothing.
  */
 COONS_EXPORT coons_status coons_mesh_write(const coons_mesh *m, const char *path,
                                            coons_format format,

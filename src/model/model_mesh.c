@@ -320,6 +320,7 @@ static coons_status sample_parallel(const coons_model *model, const coons__sampl
     j.nsf = nsf;
     coons__sample_opts quiet = *o; /* workers report nothing: not the calling thread */
     quiet.progress = NULL;
+    quiet.threads = 1; /* the bodies are spread over the threads already */
     j.o = &quiet;
     size_t *lead = coons__malloc_array(nlead, sizeof *lead);
     j.mesh = coons__calloc(nlead, sizeof *j.mesh);

@@ -109,7 +109,11 @@ coons_status coons__sampler_eval_face(sampler *s, int f, const double *av, size_
     c[F->a] = na;
     q[F->b] = bv;
     c[F->b] = nb;
-    coons_status st = coons_body_eval_grid(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out, s->err);
+    /* On the options' threads where the grid is worth starting them for
+     * (the same points for any count). */
+    unsigned threads = na * nb >= 4096 ? s->o->threads : 1;
+    coons_status st = coons_body_eval_grid_threads(s->body, q[0], c[0], q[1], c[1], q[2], c[2], out,
+                                                   threads, s->err);
     if (st) return st;
     if (s->scale != 1.0)
         for (size_t i = 0; i < 3 * na * nb; i++) out[i] *= s->scale;
@@ -277,11 +281,25 @@ static int owner(const sampler *s, const size_t ijk[3], unsigned skip)
     return -1;
 }
 
+/* Whether points p and q are surely farther apart than tol along one
+ * coordinate: then v3_dist(p, q) > tol too (sqrt of a sum with d^2 in it
+ * is at least |d| in floating point, where d^2 neither underflows nor
+ * overflows; overflow gives infinity), without the square root. */
+static inline int far_apart(const double *p, const double *q, double tol)
+{
+    for (int d = 0; d < 3; d++) {
+        double x = fabs(p[d] - q[d]);
+        if (x > tol && x > 1e-150) return 1;
+    }
+    return 0;
+}
+
 static void merge_close(sampler *s, uint32_t a, uint32_t b)
 {
     uint32_t ra = coons__uf_find(s->uf, a), rb = coons__uf_find(s->uf, b);
-    if (ra == rb || v3_dist(s->pos + 3 * (size_t)ra, s->pos + 3 * (size_t)rb) > s->merge_tol)
-        return;
+    if (ra == rb) return;
+    const double *p = s->pos + 3 * (size_t)ra, *q = s->pos + 3 * (size_t)rb;
+    if (far_apart(p, q, s->merge_tol) || v3_dist(p, q) > s->merge_tol) return;
     /* The lower id, evaluated first, stays the representative. */
     coons__uf_link(s->uf, ra, rb);
 }
@@ -438,6 +456,9 @@ static void choose_diagonals(sampler *s)
                 double d2 = v3_dist(coons__sampler_rep(s, i10), coons__sampler_rep(s, i01));
                 unsigned char dg = d2 < d1;
                 s->diag[f][p * nb + q] = dg;
+                /* merge_close() of the diagonal measures this distance
+                 * between the same representatives again. */
+                if ((dg ? d2 : d1) > s->merge_tol) continue;
                 if (dg)
                     merge_close(s, i10, i01);
                 else

@@ -44,6 +44,7 @@
 #include "body_impl.h"
 #include "cell_shape.h"
 #include "lattice_impl.h"
+#include "parallel.h"
 #include "sampling.h"
 
 /* Doubled reference position of each Gmsh node of a hex27 (coons/volume.h);
@@ -57,6 +58,9 @@ static const unsigned char REF[27][3] = {
 /* Corners of each local face (numbered as the body faces u0 .. w1). */
 static const unsigned char FACE_CORNERS[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
                                                  {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+
+/* Runs of a parallel loop whose per-run results are kept on the stack. */
+#define COONS__MAX_RUNS 64u
 
 typedef coons__vbody vbody;
 typedef coons__vbuild vbuild;
@@ -145,6 +149,7 @@ static coons_status body_lattice(vbuild *v, vbody *B, const coons_volume_options
         if ((st = coons__sample_opts_resolve(NULL, &so, v->err))) return st;
         so.tolerance = tolerance;
         so.max_cells = o->max_cells; /* a lattice far above it is refused at once */
+        so.threads = v->threads;
         st = coons__body_sample_lattice(B->b, &so, B->name, t, B->n, NULL, v->err);
     }
     return st;
@@ -172,26 +177,61 @@ static coons_status node_lattice(vbuild *v, vbody *B)
     return st;
 }
 
+/* One run of u planes [lo, hi) of a body's evaluated points: their box,
+ * and the first point that is not finite (SIZE_MAX: none). */
+typedef struct eval_run {
+    const vbody *B;
+    const double *pos;
+    double lo[COONS__MAX_RUNS][3], hi[COONS__MAX_RUNS][3];
+    size_t bad[COONS__MAX_RUNS];
+} eval_run;
+
+static void check_run(void *ctx, unsigned chunk, size_t a0, size_t a1)
+{
+    eval_run *e = ctx;
+    const vbody *B = e->B;
+    double *lo = e->lo[chunk], *hi = e->hi[chunk];
+    bbox_empty(lo, hi);
+    e->bad[chunk] = SIZE_MAX;
+    size_t plane = B->m[1] * B->m[2];
+    for (size_t r = a0 * plane; r < a1 * plane; r++) {
+        const double *p = e->pos + 3 * (B->base + r);
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
+            e->bad[chunk] = r;
+            return;
+        }
+        bbox_add(lo, hi, p);
+    }
+}
+
 static coons_status evaluate(vbuild *v)
 {
     for (size_t i = 0; i < v->nb; i++) {
         vbody *B = &v->vb[i];
         report(v, "evaluate", (double)B->base / (double)v->nraw);
-        coons_status st = coons_body_eval_grid(B->b, B->L[0], B->m[0], B->L[1], B->m[1],
-                                               B->L[2], B->m[2], v->pos + 3 * B->base, v->err);
+        coons_status st =
+            coons_body_eval_grid_threads(B->b, B->L[0], B->m[0], B->L[1], B->m[1], B->L[2],
+                                         B->m[2], v->pos + 3 * B->base, v->threads, v->err);
         if (st) return st;
+        eval_run e;
+        e.B = B;
+        e.pos = v->pos;
+        unsigned runs = v->threads < COONS__MAX_RUNS ? v->threads : COONS__MAX_RUNS;
+        size_t k = runs < B->m[0] ? runs : B->m[0];
+        coons__parallel_for(B->m[0], runs, check_run, &e);
         bbox_empty(B->lo, B->hi);
-        for (size_t a = 0; a < B->m[0]; a++)
-            for (size_t b = 0; b < B->m[1]; b++)
-                for (size_t c = 0; c < B->m[2]; c++) {
-                    const double *p = v->pos + 3 * coons__vraw(B, a, b, c);
-                    if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
-                        return coons__error_set(v->err, COONS_E_INVALID,
-                                                "body '%s' evaluates to a point that is not "
-                                                "finite at (u,v,w) = (%g, %g, %g)",
-                                                B->name, B->L[0][a], B->L[1][b], B->L[2][c]);
-                    bbox_add(B->lo, B->hi, p);
-                }
+        for (size_t c = 0; c < k; c++) {
+            if (e.bad[c] != SIZE_MAX) {
+                size_t r = e.bad[c], plane = B->m[1] * B->m[2];
+                return coons__error_set(v->err, COONS_E_INVALID,
+                                        "body '%s' evaluates to a point that is not "
+                                        "finite at (u,v,w) = (%g, %g, %g)",
+                                        B->name, B->L[0][r / plane], B->L[1][r % plane / B->m[2]],
+                                        B->L[2][r % B->m[2]]);
+            }
+            bbox_add(B->lo, B->hi, e.lo[c]);
+            bbox_add(B->lo, B->hi, e.hi[c]);
+        }
     }
     return COONS_OK;
 }
@@ -284,6 +324,10 @@ static coons_status merge(vbuild *v)
     coons__free(h.key);
     coons__free(h.head);
     coons__free(h.next);
+    /* Flat: every entry its root (a root is the lowest id of its set, so
+     * in increasing order each parent is already final), which makes
+     * coons__vnode() a read that threads may share. */
+    for (size_t r = 0; r < v->nraw; r++) v->uf[r] = v->uf[v->uf[r]];
     return COONS_OK;
 }
 
@@ -313,10 +357,59 @@ static size_t distinct_corners(const uint32_t *c)
     return n;
 }
 
+/* The nodes of u planes [a0, a1) of one body: coordinates, parameters
+ * and det J (evaluated in slabs of u, one grid call each: the types' grid
+ * paths are many times faster than point by point); each run counts the
+ * signs of det J and keeps its own error. */
+typedef struct node_run {
+    const vbuild *v;
+    const vbody *B;
+    double *xyz, *par[3], *det; /* the mesh's nodes and node fields u, v, w, det_j */
+    long sign[COONS__MAX_RUNS];
+    coons_status st[COONS__MAX_RUNS];
+    coons_error err[COONS__MAX_RUNS];
+} node_run;
+
+static void node_rows(void *ctx, unsigned chunk, size_t a0, size_t a1)
+{
+    node_run *nr = ctx;
+    const vbuild *v = nr->v;
+    const vbody *B = nr->B;
+    long sign = 0;
+    coons_status st = COONS_OK;
+    size_t plane = B->m[1] * B->m[2], slab = plane ? ((size_t)1 << 18) / plane : 1;
+    if (slab < 1) slab = 1;
+    if (slab > a1 - a0) slab = a1 - a0;
+    double *dg = coons__malloc_array(slab * plane, sizeof(double));
+    if (!dg) st = coons__error_nomem(&nr->err[chunk]);
+    for (size_t s0 = a0; s0 < a1 && !st; s0 += slab) {
+        size_t na = a1 - s0 < slab ? a1 - s0 : slab;
+        st = coons__body_det_grid(B->b, B->L[0] + s0, na, B->L[1], B->m[1], B->L[2], B->m[2], dg,
+                                  &nr->err[chunk]);
+        for (size_t a = s0; a < s0 + na && !st; a++)
+            for (size_t b = 0; b < B->m[1]; b++)
+                for (size_t c = 0; c < B->m[2]; c++) {
+                    size_t r = coons__vraw(B, a, b, c);
+                    if (!coons__vneeded(v, a, b, c) || v->uf[r] != r) continue;
+                    uint32_t n = v->id[r];
+                    double d = dg[((a - s0) * B->m[1] + b) * B->m[2] + c];
+                    v3_copy(nr->xyz + 3 * (size_t)n, v->pos + 3 * r);
+                    nr->par[0][n] = B->L[0][a];
+                    nr->par[1][n] = B->L[1][b];
+                    nr->par[2][n] = B->L[2][c];
+                    nr->det[n] = isfinite(d) ? d : 0.0;
+                    sign += d > 0 ? 1 : d < 0 ? -1 : 0;
+                }
+    }
+    coons__free(dg);
+    nr->sign[chunk] = sign;
+    nr->st[chunk] = st;
+}
+
 /* Numbers the nodes (representatives used by some kept cell, in raw
- * order), decides each body's handedness from det J at its nodes. */
-static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **param,
-                                 double **detj)
+ * order) and adds them with their fields u, v, w (parameters) and det_j,
+ * decides each body's handedness from det J at its nodes. */
+static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm)
 {
     memset(v->id, 0xff, v->nraw * sizeof(uint32_t));
     /* Mark every representative some needed point maps to. */
@@ -325,67 +418,42 @@ static coons_status number_nodes(vbuild *v, coons_volume_mesh *vm, double **para
         for (size_t a = 0; a < B->m[0]; a++)
             for (size_t b = 0; b < B->m[1]; b++)
                 for (size_t c = 0; c < B->m[2]; c++)
-                    if (coons__vneeded(v, a, b, c))
-                        v->id[coons__uf_find(v->uf, (uint32_t)coons__vraw(B, a, b, c))] = 0;
+                    if (coons__vneeded(v, a, b, c)) v->id[v->uf[coons__vraw(B, a, b, c)]] = 0;
     }
     size_t nn = 0;
     for (size_t r = 0; r < v->nraw; r++)
         if (v->id[r] == 0) v->id[r] = (uint32_t)nn++;
-    double *xyz = coons__malloc_array(nn, 3 * sizeof(double));
-    double *par = coons__malloc_array(nn, 3 * sizeof(double));
-    double *det = coons__malloc_array(nn, sizeof(double));
-    if (!xyz || !par || !det) {
-        coons__free(xyz);
-        coons__free(par);
-        coons__free(det);
-        return coons__error_nomem(v->err);
-    }
+    double *xyz = coons__volume_mesh_reserve_nodes(vm, nn, v->err);
+    if (!xyz) return COONS_E_NOMEM;
+    v->nn = nn;
+    static const char *names[4] = {"u", "v", "w", "det_j"};
+    double *f[4];
+    for (int d = 0; d < 4; d++)
+        if (!(f[d] = coons__volume_mesh_reserve_field(vm, COONS_FIELD_NODE, names[d],
+                                                      COONS_FIELD_FLOAT64, v->err)))
+            return COONS_E_NOMEM;
     coons_status st = COONS_OK;
     for (size_t i = 0; i < v->nb && !st; i++) {
         vbody *B = &v->vb[i];
+        node_run nr;
+        nr.v = v;
+        nr.B = B;
+        nr.xyz = xyz;
+        for (int d = 0; d < 3; d++) nr.par[d] = f[d];
+        nr.det = f[3];
+        unsigned runs = v->threads < COONS__MAX_RUNS ? v->threads : COONS__MAX_RUNS;
+        size_t k = runs < B->m[0] ? runs : B->m[0];
+        const coons_error none = COONS_ERROR_INIT;
+        for (size_t c = 0; c < k; c++) nr.err[c] = none;
+        coons__parallel_for(B->m[0], runs, node_rows, &nr);
         long sign = 0;
-        /* det J on the node lattice in slabs of u (one grid call each: the
-         * types' grid paths are many times faster than point by point). */
-        size_t plane = B->m[1] * B->m[2], slab = plane ? ((size_t)1 << 18) / plane : 1;
-        if (slab < 1) slab = 1;
-        double *dg = coons__malloc_array(slab * plane, sizeof(double));
-        if (!dg) {
-            st = coons__error_nomem(v->err);
-            break;
+        for (size_t c = 0; c < k && !st; c++) {
+            sign += nr.sign[c];
+            if ((st = nr.st[c]) && v->err) *v->err = nr.err[c];
         }
-        for (size_t a0 = 0; a0 < B->m[0] && !st; a0 += slab) {
-            size_t na = B->m[0] - a0 < slab ? B->m[0] - a0 : slab;
-            st = coons__body_det_grid(B->b, B->L[0] + a0, na, B->L[1], B->m[1], B->L[2], B->m[2],
-                                      dg, v->err);
-            for (size_t a = a0; a < a0 + na && !st; a++)
-                for (size_t b = 0; b < B->m[1]; b++)
-                    for (size_t c = 0; c < B->m[2]; c++) {
-                        size_t r = coons__vraw(B, a, b, c);
-                        if (!coons__vneeded(v, a, b, c) || v->uf[r] != r) continue;
-                        uint32_t n = v->id[r];
-                        double d = dg[((a - a0) * B->m[1] + b) * B->m[2] + c];
-                        v3_copy(xyz + 3 * (size_t)n, v->pos + 3 * r);
-                        par[3 * (size_t)n] = B->L[0][a];
-                        par[3 * (size_t)n + 1] = B->L[1][b];
-                        par[3 * (size_t)n + 2] = B->L[2][c];
-                        det[n] = isfinite(d) ? d : 0.0;
-                        sign += d > 0 ? 1 : d < 0 ? -1 : 0;
-                    }
-        }
-        coons__free(dg);
         B->left = sign < 0;
     }
-    v->nn = nn;
-    if (!st) st = coons_volume_mesh_add_nodes(vm, xyz, nn, NULL, v->err);
-    coons__free(xyz);
-    if (st) {
-        coons__free(par);
-        coons__free(det);
-        return st;
-    }
-    *param = par;
-    *detj = det;
-    return COONS_OK;
+    return st;
 }
 
 /* The block a cell goes to within its body: 0 hexahedra (with or without
@@ -397,6 +465,68 @@ static int cell_block(const vbuild *v, const uint32_t *h)
     uint32_t out[27];
     coons__cell_shape sh = coons__cell_shape_of(h, v->npc, out);
     return sh == COONS__SHAPE_WEDGE ? 1 : sh == COONS__SHAPE_PYRAMID ? 2 : 0;
+}
+
+/* Cells of u layers [a0, a1) of one body, in two passes: the first puts
+ * each lattice cell's block (3: dropped) into `no` and counts the blocks
+ * per run, the second writes each kept cell's nodes at its place (`at`:
+ * the run's next place in each block) and its number into `no`. Placing
+ * by the counts of the runs before makes the order the same for any
+ * number of runs: by block, and in lattice order within a block. */
+typedef struct cell_run {
+    const vbuild *v;
+    const vbody *B;
+    uint32_t *no;  /* the body's lattice cells */
+    uint32_t *dst; /* the body's first cell row in the mesh */
+    size_t cell0;  /* its number */
+    size_t count[COONS__MAX_RUNS][4];
+    size_t at[COONS__MAX_RUNS][3];
+} cell_run;
+
+static void cell_blocks(void *ctx, unsigned chunk, size_t a0, size_t a1)
+{
+    cell_run *cr = ctx;
+    const vbuild *v = cr->v;
+    const vbody *B = cr->B;
+    size_t *count = cr->count[chunk];
+    count[0] = count[1] = count[2] = count[3] = 0;
+    uint32_t row[27];
+    for (size_t a = a0; a < a1; a++)
+        for (size_t b = 0; b < B->n[1]; b++)
+            for (size_t c = 0; c < B->n[2]; c++) {
+                /* A cell with no point on the body's boundary is a
+                 * hexahedron: only boundary points are ever merged. */
+                if (a && b && c && a + 1 < B->n[0] && b + 1 < B->n[1] && c + 1 < B->n[2]) {
+                    cr->no[(a * B->n[1] + b) * B->n[2] + c] = 0;
+                    count[0]++;
+                    continue;
+                }
+                cell_nodes(v, B, a, b, c, row);
+                /* Fewer than 4 distinct corners: no volume at all. */
+                int k = distinct_corners(row) >= 4 ? cell_block(v, row) : 3;
+                cr->no[(a * B->n[1] + b) * B->n[2] + c] = (uint32_t)k;
+                count[k]++;
+            }
+}
+
+static void cell_place(void *ctx, unsigned chunk, size_t a0, size_t a1)
+{
+    cell_run *cr = ctx;
+    const vbuild *v = cr->v;
+    const vbody *B = cr->B;
+    size_t *at = cr->at[chunk];
+    for (size_t a = a0; a < a1; a++)
+        for (size_t b = 0; b < B->n[1]; b++)
+            for (size_t c = 0; c < B->n[2]; c++) {
+                uint32_t *no = cr->no + (a * B->n[1] + b) * B->n[2] + c;
+                if (*no == 3) {
+                    *no = UINT32_MAX;
+                    continue;
+                }
+                size_t pos = at[*no]++;
+                cell_nodes(v, B, a, b, c, cr->dst + v->npc * pos);
+                *no = (uint32_t)(cr->cell0 + pos);
+            }
 }
 
 /* Adds each body's cells as one part, grouped by block (cell_block()) and
@@ -411,46 +541,34 @@ static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, uint32_t **celln
     if (!no) return coons__error_nomem(v->err);
     size_t base = 0, cell0 = 0;
     coons_status st = COONS_OK;
+    unsigned runs = v->threads < COONS__MAX_RUNS ? v->threads : COONS__MAX_RUNS;
     for (size_t i = 0; i < v->nb && !st; i++) {
         const vbody *B = &v->vb[i];
-        size_t nc = B->n[0] * B->n[1] * B->n[2], start[4] = {0, 0, 0, 0};
+        size_t nc = B->n[0] * B->n[1] * B->n[2];
         report(v, "cells", (double)base / (double)(total ? total : 1));
-        uint32_t *rows = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
-        uint32_t *out = coons__malloc_array(nc ? nc : 1, v->npc * sizeof(uint32_t));
-        if (!rows || !out) {
-            coons__free(rows);
-            coons__free(out);
-            st = coons__error_nomem(v->err);
+        cell_run cr;
+        cr.v = v;
+        cr.B = B;
+        cr.no = no + base;
+        size_t k = runs < B->n[0] ? runs : B->n[0];
+        coons__parallel_for(B->n[0], runs, cell_blocks, &cr);
+        size_t start[3] = {0, 0, 0};
+        for (int blk = 0; blk < 3; blk++) {
+            if (blk) start[blk] = start[blk - 1];
+            for (size_t c = 0; c < k; c++) {
+                cr.at[c][blk] = start[blk];
+                start[blk] += cr.count[c][blk];
+            }
+        }
+        size_t nk = start[2]; /* the end of block 2 */
+        if ((st = coons_volume_mesh_add_part(vm, B->name, NULL, v->err))) break;
+        cr.dst = coons__volume_mesh_reserve_cells(vm, nk, i, v->err);
+        if (!cr.dst) {
+            st = COONS_E_NOMEM;
             break;
         }
-        size_t q = 0;
-        for (size_t a = 0; a < B->n[0]; a++)
-            for (size_t b = 0; b < B->n[1]; b++)
-                for (size_t c = 0; c < B->n[2]; c++, q++) {
-                    uint32_t *row = rows + v->npc * q;
-                    cell_nodes(v, B, a, b, c, row);
-                    /* Fewer than 4 distinct corners: no volume at all. */
-                    int k = distinct_corners(row) >= 4 ? cell_block(v, row) : 3;
-                    no[base + q] = (uint32_t)k;
-                    if (k < 3) start[k + 1]++;
-                }
-        start[2] += start[1];
-        start[3] += start[2];
-        for (q = 0; q < nc; q++) {
-            uint32_t k = no[base + q];
-            if (k == 3) {
-                no[base + q] = UINT32_MAX;
-                continue;
-            }
-            size_t at = start[k]++;
-            memcpy(out + v->npc * at, rows + v->npc * q, v->npc * sizeof(uint32_t));
-            no[base + q] = (uint32_t)(cell0 + at);
-        }
-        size_t nk = start[2]; /* after the fill: the end of block 2 */
-        if (!(st = coons_volume_mesh_add_part(vm, B->name, NULL, v->err)))
-            st = coons_volume_mesh_add_cells(vm, out, nk, i, NULL, v->err);
-        coons__free(rows);
-        coons__free(out);
+        cr.cell0 = cell0;
+        coons__parallel_for(B->n[0], runs, cell_place, &cr);
         base += nc;
         cell0 += nk;
     }
@@ -462,41 +580,33 @@ static coons_status add_cells(vbuild *v, coons_volume_mesh *vm, uint32_t **celln
     return COONS_OK;
 }
 
-static coons_status add_fields(vbuild *v, coons_volume_mesh *vm, const double *par,
-                               const double *det)
+/* Scaled Jacobians of cells [lo, hi). */
+typedef struct sj_run {
+    const coons_volume_mesh *vm;
+    double *sj;
+} sj_run;
+
+static void sj_cells(void *ctx, unsigned chunk, size_t lo, size_t hi)
 {
-    coons_status st = COONS_OK;
-    double *f = coons__malloc_array(v->nn ? v->nn : 1, sizeof(double));
-    if (!f) return coons__error_nomem(v->err);
-    static const char *names[3] = {"u", "v", "w"};
-    for (int d = 0; d < 3 && !st; d++) {
-        for (size_t n = 0; n < v->nn; n++) f[n] = par[3 * n + (size_t)d];
-        st = coons_volume_mesh_add_field(vm, COONS_FIELD_NODE, names[d], COONS_FIELD_FLOAT64, f,
-                                         v->err);
-    }
-    coons__free(f);
-    if (!st)
-        st = coons_volume_mesh_add_field(vm, COONS_FIELD_NODE, "det_j", COONS_FIELD_FLOAT64, det,
-                                         v->err);
+    (void)chunk;
+    sj_run *r = ctx;
+    coons__volume_mesh_scaled_jacobians(r->vm, lo, hi, r->sj + lo);
+}
+
+/* The cell fields: body (part) and scaled_jacobian. */
+static coons_status add_fields(vbuild *v, coons_volume_mesh *vm)
+{
     size_t nc = coons_volume_mesh_cell_count(vm);
-    int32_t *body = coons__malloc_array(nc ? nc : 1, sizeof(int32_t));
-    double *sj = coons__malloc_array(nc ? nc : 1, sizeof(double));
-    if (!st && (!body || !sj)) st = coons__error_nomem(v->err);
-    if (!st) {
-        const uint32_t *part = coons_volume_mesh_cell_parts(vm);
-        for (size_t c = 0; c < nc; c++) {
-            body[c] = (int32_t)part[c];
-            sj[c] = coons_volume_mesh_cell_scaled_jacobian(vm, c, NULL);
-        }
-        st = coons_volume_mesh_add_field(vm, COONS_FIELD_CELL, "body", COONS_FIELD_INT32, body,
-                                         v->err);
-    }
-    if (!st)
-        st = coons_volume_mesh_add_field(vm, COONS_FIELD_CELL, "scaled_jacobian",
-                                         COONS_FIELD_FLOAT64, sj, v->err);
-    coons__free(body);
-    coons__free(sj);
-    return st;
+    int32_t *body = coons__volume_mesh_reserve_field(vm, COONS_FIELD_CELL, "body",
+                                                     COONS_FIELD_INT32, v->err);
+    if (!body) return COONS_E_NOMEM;
+    const uint32_t *part = coons_volume_mesh_cell_parts(vm);
+    for (size_t c = 0; c < nc; c++) body[c] = (int32_t)part[c];
+    sj_run r = {vm, coons__volume_mesh_reserve_field(vm, COONS_FIELD_CELL, "scaled_jacobian",
+                                                     COONS_FIELD_FLOAT64, v->err)};
+    if (!r.sj) return COONS_E_NOMEM;
+    coons__parallel_for(nc, v->threads, sj_cells, &r);
+    return COONS_OK;
 }
 
 /* Cell set per body; node and face set per body face. `cellno` is each
@@ -557,15 +667,17 @@ static coons_status add_sets(vbuild *v, coons_volume_mesh *vm, const uint32_t *c
              * of one type are consecutive. */
             size_t np = 0;
             uint32_t row[27];
+            /* The layer of cells on the face, in lattice order. */
+            size_t lo[3] = {0, 0, 0}, up[3] = {B->n[0], B->n[1], B->n[2]};
+            lo[ax] = hi ? B->n[ax] - 1 : 0;
+            up[ax] = glued[ax] ? lo[ax] : lo[ax] + 1;
             for (int tri = 0; tri < 2; tri++) {
-                size_t q = 0;
-                for (size_t a = 0; a < B->n[0]; a++)
-                    for (size_t b = 0; b < B->n[1]; b++)
-                        for (size_t c = 0; c < B->n[2]; c++, q++) {
+                for (size_t a = lo[0]; a < up[0]; a++)
+                    for (size_t b = lo[1]; b < up[1]; b++)
+                        for (size_t c = lo[2]; c < up[2]; c++) {
+                            size_t q = (a * B->n[1] + b) * B->n[2] + c;
                             uint32_t cell = cellno[base + q];
                             if (cell == UINT32_MAX) continue;
-                            size_t idx[3] = {a, b, c};
-                            if (glued[ax] || idx[ax] != (hi ? B->n[ax] - 1 : 0)) continue;
                             cell_nodes(v, B, a, b, c, row);
                             uint32_t fc[4];
                             for (int z = 0; z < 4; z++) fc[z] = row[FACE_CORNERS[lf][z]];
@@ -651,17 +763,14 @@ static coons_status build(vbuild *v, const coons_volume_options *o, double toler
     report(v, "evaluate", 1.0);
     coons_volume_mesh *vm;
     if ((st = coons_volume_mesh_new(v->el, &vm, v->err))) return st;
-    double *par = NULL, *det = NULL;
     uint32_t *cellno = NULL;
-    st = number_nodes(v, vm, &par, &det);
+    st = number_nodes(v, vm);
     report(v, "cells", 0.0);
     if (!st) st = add_cells(v, vm, &cellno);
     if (!st) report(v, "cells", 1.0);
-    if (!st) st = add_fields(v, vm, par, det);
+    if (!st) st = add_fields(v, vm);
     if (!st) st = add_sets(v, vm, cellno);
     if (!st) st = coons__vlattice_check(v, vm);
-    coons__free(par);
-    coons__free(det);
     coons__free(cellno);
     if (st) {
         coons_volume_mesh_free(vm);
@@ -687,6 +796,7 @@ static coons_status run(const coons_body *const *bodies, const char *const *name
     v.err = err;
     v.progress = o.progress;
     v.userdata = o.userdata;
+    v.threads = o.threads ? o.threads : 1;
     v.vb = coons__calloc(nb ? nb : 1, sizeof(vbody));
     if (!v.vb) return coons__error_nomem(err);
     v.nb = nb;

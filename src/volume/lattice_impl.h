@@ -36,6 +36,7 @@ typedef struct coons__vbuild {
     coons_error *err;
     coons_progress_fn progress; /* the options' (version 2), or NULL */
     void *userdata;
+    unsigned threads; /* the options' (version 3), at least 1 */
 } coons__vbuild;
 
 /* Raw id of node lattice point (a, b, c) of body B (coons_body_eval_grid's
@@ -52,11 +53,13 @@ static inline int coons__vneeded(const coons__vbuild *v, size_t a, size_t b, siz
     return v->el != COONS_ELEMENT_HEX20 || (a & 1) + (b & 1) + (c & 1) <= 1;
 }
 
-/* Node of lattice point (a, b, c): its representative's final id. */
+/* Node of lattice point (a, b, c): its representative's final id. The
+ * union-find is flat once the points are merged (every entry its root,
+ * lattice.c), so this only reads, and threads may call it at once. */
 static inline uint32_t coons__vnode(const coons__vbuild *v, const coons__vbody *B, size_t a,
                                     size_t b, size_t c)
 {
-    return v->id[coons__uf_find(v->uf, (uint32_t)coons__vraw(B, a, b, c))];
+    return v->id[v->uf[coons__vraw(B, a, b, c)]];
 }
 
 /* Gives the directions that shared faces and shared edges tie one lattice

@@ -7,6 +7,7 @@
  * (coons/volume.h). */
 #include <string.h>
 
+#include "body_impl.h"
 #include "volume_impl.h"
 
 /* From each corner (Gmsh order), its neighbours along +r, +s, +t of the
@@ -71,6 +72,103 @@ double coons_volume_mesh_cell_scaled_jacobian(const coons_volume_mesh *vm, size_
     return cell_sj(vm, cell, collapsed);
 }
 
+/* Cells at a time of the batch below: each step is a loop over them that
+ * the compiler turns into vector instructions. */
+#define SJ_LANES 32
+
+/* cell_sj() of `n` <= SJ_LANES cells from `first`, whose 12 edges join
+ * distinct nodes, lane by lane: the same operations in the same order on
+ * each cell (IEEE sqrt and division are exact-rounded in vector form as in
+ * scalar form, and C11 forbids contracting them into FMAs), so the same
+ * bits. An edge of no length (distinct nodes at one point) leaves its
+ * cell to cell_sj(), which skips the corners at that edge; it returns 0
+ * for it. */
+/* The corner of unit edges x, y, z (each lanes of x, y and z components):
+ * best = min(best, sign det[x, y, z]) lane by lane. */
+static inline void sj_corner(double (*x)[SJ_LANES], double (*y)[SJ_LANES],
+                             double (*z)[SJ_LANES], double sign, double *best)
+{
+    const double *x0 = x[0], *x1 = x[1], *x2 = x[2], *y0 = y[0], *y1 = y[1], *y2 = y[2],
+                 *z0 = z[0], *z1 = z[1], *z2 = z[2];
+    for (size_t l = 0; l < SJ_LANES; l++) {
+        double det = x0[l] * (y1[l] * z2[l] - y2[l] * z1[l]) -
+                     x1[l] * (y0[l] * z2[l] - y2[l] * z0[l]) +
+                     x2[l] * (y0[l] * z1[l] - y1[l] * z0[l]);
+        det *= sign;
+        best[l] = det < best[l] ? det : best[l];
+    }
+}
+
+COONS__SIMD_CLONES
+static int sj_lanes(const coons_volume_mesh *vm, size_t first, size_t n, double *out)
+{
+    double p[8][3][SJ_LANES], e[12][3][SJ_LANES], best[SJ_LANES];
+    int flat = 0;
+    for (size_t l = 0; l < SJ_LANES; l++) {
+        /* Lanes past n repeat the last cell: their values are not used. */
+        const uint32_t *h = vm->cell + vm->npc * (first + (l < n ? l : n - 1));
+        for (int i = 0; i < 8; i++)
+            for (int d = 0; d < 3; d++) p[i][d][l] = vm->xyz[3 * (size_t)h[i] + (size_t)d];
+    }
+    for (int k = 0; k < 12; k++) {
+        double(*a)[SJ_LANES] = p[EDGES[k][0]], (*b)[SJ_LANES] = p[EDGES[k][1]];
+        double len[SJ_LANES];
+        for (size_t l = 0; l < SJ_LANES; l++) {
+            double x = b[0][l] - a[0][l], y = b[1][l] - a[1][l], z = b[2][l] - a[2][l];
+            double q = 0;
+            q += x * x;
+            q += y * y;
+            q += z * z;
+            len[l] = q;
+            e[k][0][l] = x;
+            e[k][1][l] = y;
+            e[k][2][l] = z;
+        }
+        for (size_t l = 0; l < SJ_LANES; l++) flat |= !(len[l] > 0);
+        if (flat) return 0;
+        for (size_t l = 0; l < SJ_LANES; l++) {
+            /* len > 0: sqrt needs no errno (-fno-math-errno lets it be a
+             * vector instruction) */
+            double inv = 1.0 / sqrt(len[l]);
+            e[k][0][l] *= inv;
+            e[k][1][l] *= inv;
+            e[k][2][l] *= inv;
+        }
+    }
+    for (size_t l = 0; l < SJ_LANES; l++) best[l] = INFINITY;
+    for (int i = 0; i < 8; i++)
+        sj_corner(e[CORNER_EDGE[i][0][0]], e[CORNER_EDGE[i][1][0]], e[CORNER_EDGE[i][2][0]],
+                  CORNER_EDGE[i][0][1] * CORNER_EDGE[i][1][1] * CORNER_EDGE[i][2][1], best);
+    for (size_t l = 0; l < n; l++) out[l] = best[l];
+    return 1;
+}
+
+/* Whether the 12 edges of a hex8 (or the corner hexahedron of a hex20 or
+ * hex27) join distinct nodes. */
+static int edges_distinct(const uint32_t *h)
+{
+    int same = 0;
+    for (int k = 0; k < 12; k++) same |= h[EDGES[k][0]] == h[EDGES[k][1]];
+    return !same;
+}
+
+void coons__volume_mesh_scaled_jacobians(const coons_volume_mesh *vm, size_t lo, size_t hi,
+                                         double *out)
+{
+    size_t c = lo;
+    while (c < hi) {
+        /* A run of cells whose edges join distinct nodes goes by lanes. */
+        size_t n = 0;
+        while (n < SJ_LANES && c + n < hi && edges_distinct(vm->cell + vm->npc * (c + n))) n++;
+        if (n && sj_lanes(vm, c, n, out + (c - lo))) {
+            c += n;
+            continue;
+        }
+        size_t end = c + (n ? n : 1);
+        for (; c < end; c++) out[c - lo] = cell_sj(vm, c, NULL);
+    }
+}
+
 void coons_volume_quality_init(coons_volume_quality *q)
 {
     const coons_volume_quality d = COONS_VOLUME_QUALITY_INIT;
@@ -102,10 +200,20 @@ coons_status coons_volume_mesh_quality(const coons_volume_mesh *vm, size_t part,
     unsigned char *seen = vm->nn ? coons__calloc(vm->nn, 1) : NULL;
     if (vm->nn && !seen) return coons__error_nomem(err);
     double sum = 0, worst = INFINITY;
+    double block[256]; /* the scaled Jacobians of cells [c0, c0 + 256), by lanes */
+    size_t c0 = 0, c1 = 0;
     for (size_t c = 0; c < vm->nc; c++) {
         if (vm->part[c] != part) continue;
-        int col;
-        double sj = cell_sj(vm, c, &col);
+        if (c >= c1) {
+            c0 = c;
+            c1 = vm->nc - c < 256 ? vm->nc : c + 256;
+            coons__volume_mesh_scaled_jacobians(vm, c0, c1, block);
+        }
+        double sj = block[c - c0];
+        const uint32_t *h = vm->cell + vm->npc * c;
+        int col = 0; /* a repeated corner, as cell_sj() says */
+        for (int i = 0; i < 8; i++)
+            for (int j = i + 1; j < 8; j++) col |= h[i] == h[j];
         r.cells++;
         sum += sj;
         if (sj < worst) worst = sj, r.worst_cell = c;

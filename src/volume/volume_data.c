@@ -41,9 +41,11 @@ static int is_identifier(const char *s)
     return 1;
 }
 
-coons_status coons_volume_mesh_add_field(coons_volume_mesh *vm, coons_field_location location,
-                                         const char *name, coons_field_type type,
-                                         const void *values, coons_error *err)
+/* The checks of a new field (all but its values) and, when they pass, the
+ * field itself with room for its values. */
+static coons_status new_field(coons_volume_mesh *vm, coons_field_location location,
+                              const char *name, coons_field_type type, void **values,
+                              coons_error *err)
 {
     if (!vm) return coons__error_set(err, COONS_E_INVALID, "no volume mesh given");
     if (location != COONS_FIELD_NODE && location != COONS_FIELD_CELL)
@@ -63,12 +65,12 @@ coons_status coons_volume_mesh_add_field(coons_volume_mesh *vm, coons_field_loca
                                 "field name '%s' is not an identifier ([A-Za-z_][A-Za-z0-9_]*)",
                                 name);
     size_t n = location == COONS_FIELD_NODE ? vm->nn : vm->nc;
-    if (n && !values)
+    if (values && n && !*values)
         return coons__error_set(err, COONS_E_INVALID, "no values given for the %s field '%s'",
                                 LOCATION[location], name);
-    if (type == COONS_FIELD_FLOAT64)
+    if (values && type == COONS_FIELD_FLOAT64)
         for (size_t i = 0; i < n; i++)
-            if (!isfinite(((const double *)values)[i]))
+            if (!isfinite(((const double *)*values)[i]))
                 return coons__error_set(err, COONS_E_INVALID,
                                         "%s field '%s': the value of %s %zu is not finite",
                                         LOCATION[location], name, LOCATION[location], i);
@@ -80,9 +82,27 @@ coons_status coons_volume_mesh_add_field(coons_volume_mesh *vm, coons_field_loca
         coons__free(f.values);
         return coons__error_nomem(err);
     }
-    if (n) memcpy(f.values, values, n * size);
+    if (n && values) memcpy(f.values, *values, n * size);
+    if (values) *values = f.values;
     ((coons__vfield *)list->items)[list->count++] = f;
     return COONS_OK;
+}
+
+coons_status coons_volume_mesh_add_field(coons_volume_mesh *vm, coons_field_location location,
+                                         const char *name, coons_field_type type,
+                                         const void *values, coons_error *err)
+{
+    void *v = (void *)(uintptr_t)values;
+    return new_field(vm, location, name, type, &v, err);
+}
+
+void *coons__volume_mesh_reserve_field(coons_volume_mesh *vm, coons_field_location location,
+                                       const char *name, coons_field_type type, coons_error *err)
+{
+    void *v = NULL;
+    if (new_field(vm, location, name, type, NULL, err) != COONS_OK) return NULL;
+    v = ((coons__vfield *)vm->fields[location].items)[vm->fields[location].count - 1].values;
+    return v;
 }
 
 /* Adds set `kind` of n entries of `width` indices each (1, or 2 for the

@@ -53,4 +53,21 @@ char *coons__vstrdup(const char *s);
 
 void coons__vfields_free(coons_volume_mesh *vm);
 
+/* The scaled Jacobian (coons_volume_mesh_cell_scaled_jacobian()) of cells
+ * [lo, hi) into out[0 .. hi - lo). */
+void coons__volume_mesh_scaled_jacobians(const coons_volume_mesh *vm, size_t lo, size_t hi,
+                                         double *out);
+
+/* For the mesher, which fills what it reserves with valid values before
+ * anyone reads the mesh: n new nodes (3 n doubles), appended uninitialised;
+ * NULL (err set, mesh unchanged) over the limits or without memory. */
+double *coons__volume_mesh_reserve_nodes(coons_volume_mesh *vm, size_t n, coons_error *err);
+/* n new cells of `part` (npc * n node indices, uninitialised). */
+uint32_t *coons__volume_mesh_reserve_cells(coons_volume_mesh *vm, size_t n, size_t part,
+                                           coons_error *err);
+/* A new field of the mesh's nodes or cells, its values uninitialised
+ * (they must be finite); NULL (err set) on a bad name or without memory. */
+void *coons__volume_mesh_reserve_field(coons_volume_mesh *vm, coons_field_location location,
+                                       const char *name, coons_field_type type, coons_error *err);
+
 #endif

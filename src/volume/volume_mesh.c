@@ -144,3 +144,47 @@ const char *coons_volume_mesh_part_name(const coons_volume_mesh *vm, size_t i)
 {
     return i < vm->parts.count ? ((char *const *)vm->parts.items)[i] : NULL;
 }
+
+double *coons__volume_mesh_reserve_nodes(coons_volume_mesh *vm, size_t n, coons_error *err)
+{
+    if (n > (size_t)UINT32_MAX - vm->nn || n > SIZE_MAX / (3 * sizeof(double)) - vm->nn) {
+        coons__error_set(err, COONS_E_LIMIT,
+                         "a volume mesh holds at most %lu nodes: %zu plus %zu is more",
+                         (unsigned long)UINT32_MAX, vm->nn, n);
+        return NULL;
+    }
+    if (!coons__vgrow((void **)&vm->xyz, &vm->cap_n, vm->nn + n ? vm->nn + n : 1,
+                      3 * sizeof(double))) {
+        coons__error_nomem(err);
+        return NULL;
+    }
+    double *p = vm->xyz + 3 * vm->nn;
+    vm->nn += n;
+    return p;
+}
+
+uint32_t *coons__volume_mesh_reserve_cells(coons_volume_mesh *vm, size_t n, size_t part,
+                                           coons_error *err)
+{
+    if (n > (size_t)UINT32_MAX - vm->nc || n > SIZE_MAX / (vm->npc * sizeof(uint32_t)) - vm->nc) {
+        coons__error_set(err, COONS_E_LIMIT,
+                         "a volume mesh holds at most %lu cells: %zu plus %zu is more",
+                         (unsigned long)UINT32_MAX, vm->nc, n);
+        return NULL;
+    }
+    size_t need = vm->nc + n ? vm->nc + n : 1, cap = vm->cap_c;
+    if (!coons__vgrow((void **)&vm->cell, &cap, need, vm->npc * sizeof(uint32_t))) {
+        coons__error_nomem(err);
+        return NULL;
+    }
+    cap = vm->cap_c;
+    if (!coons__vgrow((void **)&vm->part, &cap, need, sizeof(uint32_t))) {
+        coons__error_nomem(err);
+        return NULL;
+    }
+    vm->cap_c = cap;
+    for (size_t i = 0; i < n; i++) vm->part[vm->nc + i] = (uint32_t)part;
+    uint32_t *p = vm->cell + vm->npc * vm->nc;
+    vm->nc += n;
+    return p;
+}

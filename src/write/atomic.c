@@ -104,7 +104,9 @@ static coons_status write_all(const coons__write_job *job, coons__sink *s)
         return s->status = coons__error_nomem(s->err);
     }
     s->fmt = &fmt;
+    coons__sink_start(s);
     if (coons__sink_ok(s) && run_writer(job, s) == COONS_OK) coons__sink_flush(s);
+    coons__sink_finish(s);
     s->fmt = NULL;
     coons__fmt_end(&fmt);
     coons__free(s->buf);
@@ -126,7 +128,7 @@ coons_status coons__write_stream(const coons__write_job *job, FILE *fp,
         stat(opts->protect_path, &in_st) == 0 && same_file(&out_st, &in_st))
         return coons__error_set(err, COONS_E_INVALID, "the output stream is the input '%s'",
                                 opts->protect_path);
-    coons__sink s = {NULL, 0, -1, fp, "<stream>", opts, NULL, COONS_OK, err, 0, NULL, NULL};
+    coons__sink s = {NULL, 0, -1, fp, "<stream>", opts, NULL, COONS_OK, err, 0, NULL, NULL, 0, NULL};
     coons__sink_watch(&s, opts);
     errno = 0;
     if (write_all(job, &s) != COONS_OK) return s.status;
@@ -222,7 +224,7 @@ coons_status coons__write_path(const coons__write_job *job, const char *path,
                                 "the output '%s' is the input file '%s'; refusing to overwrite it",
                                 path, opts->protect_path);
 
-    coons__sink s = {NULL, 0, -1, NULL, path, opts, NULL, COONS_OK, err, 0, NULL, NULL};
+    coons__sink s = {NULL, 0, -1, NULL, path, opts, NULL, COONS_OK, err, 0, NULL, NULL, 0, NULL};
     coons__sink_watch(&s, opts);
     if (!coons__sink_ok(&s)) return s.status;
     char tmp[PATH_MAX];

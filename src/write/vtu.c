@@ -64,6 +64,19 @@ static int b64_encode(vout *o, const unsigned char *d, size_t n)
         char *p = coons__sink_room(s, 512);
         if (!p) return 0;
         size_t i = 0;
+        /* 6 bytes -> 8 characters at a time, read as one big-endian word
+         * (compilers make the shifts one load and a byte swap). */
+        for (; i + 8 <= k; i += 6) {
+            const unsigned char *b = d + i;
+            uint64_t v = (uint64_t)b[0] << 56 | (uint64_t)b[1] << 48 | (uint64_t)b[2] << 40 |
+                         (uint64_t)b[3] << 32 | (uint64_t)b[4] << 24 | (uint64_t)b[5] << 16 |
+                         (uint64_t)b[6] << 8 | (uint64_t)b[7];
+            memcpy(p, o->pair[v >> 52], 2);
+            memcpy(p + 2, o->pair[(v >> 40) & 4095], 2);
+            memcpy(p + 4, o->pair[(v >> 28) & 4095], 2);
+            memcpy(p + 6, o->pair[(v >> 16) & 4095], 2);
+            p += 8;
+        }
         for (; i + 3 <= k; i += 3) {
             unsigned v = (unsigned)d[i] << 16 | (unsigned)d[i + 1] << 8 | d[i + 2];
             memcpy(p, o->pair[v >> 12], 2);
@@ -84,14 +97,64 @@ static int b64_encode(vout *o, const unsigned char *d, size_t n)
     return 1;
 }
 
-/* Makes room for 8 more raw bytes, encoding what can be encoded. */
-static int raw_room(vout *o)
+/* Makes room for `need` (at most RAW_CAP - 2) more raw bytes, encoding
+ * what can be encoded. */
+static int raw_need(vout *o, size_t need)
 {
-    if (o->nraw + 8 <= RAW_CAP) return 1;
+    if (o->nraw + need <= RAW_CAP) return 1;
     size_t k = o->nraw - o->nraw % 3;
     if (!b64_encode(o, o->raw, k)) return 0;
     memmove(o->raw, o->raw + k, o->nraw - k);
     o->nraw -= k;
+    return 1;
+}
+
+static int raw_room(vout *o) { return raw_need(o, 8); }
+
+/* Little-endian bytes of v at p. */
+static inline void le64(unsigned char *p, uint64_t v)
+{
+    for (int i = 0; i < 8; i++) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static inline void le32(unsigned char *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+/* Whole arrays in binary: the same bytes as value by value (put_f64(),
+ * put_int()), packed a buffer at a time. */
+static int put_f64s(vout *o, const double *v, size_t n)
+{
+    while (n > 0) {
+        if (!raw_need(o, 8 * 8)) return 0;
+        size_t m = (RAW_CAP - o->nraw) / 8;
+        if (m > n) m = n;
+        unsigned char *p = o->raw + o->nraw;
+        for (size_t i = 0; i < m; i++) {
+            uint64_t bits;
+            memcpy(&bits, v + i, sizeof bits);
+            le64(p + 8 * i, bits);
+        }
+        o->nraw += 8 * m;
+        v += m;
+        n -= m;
+    }
+    return 1;
+}
+
+static int put_i32s(vout *o, const int32_t *v, size_t n)
+{
+    while (n > 0) {
+        if (!raw_need(o, 8 * 4)) return 0;
+        size_t m = (RAW_CAP - o->nraw) / 4;
+        if (m > n) m = n;
+        unsigned char *p = o->raw + o->nraw;
+        for (size_t i = 0; i < m; i++) le32(p + 4 * i, (uint32_t)v[i]);
+        o->nraw += 4 * m;
+        v += m;
+        n -= m;
+    }
     return 1;
 }
 
@@ -276,6 +339,29 @@ static int put_comment(const coons__wopts *o, coons__sink *s)
     return coons__sink_puts(s, "<!-- ") && coons__sink_puts(s, t) && coons__sink_puts(s, " -->\n");
 }
 
+/* The binary connectivity: a hexahedron's VTK nodes are its own (hex8)
+ * or a fixed permutation (hex20, hex27); wedges and pyramids as
+ * coons__vtk_cell() orders them. */
+static int put_connectivity(vout *o, const cells *c)
+{
+    for (size_t i = 0; i < c->nc; i++) {
+        if (!raw_need(o, 27 * 8)) return 0;
+        unsigned char *p = o->raw + o->nraw;
+        const uint32_t *h = c->cell + c->npc * i;
+        unsigned n;
+        if (c->type && c->type[i] == COONS__VTK_HEXAHEDRON) {
+            for (unsigned j = 0; j < 8; j++) le64(p + 8 * j, h[j]);
+            n = 8;
+        } else {
+            uint32_t v[27];
+            n = cell_nodes(c, i, v);
+            for (unsigned j = 0; j < n; j++) le64(p + 8 * j, v[j]);
+        }
+        o->nraw += 8 * (size_t)n;
+    }
+    return 1;
+}
+
 /* Writes the values of array k (in the order of array_info). */
 static int put_values(const coons_volume_mesh *vm, const cells *c, size_t k, const array_info *a,
                       vout *o)
@@ -291,15 +377,22 @@ static int put_values(const coons_volume_mesh *vm, const cells *c, size_t k, con
         const void *values;
         coons_volume_mesh_field(vm, loc, k < nfn ? k : k - nfn, &type, &values);
         size_t n = loc == COONS_FIELD_NODE ? nn : c->nc;
+        if (!o->ascii) {
+            if (!(type == COONS_FIELD_FLOAT64 ? put_f64s(o, values, n) : put_i32s(o, values, n)))
+                return 0;
+            n = 0;
+        }
         for (size_t i = 0; i < n; i++)
             if (!(type == COONS_FIELD_FLOAT64 ? put_f64(o, ((const double *)values)[i])
                                               : put_int(o, ((const int32_t *)values)[i], 4)))
                 return 0;
     } else if (k == nfn + nfc) {
         const double *xyz = coons_volume_mesh_nodes(vm);
+        if (!o->ascii) return put_f64s(o, xyz, 3 * nn) && array_end(o) && coons__sink_ok(o->s);
         for (size_t i = 0; i < 3 * nn; i++)
             if (!put_f64(o, xyz[i])) return 0;
     } else if (k == nfn + nfc + 1) {
+        if (!o->ascii) return put_connectivity(o, c) && array_end(o) && coons__sink_ok(o->s);
         for (size_t i = 0; i < c->nc; i++) {
             uint32_t v[27];
             unsigned n = cell_nodes(c, i, v);

@@ -37,7 +37,24 @@ typedef struct coons__sink {
     unsigned long long bytes;    /* written out so far */
     void (*written)(void *ctx, unsigned long long bytes); /* opts' (version 2), or NULL */
     void *written_ctx;
+    int threaded;                /* coons__sink_start() was called */
+    struct coons__sink_bg *bg;   /* the writing thread of a file, or NULL (sink.c) */
 } coons__sink;
+
+/* For a file (fd >= 0): from the first full buffer on (outputs of at most
+ * one buffer are written as before), hands the write(2) calls to a second
+ * thread, so the next buffer is formatted while the last one is written;
+ * where no thread can be started the sink stays synchronous, and without
+ * memory for its buffers the write fails (COONS_E_NOMEM). Nothing of the
+ * caller's runs on that thread (no callback, no allocation): flushes,
+ * `cancel` and `written` stay on the calling thread, and errors of the
+ * thread are reported by the next flush or by coons__sink_finish(). */
+void coons__sink_start(coons__sink *s);
+/* Waits for every buffer handed over to be written (or dropped after an
+ * error) and stops the thread; s->buf is again the buffer it started
+ * with. Returns 0 after an error (recorded in s). Harmless on a
+ * synchronous sink. */
+int coons__sink_finish(coons__sink *s);
 
 /* Takes `written` from opts of version 2 or later (none from version 1). */
 static inline void coons__sink_watch(coons__sink *s, const coons_write_options *opts)

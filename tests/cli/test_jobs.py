@@ -7,8 +7,9 @@ overlap, bodies apart, a body in another's box but apart from it, the three
 examples; "union" and "none"; without CGAL the models that need no
 Boolean, and the others are refused on any -j) written as binary STL with -j 1, -j 2, -j 3
 and the default (the number of cores) are compared byte for byte; the STL
-is also checked to hold the expected number of triangles. -j 0 and -j x are
-usage errors (exit 2) that write nothing.
+is also checked to hold the expected number of triangles. Volume meshes
+(.vtu, .msh) of a few examples are the same bytes for every -j too. -j 0
+and -j x are usage errors (exit 2) that write nothing.
 
 Usage: test_jobs.py --bin <coons2stl> --src <source dir> --build <build dir>
 """
@@ -57,6 +58,10 @@ models = [
     ("boxes none", write_model("boxes-none.json", bodies, operation="none"),
      ["--resolution", "6"]),
     ("boxes apart", write_model("apart.json", apart), ["--resolution", "5"]),
+    # one body: its faces evaluated on the threads (issue 27), on a fixed
+    # lattice and adaptively (the measuring passes)
+    ("spool fixed", os.path.join(T.src, "examples", "spool.json"), ["--resolution", "70"]),
+    ("nail adaptive", os.path.join(T.src, "examples", "nail.json"), []),
 ]
 rc, out, err = T.run(["--info", models[1][1]])
 try:
@@ -97,6 +102,33 @@ for label, path, extra in models:
             if j != "1":
                 T.check(f"{label}: -j {j or '(default)'} writes the same bytes as -j 1",
                         data == files["1"], f"{len(data)} vs {len(files['1'])} bytes")
+
+# Volume meshes (issue 27): nodes, det J, cells and the scaled Jacobian on
+# N threads; the .vtu and .msh files are the same bytes for every -j. A
+# collapsed apex (nail), bodies sharing faces (L bracket), a tube closed on
+# itself, and hex27 cells; a resolution whose u layers split unevenly.
+EX = os.path.join(T.src, "examples")
+volume_cases = [
+    ("nail", os.path.join(EX, "nail.json"), ["--resolution", "5"]),
+    ("l-bracket", os.path.join(EX, "lattice-l-bracket.json"), ["--resolution", "3"]),
+    ("tube hex27", os.path.join(EX, "thick-cylinder.json"),
+     ["--resolution", "3", "--element", "hex27"]),
+]
+for label, path, extra in volume_cases:
+    for ext in ("vtu", "msh"):
+        files = {}
+        for j in (["1", "3"] if clitest.REPRESENTATIVE else ["1", "2", "3"]):
+            dst = os.path.join(TMP, f"vol-{label.replace(' ', '_')}-{j}.{ext}")
+            rc, _, err = T.run(["-q", "-o", dst, "-j", j] + extra + [path])
+            if T.check(f"{label} .{ext}: -j {j} exits 0", rc == 0, err):
+                with open(dst, "rb") as f:
+                    files[j] = f.read()
+        if "1" in files:
+            T.check(f"{label} .{ext}: a volume mesh was written", len(files["1"]) > 200)
+            for j, data in files.items():
+                if j != "1":
+                    T.check(f"{label} .{ext}: -j {j} writes the same bytes as -j 1",
+                            data == files["1"], f"{len(data)} vs {len(files['1'])} bytes")
 
 for bad in ["0", "x", "1025"]:
     dst = os.path.join(TMP, f"bad-{bad}.stl")

@@ -8,9 +8,10 @@
  * 10 whose face control points bulge out by 2: a "pillow"), sampled on a
  * fixed lattice of N intervals per direction, so 12 N^2 triangles
  * (N = 289: 1.002 million), without measuring the deviation
- * (COONS_SAMPLE_UNMEASURED, as coons2stl --resolution does).
+ * (COONS_SAMPLE_UNMEASURED, as coons2stl --resolution does), on T threads
+ * (coons_sample_options.threads; default every online core, as coons2stl).
  *
- *   bench_mesh [--resolution N] [--dir DIR] [--repeat R] [--keep]
+ *   bench_mesh [--resolution N] [--dir DIR] [--repeat R] [--threads T] [--keep]
  *   bench_mesh --emit-scad FILE [--resolution N]
  *
  * The first form prints "key value" lines (times are the minimum over R
@@ -139,6 +140,8 @@ static void emit_scad(const char *path, unsigned n, double P[4][4][4][3])
 int main(int argc, char **argv)
 {
     unsigned n = 289, repeat = 3;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    unsigned threads = cores > 0 ? (unsigned)cores : 1;
     const char *dir = ".", *scad = NULL;
     int keep = 0;
     for (int i = 1; i < argc; i++) {
@@ -148,17 +151,20 @@ int main(int argc, char **argv)
             dir = argv[++i];
         else if (!strcmp(argv[i], "--repeat") && i + 1 < argc)
             repeat = (unsigned)strtoul(argv[++i], NULL, 10);
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
+            threads = (unsigned)strtoul(argv[++i], NULL, 10);
         else if (!strcmp(argv[i], "--emit-scad") && i + 1 < argc)
             scad = argv[++i];
         else if (!strcmp(argv[i], "--keep"))
             keep = 1;
         else {
-            fprintf(stderr, "usage: bench_mesh [--resolution N] [--dir DIR] [--repeat R] [--keep]\n"
+            fprintf(stderr, "usage: bench_mesh [--resolution N] [--dir DIR] [--repeat R] "
+                            "[--threads T] [--keep]\n"
                             "       bench_mesh --emit-scad FILE [--resolution N]\n");
             return 2;
         }
     }
-    if (n < 1 || repeat < 1) return 2;
+    if (n < 1 || repeat < 1 || threads < 1) return 2;
     static double P[4][4][4][3];
     pillow(P);
     if (scad) {
@@ -173,6 +179,7 @@ int main(int argc, char **argv)
     so.resolution = n;
     /* As coons2stl --resolution: a fixed lattice, deviation not measured. */
     so.flags |= COONS_SAMPLE_UNMEASURED;
+    so.threads = threads;
     char stl[4096], asc[4096], flo[4096];
     snprintf(stl, sizeof stl, "%s/bench.stl", dir);
     snprintf(asc, sizeof asc, "%s/bench-ascii.stl", dir);
@@ -211,6 +218,7 @@ int main(int argc, char **argv)
     }
     if ((size_t)file_size(stl) != bytes) die("binary STL has the wrong size", NULL);
     printf("resolution %u\n", n);
+    printf("threads %u\n", threads);
     printf("triangles %zu\n", nt);
     printf("vertices %zu\n", coons_mesh_vertex_count(mesh));
     printf("volume %.9g\n", coons_mesh_volume(mesh));

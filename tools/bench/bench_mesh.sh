@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Meshing + writing benchmark, all in one run (BENCHMARKS.md):
 #  1. bench_mesh: sample one body (cubic Bezier volume, fixed lattice, 12 N^2
-#     triangles) and write binary STL, next to the I/O floor (the same number
+#     triangles; on every core, as coons2stl) and write binary STL, next to the I/O floor (the same number
 #     of bytes written to the same directory; both with temp file, fsync and
 #     rename), and the ASCII STL writer;
 #  2. numpy-stl's ASCII writer on the same triangles (pip-installed into a
