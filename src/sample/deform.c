@@ -30,6 +30,10 @@
 
 #include "body_impl.h"
 #include "mesh_impl.h"
+#include "parallel.h"
+
+/* Per triangle, how this round's measurement decided it. */
+enum { T_WHOLE = 0, T_FAIL = 1, T_PASS = 2 };
 
 typedef struct work {
     double *q, *x; /* parameters and images, 3 per vertex */
@@ -38,12 +42,25 @@ typedef struct work {
     size_t nt, cap_t;
     /* per triangle: its measured deviation, or -1 when not yet measured */
     float *dev;
+    /* this round, per triangle: T_* and the largest squared distance of
+     * its inner points (T_PASS) */
+    unsigned char *state;
+    double *fdev;
     /* edge -> midpoint vertex (open addressing; key 0 is empty) */
     uint64_t *key;
-    uint32_t *mid;  /* UINT32_MAX: measured and not split */
-    float *edev;    /* the edge's measured squared deviation */
+    uint32_t *mid;  /* UINT32_MAX: not split */
+    uint32_t *eix;  /* index into the measured edges, or UINT32_MAX */
     size_t cap_e;
+    /* this round's measured edges: ends, image of the midpoint, squared
+     * distance to the chord */
+    uint32_t *ends;
+    double *ex, *ed2;
+    size_t ne, cap_me;
+    /* vertices created without an image, evaluated in one batch */
+    uint32_t *pend;
+    size_t npend, cap_p;
     const coons_body *b;
+    unsigned threads;
     double tol, limit; /* limit = 0.9 * tol */
     coons_error *err;
     /* the progress report: round r spans [base, base + span) */
@@ -52,9 +69,14 @@ typedef struct work {
     double base, span, shown;
 } work;
 
-/* Reports the share `done` of the current round (0 to 1), every
- * PROGRESS_EVERY triangles; never backwards. */
-#define PROGRESS_EVERY 4096
+/* Points evaluated per call of coons_body_eval_points() on one thread. */
+#define BATCH 256
+/* Triangles measured between two progress reports (each block on every
+ * thread). */
+#define BLOCK 65536
+
+/* Reports the share `done` of the current round (0 to 1); never
+ * backwards. */
 static void report_round(work *w, double done)
 {
     if (!w->progress) return;
@@ -82,17 +104,40 @@ static coons_status reset_edges(work *w, size_t n)
 {
     size_t cap = 16;
     while (cap < 4 * n) cap *= 2;
-    coons__free(w->key);
-    coons__free(w->mid);
-    coons__free(w->edev);
-    w->key = coons__calloc(cap, sizeof *w->key);
-    w->mid = coons__malloc_array(cap, sizeof *w->mid);
-    w->edev = coons__malloc_array(cap, sizeof *w->edev);
-    w->cap_e = cap;
-    return w->key && w->mid && w->edev ? COONS_OK : coons__error_nomem(w->err);
+    if (cap != w->cap_e) {
+        coons__free(w->key);
+        coons__free(w->mid);
+        coons__free(w->eix);
+        w->key = coons__malloc_array(cap, sizeof *w->key);
+        w->mid = coons__malloc_array(cap, sizeof *w->mid);
+        w->eix = coons__malloc_array(cap, sizeof *w->eix);
+        w->cap_e = cap;
+        if (!w->key || !w->mid || !w->eix) {
+            w->cap_e = 0;
+            return coons__error_nomem(w->err);
+        }
+    }
+    memset(w->key, 0, cap * sizeof *w->key);
+    w->ne = 0;
+    w->npend = 0;
+    return COONS_OK;
 }
 
-/* A new vertex at parameters q; x: its image if known, else NULL. */
+/* Grows an array of `cap` elements of `size` bytes to hold n. */
+static int grow(void **p, size_t *cap, size_t n, size_t size)
+{
+    if (n <= *cap) return 1;
+    size_t c = *cap ? *cap : 64;
+    while (c < n) c *= 2;
+    void *q = coons__realloc(*p, c * size);
+    if (!q) return 0;
+    *p = q;
+    *cap = c;
+    return 1;
+}
+
+/* A new vertex at parameters q; x: its image if known, else NULL (the
+ * vertex waits in `pend` for eval_pending()). */
 static coons_status add_vertex(work *w, const double q[3], const double *x, uint32_t *id)
 {
     if (w->nv == UINT32_MAX) return coons__error_set(w->err, COONS_E_LIMIT, "deform: too many vertices");
@@ -107,83 +152,149 @@ static coons_status add_vertex(work *w, const double q[3], const double *x, uint
         w->cap_v = cap;
     }
     memcpy(w->q + 3 * w->nv, q, 3 * sizeof *q);
-    if (x)
+    if (x) {
         memcpy(w->x + 3 * w->nv, x, 3 * sizeof *x);
-    else
-        coons_body_eval(w->b, q[0], q[1], q[2], w->x + 3 * w->nv);
+    } else {
+        size_t cap = w->cap_p;
+        void *p = w->pend;
+        if (!grow(&p, &cap, w->npend + 1, sizeof *w->pend)) return coons__error_nomem(w->err);
+        w->pend = p;
+        w->cap_p = cap;
+        w->pend[w->npend++] = (uint32_t)w->nv;
+    }
     *id = (uint32_t)w->nv++;
     return COONS_OK;
 }
 
-/* Squared distance from the image x of the edge's parametric midpoint q to
- * its chord. */
-static double edge_dev2(const work *w, uint32_t a, uint32_t b, double q[3], double x[3])
-{
-    for (int d = 0; d < 3; d++) q[d] = 0.5 * (w->q[3 * a + d] + w->q[3 * b + d]);
-    coons_body_eval(w->b, q[0], q[1], q[2], x);
-    return coons__seg_dist2(x, w->x + 3 * a, w->x + 3 * b);
-}
+/* --- threaded evaluation; every result goes to a slot of its own, so the
+ * bytes do not depend on the thread count --- */
 
-/* Largest squared distance from the images of the 4 inner points to the
- * triangle, stopping early once it exceeds the limit. */
-static double face_dev2(const work *w, const uint32_t v[3])
+/* Images of the vertices pend[lo..hi) (or lo..hi themselves when pend is
+ * NULL). */
+typedef struct vjob {
+    const work *w;
+    const uint32_t *ids;
+} vjob;
+
+static void eval_vertices_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
 {
-    static const double BARY[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                      {2.0 / 3, 1.0 / 6, 1.0 / 6},
-                                      {1.0 / 6, 2.0 / 3, 1.0 / 6},
-                                      {1.0 / 6, 1.0 / 6, 2.0 / 3}};
-    double worst = 0;
-    for (int s = 0; s < 4 && worst <= w->limit * w->limit; s++) {
-        double q[3], x[3];
-        for (int d = 0; d < 3; d++)
-            q[d] = BARY[s][0] * w->q[3 * v[0] + d] + BARY[s][1] * w->q[3 * v[1] + d] +
-                   BARY[s][2] * w->q[3 * v[2] + d];
-        coons_body_eval(w->b, q[0], q[1], q[2], x);
-        worst = fmax(worst,
-                     coons__tri_dist2(x, w->x + 3 * v[0], w->x + 3 * v[1], w->x + 3 * v[2]));
+    (void)chunk;
+    const vjob *j = ctx;
+    const work *w = j->w;
+    double q[3 * BATCH], x[3 * BATCH];
+    for (size_t s = lo; s < hi; s += BATCH) {
+        size_t n = hi - s < BATCH ? hi - s : BATCH;
+        if (!j->ids) {
+            coons_body_eval_points(w->b, n, w->q + 3 * s, w->x + 3 * s, NULL, NULL, NULL);
+            continue;
+        }
+        for (size_t i = 0; i < n; i++) memcpy(q + 3 * i, w->q + 3 * (size_t)j->ids[s + i], sizeof(double[3]));
+        coons_body_eval_points(w->b, n, q, x, NULL, NULL, NULL);
+        for (size_t i = 0; i < n; i++) memcpy(w->x + 3 * (size_t)j->ids[s + i], x + 3 * i, sizeof(double[3]));
     }
-    return worst;
 }
 
-/* Marks an edge for splitting (creating its midpoint once). */
-static coons_status mark(work *w, uint32_t a, uint32_t b)
+static void eval_pending(work *w)
+{
+    vjob j = {w, w->pend};
+    coons__parallel_for(w->npend, w->threads, eval_vertices_chunk, &j);
+    w->npend = 0;
+}
+
+/* The 4 inner points of a triangle, in barycentric coordinates. */
+static const double BARY[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                  {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                  {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                  {1.0 / 6, 1.0 / 6, 2.0 / 3}};
+
+/* Triangles [lo, hi) of the block starting at t0 that are not yet measured:
+ * state and largest squared distance of the images of their inner points
+ * to the triangle of their corner images. */
+typedef struct tjob {
+    work *w;
+    size_t t0;
+} tjob;
+
+static void measure_faces_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
+{
+    (void)chunk;
+    const tjob *j = ctx;
+    work *w = j->w;
+    double lim2 = w->limit * w->limit;
+    enum { PER = BATCH / 4 };
+    double q[3 * BATCH], x[3 * BATCH];
+    size_t id[PER];
+    for (size_t t = j->t0 + lo, end = j->t0 + hi; t < end;) {
+        size_t n = 0;
+        for (; t < end && n < PER; t++) {
+            if (w->dev[t] >= 0) {
+                w->state[t] = T_WHOLE;
+                continue;
+            }
+            const uint32_t *v = w->tri + 3 * t;
+            for (int s = 0; s < 4; s++)
+                for (int d = 0; d < 3; d++)
+                    q[3 * (4 * n + s) + d] = BARY[s][0] * w->q[3 * v[0] + d] +
+                                             BARY[s][1] * w->q[3 * v[1] + d] +
+                                             BARY[s][2] * w->q[3 * v[2] + d];
+            id[n++] = t;
+        }
+        coons_body_eval_points(w->b, 4 * n, q, x, NULL, NULL, NULL);
+        for (size_t i = 0; i < n; i++) {
+            const uint32_t *v = w->tri + 3 * id[i];
+            double worst = 0;
+            for (int s = 0; s < 4; s++)
+                worst = fmax(worst, coons__tri_dist2(x + 3 * (4 * i + s), w->x + 3 * v[0],
+                                                     w->x + 3 * v[1], w->x + 3 * v[2]));
+            w->state[id[i]] = worst > lim2 ? T_FAIL : T_PASS;
+            w->fdev[id[i]] = worst;
+        }
+    }
+}
+
+/* The measured edges [lo, hi): image of the parametric midpoint and its
+ * squared distance to the chord of the end images. */
+static void measure_edges_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
+{
+    (void)chunk;
+    work *w = ctx;
+    double q[3 * BATCH];
+    for (size_t s = lo; s < hi; s += BATCH) {
+        size_t n = hi - s < BATCH ? hi - s : BATCH;
+        for (size_t i = 0; i < n; i++) {
+            uint32_t a = w->ends[2 * (s + i)], b = w->ends[2 * (s + i) + 1];
+            for (int d = 0; d < 3; d++) q[3 * i + d] = 0.5 * (w->q[3 * a + d] + w->q[3 * b + d]);
+        }
+        coons_body_eval_points(w->b, n, q, w->ex + 3 * s, NULL, NULL, NULL);
+        for (size_t i = 0; i < n; i++) {
+            uint32_t a = w->ends[2 * (s + i)], b = w->ends[2 * (s + i) + 1];
+            w->ed2[s + i] = coons__seg_dist2(w->ex + 3 * (s + i), w->x + 3 * a, w->x + 3 * b);
+        }
+    }
+}
+
+/* The edge's hash slot, inserting it (not split, not measured) when new. */
+static size_t edge_slot(work *w, uint32_t a, uint32_t b)
 {
     uint64_t k = edge_key(a, b);
     size_t i = slot(w, k);
-    if (w->key[i] && w->mid[i] != UINT32_MAX) return COONS_OK;
+    if (!w->key[i]) {
+        w->key[i] = k;
+        w->mid[i] = UINT32_MAX;
+        w->eix[i] = UINT32_MAX;
+    }
+    return i;
+}
+
+/* Splits the edge in slot i (ends a, b) once: its midpoint becomes a
+ * vertex, with the measured image when there is one. */
+static coons_status split_edge(work *w, size_t i, uint32_t a, uint32_t b)
+{
+    if (w->mid[i] != UINT32_MAX) return COONS_OK;
     double q[3];
     for (int d = 0; d < 3; d++) q[d] = 0.5 * (w->q[3 * a + d] + w->q[3 * b + d]);
-    uint32_t id;
-    coons_status st = add_vertex(w, q, NULL, &id);
-    if (st) return st;
-    if (!w->key[i]) w->edev[i] = 0.0f;
-    w->key[i] = k;
-    w->mid[i] = id;
-    return COONS_OK;
-}
-
-/* The edge's squared deviation, measured once per round (its two triangles
- * share it); an edge beyond the limit is marked, its midpoint's image
- * kept. */
-static coons_status measure_edge(work *w, uint32_t a, uint32_t b, double lim2, double *d2)
-{
-    uint64_t k = edge_key(a, b);
-    size_t i = slot(w, k);
-    if (w->key[i]) {
-        *d2 = w->edev[i];
-        return COONS_OK;
-    }
-    double q[3], x[3];
-    *d2 = edge_dev2(w, a, b, q, x);
-    uint32_t id = UINT32_MAX;
-    if (*d2 > lim2) {
-        coons_status st = add_vertex(w, q, x, &id);
-        if (st) return st;
-    }
-    w->key[i] = k;
-    w->mid[i] = id;
-    w->edev[i] = (float)*d2;
-    return COONS_OK;
+    const double *x = w->eix[i] != UINT32_MAX ? w->ex + 3 * (size_t)w->eix[i] : NULL;
+    return add_vertex(w, q, x, &w->mid[i]);
 }
 
 static uint32_t midpoint(const work *w, uint32_t a, uint32_t b)
@@ -198,32 +309,102 @@ static void put(uint32_t *t, size_t *n, uint32_t a, uint32_t b, uint32_t c)
     ++*n;
 }
 
-/* One round: mark, then split. *changed: whether anything was split. */
+/* One round: measure, mark, then split. *changed: whether anything was
+ * split. Measuring runs on w->threads threads, each point's result in a
+ * slot of its own; marking and splitting walk the triangles in order, so
+ * the vertices and triangles come out in the same order for every thread
+ * count. */
 static coons_status round_once(work *w, size_t max_triangles, int *changed)
 {
     coons_status st = reset_edges(w, w->nt * 3 / 2 + 16);
+    if (st) return st;
     double lim2 = w->limit * w->limit;
     /* measuring is the first half of the round's share, splitting the second */
     double per = w->nt ? 0.5 / (double)w->nt : 0;
+    size_t cap = w->nt ? w->nt : 1;
+    unsigned char *state = coons__malloc_array(cap, sizeof *state);
+    double *fdev = coons__malloc_array(cap, sizeof *fdev);
+    if (!state || !fdev) {
+        coons__free(state);
+        coons__free(fdev);
+        return coons__error_nomem(w->err);
+    }
+    w->state = state;
+    w->fdev = fdev;
+    /* 1. the inner points of every triangle not yet measured (a quarter) */
+    for (size_t t0 = 0; t0 < w->nt; t0 += BLOCK) {
+        report_round(w, 0.25 * per * (double)t0);
+        tjob j = {w, t0};
+        size_t n = w->nt - t0 < BLOCK ? w->nt - t0 : BLOCK;
+        coons__parallel_for(n, w->threads, measure_faces_chunk, &j);
+    }
+    /* 2. the edges of the triangles whose inner points passed, each once */
     for (size_t t = 0; t < w->nt && !st; t++) {
-        if (t % PROGRESS_EVERY == 0) report_round(w, per * (double)t);
-        if (w->dev[t] >= 0) continue; /* measured and left whole before */
+        if (state[t] != T_PASS) continue;
         const uint32_t *v = w->tri + 3 * t;
-        double worst = face_dev2(w, v);
-        int all = worst > lim2;
+        for (int e = 0; e < 3; e++) {
+            uint32_t a = v[e], b = v[(e + 1) % 3];
+            size_t i = edge_slot(w, a, b);
+            if (w->eix[i] != UINT32_MAX) continue;
+            size_t capm = w->cap_me;
+            void *p = w->ends;
+            if (!grow(&p, &capm, w->ne + 1, 2 * sizeof *w->ends)) {
+                st = coons__error_nomem(w->err);
+                break;
+            }
+            w->ends = p;
+            if (capm != w->cap_me) {
+                double *ex = coons__realloc(w->ex, capm * 3 * sizeof *ex);
+                if (ex) w->ex = ex;
+                double *ed2 = ex ? coons__realloc(w->ed2, capm * sizeof *ed2) : NULL;
+                if (ed2) w->ed2 = ed2;
+                if (!ex || !ed2) {
+                    st = coons__error_nomem(w->err);
+                    break;
+                }
+                w->cap_me = capm;
+            }
+            w->ends[2 * w->ne] = a;
+            w->ends[2 * w->ne + 1] = b;
+            w->eix[i] = (uint32_t)w->ne++;
+        }
+    }
+    if (!st) {
+        report_round(w, 0.25);
+        coons__parallel_for(w->ne, w->threads, measure_edges_chunk, w);
+        report_round(w, 0.375);
+    }
+    /* 3. in triangle order: an edge is split at the first triangle that
+     * fails or that measured it beyond the limit; a triangle left whole
+     * keeps its largest measured distance */
+    for (size_t t = 0; t < w->nt && !st; t++) {
+        if (state[t] == T_WHOLE) continue;
+        const uint32_t *v = w->tri + 3 * t;
+        double worst = fdev[t];
         for (int e = 0; e < 3 && !st; e++) {
-            double d2 = 0;
-            if (all)
-                st = mark(w, v[e], v[(e + 1) % 3]);
-            else
-                st = measure_edge(w, v[e], v[(e + 1) % 3], lim2, &d2);
+            uint32_t a = v[e], b = v[(e + 1) % 3];
+            size_t i = edge_slot(w, a, b);
+            if (state[t] == T_FAIL) {
+                st = split_edge(w, i, a, b);
+                continue;
+            }
+            double d2 = w->ed2[w->eix[i]];
+            if (d2 > lim2) st = split_edge(w, i, a, b);
             worst = fmax(worst, d2);
         }
         /* a triangle that needs splitting is measured again as its parts */
-        w->dev[t] = worst > lim2 ? -1.0f : (float)sqrt(worst);
+        w->dev[t] = state[t] == T_FAIL || worst > lim2 ? -1.0f : (float)sqrt(worst);
     }
+    w->state = NULL;
+    w->fdev = NULL;
+    coons__free(state);
+    coons__free(fdev);
     if (st) return st;
-    size_t cap = 4 * w->nt, n = 0;
+    report_round(w, 0.45);
+    eval_pending(w);
+    report_round(w, 0.5);
+    cap = 4 * w->nt;
+    size_t n = 0;
     uint32_t *out = coons__malloc_array(cap ? cap : 1, 3 * sizeof *out);
     float *dev = coons__malloc_array(cap ? cap : 1, sizeof *dev);
     if (!out || !dev) {
@@ -233,7 +414,7 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
     }
     *changed = 0;
     for (size_t t = 0; t < w->nt; t++) {
-        if (t % PROGRESS_EVERY == 0) report_round(w, 0.5 + per * (double)t);
+        if (t % BLOCK == 0) report_round(w, 0.5 + per * (double)t);
         const uint32_t *v = w->tri + 3 * t;
         uint32_t m[3];
         int k = 0, first = -1;
@@ -285,6 +466,28 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
     return COONS_OK;
 }
 
+/* Largest squared distance of a triangle's measured points (4 inner points,
+ * 3 edge midpoints): for the parts left after the last round. */
+static double tri_dev2(const work *w, const uint32_t v[3])
+{
+    double q[3 * 7], x[3 * 7], worst = 0;
+    for (int s = 0; s < 4; s++)
+        for (int d = 0; d < 3; d++)
+            q[3 * s + d] = BARY[s][0] * w->q[3 * v[0] + d] + BARY[s][1] * w->q[3 * v[1] + d] +
+                           BARY[s][2] * w->q[3 * v[2] + d];
+    for (int e = 0; e < 3; e++)
+        for (int d = 0; d < 3; d++)
+            q[3 * (4 + e) + d] = 0.5 * (w->q[3 * v[e] + d] + w->q[3 * v[(e + 1) % 3] + d]);
+    coons_body_eval_points(w->b, 7, q, x, NULL, NULL, NULL);
+    for (int s = 0; s < 4; s++)
+        worst = fmax(worst, coons__tri_dist2(x + 3 * s, w->x + 3 * v[0], w->x + 3 * v[1],
+                                             w->x + 3 * v[2]));
+    for (int e = 0; e < 3; e++)
+        worst = fmax(worst, coons__seg_dist2(x + 3 * (4 + e), w->x + 3 * v[e],
+                                             w->x + 3 * v[(e + 1) % 3]));
+    return worst;
+}
+
 coons_status coons_body_deform_mesh(const coons_body *b, const coons_mesh *in, const double *lo,
                                     const double *hi, double tolerance, size_t max_triangles,
                                     coons_mesh **out, coons_error *err)
@@ -325,7 +528,6 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
                                     COONS_DEFORM_OPTIONS_VERSION, "COONS_DEFORM_OPTIONS_INIT", err))
         return COONS_E_INVALID;
     unsigned threads = coons__record_threads(opts->version >= 2 ? opts->threads : 1);
-    (void)threads;
     if (!b || !in) return coons__error_set(err, COONS_E_INVALID, "deform: NULL body or mesh");
     const double *lo = opts->lo, *hi = opts->hi;
     double tolerance = opts->tolerance;
@@ -369,6 +571,7 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     work w;
     memset(&w, 0, sizeof w);
     w.b = b;
+    w.threads = threads;
     w.tol = tolerance;
     w.limit = 0.9 * tolerance;
     w.err = err;
@@ -377,11 +580,19 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     w.span = 0.5;
     report_round(&w, 0);
     coons_status st = COONS_OK;
-    for (size_t i = 0; i < nv && !st; i++) {
-        double q[3];
-        uint32_t id;
-        for (int d = 0; d < 3; d++) q[d] = clamp01((xyz[3 * i + d] - L[d]) / (H[d] - L[d]));
-        st = add_vertex(&w, q, NULL, &id);
+    /* the input's vertices, mapped in one threaded batch */
+    if (nv > UINT32_MAX - 1)
+        st = coons__error_set(err, COONS_E_LIMIT, "deform: too many vertices");
+    else if (nv && (!(w.q = coons__malloc_array(nv, 3 * sizeof *w.q)) ||
+                    !(w.x = coons__malloc_array(nv, 3 * sizeof *w.x))))
+        st = coons__error_nomem(err);
+    if (!st) {
+        w.nv = w.cap_v = nv;
+        for (size_t i = 0; i < nv; i++)
+            for (int d = 0; d < 3; d++)
+                w.q[3 * i + d] = clamp01((xyz[3 * i + d] - L[d]) / (H[d] - L[d]));
+        vjob j = {&w, NULL};
+        coons__parallel_for(nv, threads, eval_vertices_chunk, &j);
     }
     if (!st && (!(w.tri = coons__malloc_array(nt ? nt : 1, 3 * sizeof *w.tri)) ||
                 !(w.dev = coons__malloc_array(nt ? nt : 1, sizeof *w.dev))))
@@ -402,11 +613,7 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     /* after 64 rounds that all split something, the last parts are measured */
     for (size_t t = 0; t < w.nt && !st; t++)
         if (w.dev[t] < 0) {
-            double worst = face_dev2(&w, w.tri + 3 * t), q[3], x[3];
-            for (int e = 0; e < 3; e++)
-                worst = fmax(worst, edge_dev2(&w, w.tri[3 * t + e], w.tri[3 * t + (e + 1) % 3],
-                                              q, x));
-            w.dev[t] = (float)sqrt(worst);
+            w.dev[t] = (float)sqrt(tri_dev2(&w, w.tri + 3 * t));
         }
     double o[3], J[3][3];
     int reversed = !st && coons_body_eval_jacobian(b, 0.5, 0.5, 0.5, o, J) < 0;
@@ -446,6 +653,10 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     coons__free(w.tri);
     coons__free(w.key);
     coons__free(w.mid);
-    coons__free(w.edev);
+    coons__free(w.eix);
+    coons__free(w.ends);
+    coons__free(w.ex);
+    coons__free(w.ed2);
+    coons__free(w.pend);
     return st;
 }
