@@ -26,14 +26,30 @@
  * half the triangles measured, its second half the triangles split, so the
  * fraction never goes back; 1 at the end.
  */
+#include <stdlib.h>
 #include <string.h>
 
 #include "body_impl.h"
 #include "mesh_impl.h"
+#include "coons_test_hooks.h"
 #include "parallel.h"
 
 /* Per triangle, how this round's measurement decided it. */
-enum { T_WHOLE = 0, T_FAIL = 1, T_PASS = 2 };
+enum { T_WHOLE = 0, T_FAIL = 1, T_PASS = 2, T_EST = 3 };
+
+/* The estimate of the interpolation error (see "Deciding without
+ * evaluating" above): a lattice of cells over the unit cube, m[d] cells
+ * along d between the nodes node[d][0] = 0 < ... < node[d][m[d]] = 1 (the
+ * body's breakpoints among them); c0[d][i] set where node i is a
+ * breakpoint at which the map may be only C0 (a triangle across it is not
+ * estimated); per cell K, the triangle's error estimate being K f. */
+typedef struct estimate {
+    int on;
+    size_t m[3];
+    double *node[3];
+    unsigned char *c0[3];
+    double *k;
+} estimate;
 
 typedef struct work {
     double *q, *x; /* parameters and images, 3 per vertex */
@@ -60,6 +76,8 @@ typedef struct work {
     uint32_t *pend;
     size_t npend, cap_p;
     const coons_body *b;
+    estimate est;
+    size_t estimated; /* triangles decided by the estimate */
     unsigned threads;
     double tol, limit; /* limit = 0.9 * tol */
     coons_error *err;
@@ -207,6 +225,317 @@ static const double BARY[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
                                   {1.0 / 6, 2.0 / 3, 1.0 / 6},
                                   {1.0 / 6, 1.0 / 6, 2.0 / 3}};
 
+/* --- deciding without evaluating ---
+ *
+ * For a map F that is C1 with bounded second derivatives on a triangle of
+ * parameter points x_i, and its linear interpolant I on the triangle of
+ * images, Taylor's theorem at x gives
+ *   |F(x) - I(x)| <= rho/2 sum_i l_i |x_i - x|^2 = rho/2 sum_{i<j} l_i l_j |x_i - x_j|^2
+ * (l: barycentric coordinates of x), rho a bound of |d^2/dt^2 F(x + t e)|
+ * over unit directions e; the right side is at most rho/2 f with f the
+ * squared circumradius of an acute triangle, else a quarter of its longest
+ * side squared. The distance from F(x) to the triangle of images is at most
+ * that. rho is estimated, not proved: per cell of a lattice (ESTIMATE_CELLS
+ * along each direction, the body's breakpoints added), the largest change
+ * of each column of the Jacobian along each edge of the cell over its
+ * length (an average of a second partial over the edge) gives M_ab, and
+ * rho = max_a sum_b M_ab; that is taken over the cell and its neighbours,
+ * plus the spread between them, times ESTIMATE_SAFETY. A triangle whose
+ * estimate is at most half the limit (0.45 times the tolerance, where
+ * measuring accepts 0.9) is left whole unmeasured; any other is measured
+ * as before. */
+#define ESTIMATE_CELLS 16
+#define ESTIMATE_SAFETY 2.0
+/* At most this many Jacobians on the lattice, and then only for inputs of
+ * at least as many triangles (else measuring is cheaper). */
+#define ESTIMATE_MAX_NODES 20000
+/* Breakpoints are evaluated at both sides, this far apart. */
+#define ESTIMATE_SIDE 1e-9
+
+/* Test hook (coons_test_hooks.h): 0, estimates on, nothing counted; 1,
+ * on, and the triangles they decided counted; 2, off (every triangle
+ * measured), counted as 0. */
+static int estimate_mode;
+static size_t estimate_count;
+void coons__deform_estimates(int mode) { estimate_mode = mode; }
+size_t coons__deform_estimated(void) { return estimate_count; }
+
+static void estimate_free(estimate *E)
+{
+    for (int d = 0; d < 3; d++) {
+        coons__free(E->node[d]);
+        coons__free(E->c0[d]);
+        E->node[d] = NULL;
+        E->c0[d] = NULL;
+    }
+    coons__free(E->k);
+    E->k = NULL;
+    E->on = 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The nodes along d: 0, 1, ESTIMATE_CELLS equal cells and the breakpoints
+ * (flagged in c0 when the map may be only C0 there). 0: no estimate along
+ * d (C0 breakpoints that are not known), else 1 (COONS_E_NOMEM: -1). */
+static int estimate_nodes(const coons_body *b, int d, estimate *E, coons_error *err)
+{
+    coons__space S = coons__body_space(b, d);
+    double *br = NULL;
+    size_t nb = 0;
+    if (coons__body_breaks(b, d, &br, &nb, err)) return -1;
+    /* no inner breakpoints listed while the map has some (beyond
+     * COONS__MAX_BREAKS, or a type that does not list them) */
+    int known = nb > 2 || S.cont >= COONS__SMOOTH;
+    if (!known && S.cont < 1) {
+        coons__free(br);
+        return 0;
+    }
+    size_t cap = ESTIMATE_CELLS + 1 + nb;
+    double *x = coons__malloc_array(cap, sizeof *x);
+    unsigned char *c0 = coons__calloc(cap, 1);
+    if (!x || !c0) {
+        coons__free(br);
+        coons__free(x);
+        coons__free(c0);
+        return -1;
+    }
+    size_t n = 0;
+    for (size_t i = 0; i <= ESTIMATE_CELLS; i++) x[n++] = (double)i / ESTIMATE_CELLS;
+    for (size_t i = 0; i < nb; i++)
+        if (br[i] > 0 && br[i] < 1) x[n++] = br[i];
+    qsort(x, n, sizeof *x, cmp_double);
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (m == 0 || x[i] - x[m - 1] > 64 * ESTIMATE_SIDE) x[m++] = x[i];
+    x[m - 1] = 1.0;
+    /* the breakpoints among the nodes: where the map may be only C0 */
+    if (S.cont < 1)
+        for (size_t i = 1; i + 1 < m; i++)
+            for (size_t j = 0; j < nb; j++)
+                if (fabs(br[j] - x[i]) <= 64 * ESTIMATE_SIDE) c0[i] = 1;
+    coons__free(br);
+    E->node[d] = x;
+    E->c0[d] = c0;
+    E->m[d] = m - 1;
+    return 1;
+}
+
+typedef struct ejob {
+    const coons_body *b;
+    const double *uvw;
+    double *xyz, *jac;
+} ejob;
+
+static void estimate_eval_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
+{
+    (void)chunk;
+    const ejob *j = ctx;
+    for (size_t s = lo; s < hi; s += BATCH) {
+        size_t n = hi - s < BATCH ? hi - s : BATCH;
+        coons_body_eval_points(j->b, n, j->uvw + 3 * s, j->xyz + 3 * s, j->jac + 9 * s, NULL,
+                               NULL);
+    }
+}
+
+/* Builds the estimate's lattice (E->on stays 0 when the body or the input
+ * does not suit it). Only COONS_E_NOMEM fails. */
+static coons_status estimate_build(work *w, size_t nt)
+{
+    estimate *E = &w->est;
+    memset(E, 0, sizeof *E);
+    if (estimate_mode == 2) return COONS_OK;
+    for (int d = 0; d < 3; d++) {
+        int r = estimate_nodes(w->b, d, E, w->err);
+        if (r < 0) {
+            estimate_free(E);
+            return coons__error_nomem(w->err);
+        }
+        if (r == 0) {
+            estimate_free(E);
+            return COONS_OK;
+        }
+    }
+    /* the evaluation points: each node, an inner breakpoint at both sides;
+     * lo[d][i] and hi[d][i] index the lower and upper ends of cell i */
+    size_t np[3], total = 1;
+    double *par[3] = {NULL, NULL, NULL};
+    size_t *lo[3] = {NULL, NULL, NULL}, *hi[3] = {NULL, NULL, NULL};
+    double *uvw = NULL, *xyz = NULL, *jac = NULL;
+    coons_status st = COONS_OK;
+    for (int d = 0; d < 3 && !st; d++) {
+        size_t m = E->m[d];
+        par[d] = coons__malloc_array(2 * (m + 1), sizeof *par[d]);
+        lo[d] = coons__malloc_array(m, sizeof *lo[d]);
+        hi[d] = coons__malloc_array(m, sizeof *hi[d]);
+        if (!par[d] || !lo[d] || !hi[d]) {
+            st = coons__error_nomem(w->err);
+            break;
+        }
+        size_t n = 0;
+        for (size_t i = 0; i <= m; i++) {
+            double x = E->node[d][i];
+            if (i > 0 && i < m && E->c0[d][i]) {
+                par[d][n] = x - ESTIMATE_SIDE;
+                hi[d][i - 1] = n++;
+                par[d][n] = x + ESTIMATE_SIDE;
+                lo[d][i] = n++;
+            } else {
+                par[d][n] = x;
+                if (i > 0) hi[d][i - 1] = n;
+                if (i < m) lo[d][i] = n;
+                n++;
+            }
+        }
+        np[d] = n;
+        total *= n;
+    }
+    if (!st && (total > ESTIMATE_MAX_NODES || nt < total)) goto done;
+    if (!st && (!(uvw = coons__malloc_array(total, 3 * sizeof *uvw)) ||
+                !(xyz = coons__malloc_array(total, 3 * sizeof *xyz)) ||
+                !(jac = coons__malloc_array(total, 9 * sizeof *jac))))
+        st = coons__error_nomem(w->err);
+    if (st) goto done;
+    for (size_t i = 0, p = 0; i < np[0]; i++)
+        for (size_t j = 0; j < np[1]; j++)
+            for (size_t k = 0; k < np[2]; k++, p++) {
+                uvw[3 * p] = par[0][i];
+                uvw[3 * p + 1] = par[1][j];
+                uvw[3 * p + 2] = par[2][k];
+            }
+    ejob job = {w->b, uvw, xyz, jac};
+    coons__parallel_for(total, w->threads, estimate_eval_chunk, &job);
+    for (size_t p = 0; p < 9 * total; p++)
+        if (!isfinite(jac[p])) goto done;
+    size_t m0 = E->m[0], m1 = E->m[1], m2 = E->m[2], nc = m0 * m1 * m2;
+    double *rho = coons__malloc_array(nc, sizeof *rho);
+    E->k = coons__malloc_array(nc, sizeof *E->k);
+    if (!rho || !E->k) {
+        coons__free(rho);
+        st = coons__error_nomem(w->err);
+        goto done;
+    }
+    for (size_t i = 0; i < m0; i++)
+        for (size_t j = 0; j < m1; j++)
+            for (size_t k = 0; k < m2; k++) {
+                size_t cell[3] = {i, j, k};
+                double M[3][3] = {{0}};
+                /* the 8 corners: bit d set, the upper end along d */
+                for (int c = 0; c < 8; c++)
+                    for (int bd = 0; bd < 3; bd++) {
+                        if (c >> (2 - bd) & 1) continue; /* each edge from its lower end */
+                        size_t a_ix[3], b_ix[3];
+                        for (int d = 0; d < 3; d++) {
+                            int up = c >> (2 - d) & 1;
+                            a_ix[d] = up ? hi[d][cell[d]] : lo[d][cell[d]];
+                            b_ix[d] = d == bd ? hi[d][cell[d]] : a_ix[d];
+                        }
+                        size_t pa = (a_ix[0] * np[1] + a_ix[1]) * np[2] + a_ix[2];
+                        size_t pb = (b_ix[0] * np[1] + b_ix[1]) * np[2] + b_ix[2];
+                        double len = par[bd][b_ix[bd]] - par[bd][a_ix[bd]];
+                        for (int a = 0; a < 3; a++) {
+                            double s2 = 0;
+                            for (int r = 0; r < 3; r++) {
+                                double dj = jac[9 * pb + 3 * r + a] - jac[9 * pa + 3 * r + a];
+                                s2 += dj * dj;
+                            }
+                            double g = sqrt(s2) / len;
+                            if (g > M[a][bd]) M[a][bd] = g;
+                            if (g > M[bd][a]) M[bd][a] = g;
+                        }
+                    }
+                double r = 0;
+                for (int a = 0; a < 3; a++) r = fmax(r, M[a][0] + M[a][1] + M[a][2]);
+                rho[(i * m1 + j) * m2 + k] = r;
+            }
+    /* over the neighbours, plus their spread, times the safety factor, and
+     * the 1/2 of the remainder */
+    for (size_t i = 0; i < m0; i++)
+        for (size_t j = 0; j < m1; j++)
+            for (size_t k = 0; k < m2; k++) {
+                double hi_ = 0, lo_ = INFINITY;
+                for (size_t a = i ? i - 1 : 0; a <= i + 1 && a < m0; a++)
+                    for (size_t b = j ? j - 1 : 0; b <= j + 1 && b < m1; b++)
+                        for (size_t c = k ? k - 1 : 0; c <= k + 1 && c < m2; c++) {
+                            double r = rho[(a * m1 + b) * m2 + c];
+                            hi_ = fmax(hi_, r);
+                            lo_ = fmin(lo_, r);
+                        }
+                E->k[(i * m1 + j) * m2 + k] = 0.5 * ESTIMATE_SAFETY * (2 * hi_ - lo_);
+            }
+    coons__free(rho);
+    E->on = 1;
+done:
+    for (int d = 0; d < 3; d++) {
+        coons__free(par[d]);
+        coons__free(lo[d]);
+        coons__free(hi[d]);
+    }
+    coons__free(uvw);
+    coons__free(xyz);
+    coons__free(jac);
+    if (!E->on) estimate_free(E);
+    return st;
+}
+
+/* The cells along d that [a, b] meets: *i0..*i1; 0 when it crosses a
+ * node where the map may be only C0. */
+static int cell_range(const estimate *E, int d, double a, double b, size_t *i0, size_t *i1)
+{
+    const double *x = E->node[d];
+    size_t m = E->m[d], l = 0, h = m; /* the cell of a: x[l] <= a < x[l+1] */
+    while (h - l > 1) {
+        size_t c = (l + h) / 2;
+        if (x[c] <= a) l = c; else h = c;
+    }
+    size_t e = l;
+    while (e + 1 < m && x[e + 1] < b) e++;
+    for (size_t i = l + 1; i <= e; i++)
+        if (E->c0[d][i]) return 0;
+    *i0 = l;
+    *i1 = e;
+    return 1;
+}
+
+/* The error estimate of a triangle (parameters of its corners p[3]), or
+ * -1 when the estimate cannot be made (across a C0 breakpoint, or over
+ * more than 8 cells). */
+static double estimate_triangle(const estimate *E, const double *p0, const double *p1,
+                                const double *p2)
+{
+    size_t i0[3], i1[3], cells = 1;
+    for (int d = 0; d < 3; d++) {
+        double a = fmin(p0[d], fmin(p1[d], p2[d])), b = fmax(p0[d], fmax(p1[d], p2[d]));
+        if (!cell_range(E, d, a, b, &i0[d], &i1[d])) return -1;
+        cells *= i1[d] - i0[d] + 1;
+    }
+    if (cells > 8) return -1;
+    double k = 0;
+    for (size_t i = i0[0]; i <= i1[0]; i++)
+        for (size_t j = i0[1]; j <= i1[1]; j++)
+            for (size_t l = i0[2]; l <= i1[2]; l++)
+                k = fmax(k, E->k[(i * E->m[1] + j) * E->m[2] + l]);
+    /* f: the largest sum_{i<j} l_i l_j |x_i - x_j|^2 over the triangle */
+    double s[3] = {0, 0, 0};
+    for (int d = 0; d < 3; d++) {
+        s[0] += (p1[d] - p0[d]) * (p1[d] - p0[d]);
+        s[1] += (p2[d] - p1[d]) * (p2[d] - p1[d]);
+        s[2] += (p0[d] - p2[d]) * (p0[d] - p2[d]);
+    }
+    double c2 = fmax(s[0], fmax(s[1], s[2])), f = c2 / 4;
+    if (s[0] + s[1] + s[2] > 2 * c2) { /* acute: the circumradius squared */
+        double den = 2 * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]) -
+                     (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        double r2 = den > 0 ? s[0] * s[1] * s[2] / den : c2 / 3;
+        f = fmax(f, fmin(r2, c2 / 3));
+    }
+    return k * f;
+}
+
 /* Triangles [lo, hi) of the block starting at t0 that are not yet measured:
  * state and largest squared distance of the images of their inner points
  * to the triangle of their corner images. */
@@ -232,6 +561,15 @@ static void measure_faces_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
                 continue;
             }
             const uint32_t *v = w->tri + 3 * t;
+            if (w->est.on) {
+                double e = estimate_triangle(&w->est, w->q + 3 * v[0], w->q + 3 * v[1],
+                                             w->q + 3 * v[2]);
+                if (e >= 0 && e <= 0.5 * w->limit) {
+                    w->state[t] = T_EST;
+                    w->fdev[t] = e;
+                    continue;
+                }
+            }
             for (int s = 0; s < 4; s++)
                 for (int d = 0; d < 3; d++)
                     q[3 * (4 * n + s) + d] = BARY[s][0] * w->q[3 * v[0] + d] +
@@ -316,8 +654,7 @@ static void put(uint32_t *t, size_t *n, uint32_t a, uint32_t b, uint32_t c)
  * count. */
 static coons_status round_once(work *w, size_t max_triangles, int *changed)
 {
-    coons_status st = reset_edges(w, w->nt * 3 / 2 + 16);
-    if (st) return st;
+    coons_status st = COONS_OK;
     double lim2 = w->limit * w->limit;
     /* measuring is the first half of the round's share, splitting the second */
     double per = w->nt ? 0.5 / (double)w->nt : 0;
@@ -331,14 +668,19 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
     }
     w->state = state;
     w->fdev = fdev;
+    size_t nv0 = w->nv;
     /* 1. the inner points of every triangle not yet measured (a quarter) */
     for (size_t t0 = 0; t0 < w->nt; t0 += BLOCK) {
-        report_round(w, 0.25 * per * (double)t0);
+        report_round(w, 0.5 * per * (double)t0);
         tjob j = {w, t0};
         size_t n = w->nt - t0 < BLOCK ? w->nt - t0 : BLOCK;
         coons__parallel_for(n, w->threads, measure_faces_chunk, &j);
     }
-    /* 2. the edges of the triangles whose inner points passed, each once */
+    /* 2. the edges of the triangles whose inner points passed, each once
+     * (the table sized for the triangles measured this round) */
+    size_t measured = 0;
+    for (size_t t = 0; t < w->nt; t++) measured += state[t] == T_PASS || state[t] == T_FAIL;
+    st = reset_edges(w, 3 * measured + 16);
     for (size_t t = 0; t < w->nt && !st; t++) {
         if (state[t] != T_PASS) continue;
         const uint32_t *v = w->tri + 3 * t;
@@ -379,6 +721,11 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
      * keeps its largest measured distance */
     for (size_t t = 0; t < w->nt && !st; t++) {
         if (state[t] == T_WHOLE) continue;
+        if (state[t] == T_EST) { /* its estimate for its deviation */
+            w->dev[t] = (float)fdev[t];
+            w->estimated++;
+            continue;
+        }
         const uint32_t *v = w->tri + 3 * t;
         double worst = fdev[t];
         for (int e = 0; e < 3 && !st; e++) {
@@ -403,6 +750,8 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
     report_round(w, 0.45);
     eval_pending(w);
     report_round(w, 0.5);
+    *changed = 0;
+    if (w->nv == nv0) return COONS_OK; /* nothing split */
     cap = 4 * w->nt;
     size_t n = 0;
     uint32_t *out = coons__malloc_array(cap ? cap : 1, 3 * sizeof *out);
@@ -602,6 +951,7 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
         for (size_t t = 0; t < nt; t++) w.dev[t] = -1.0f;
         w.nt = nt;
     }
+    if (!st) st = estimate_build(&w, nt);
     unsigned rounds = 0;
     for (int changed = 1; !st && changed && rounds < 64;) {
         st = round_once(&w, max_triangles, &changed);
@@ -658,5 +1008,7 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     coons__free(w.ex);
     coons__free(w.ed2);
     coons__free(w.pend);
+    estimate_free(&w.est);
+    if (estimate_mode) estimate_count = w.estimated;
     return st;
 }

@@ -44,6 +44,14 @@ int coons__csg_whole_corefinement_set(void);
 void coons__occt_inject_wrong_spline(int on);
 int coons__occt_wrong_spline_injected(void);
 
+/* The error estimate of coons_body_deform() (src/sample/deform.c): mode
+ * 0, on, nothing counted (the default); 1, on, and the triangles it
+ * decided (left whole unmeasured) counted; 2, off: every triangle is
+ * measured. coons__deform_estimated(): the count of the last call (0 in
+ * mode 0 and 2... as last set). */
+void coons__deform_estimates(int mode);
+size_t coons__deform_estimated(void);
+
 /* The count of coons_mesh_count_self_intersections() on `m` as it is (no
  * scaling), on `threads` threads; with `old_tri` (one flag per triangle, or
  * NULL) the local count of the union's final check, where pairs of two
