@@ -394,7 +394,7 @@ static coons_status estimate_build(work *w, size_t nt)
         np[d] = n;
         total *= n;
     }
-    if (!st && (total > ESTIMATE_MAX_NODES || nt < total)) goto done;
+    if (!st && (total > ESTIMATE_MAX_NODES || 2 * nt < total)) goto done;
     if (!st && (!(uvw = coons__malloc_array(total, 3 * sizeof *uvw)) ||
                 !(xyz = coons__malloc_array(total, 3 * sizeof *xyz)) ||
                 !(jac = coons__malloc_array(total, 9 * sizeof *jac))))
@@ -469,6 +469,7 @@ static coons_status estimate_build(work *w, size_t nt)
             }
     coons__free(rho);
     E->on = 1;
+
 done:
     for (int d = 0; d < 3; d++) {
         coons__free(par[d]);

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "body_fixtures.h"
+#include "coons_test_hooks.h"
 
 /* The unit cube as 12 triangles, counter-clockwise seen from outside. */
 static coons_mesh *unit_cube(void)
@@ -367,6 +368,152 @@ static void test_budget_and_alloc(void **state)
     coons_body_free(b);
 }
 
+
+/* The unit cube with n x n squares per face, two triangles each,
+ * counter-clockwise seen from outside (vertices shared: closed). */
+static coons_mesh *fine_cube(int n)
+{
+    size_t nv = (size_t)(n + 1) * (n + 1) * (n + 1), nt = 12 * (size_t)n * n, k = 0;
+    double *v = malloc(nv * 3 * sizeof *v);
+    uint32_t *t = malloc(nt * 3 * sizeof *t);
+    for (int i = 0; i <= n; i++)
+        for (int j = 0; j <= n; j++)
+            for (int l = 0; l <= n; l++) {
+                size_t id = ((size_t)i * (n + 1) + j) * (n + 1) + l;
+                v[3 * id] = (double)i / n, v[3 * id + 1] = (double)j / n,
+                v[3 * id + 2] = (double)l / n;
+            }
+#define ID(a, b, c) ((uint32_t)(((a) * (n + 1) + (b)) * (n + 1) + (c)))
+    for (int d = 0; d < 3; d++)
+        for (int side = 0; side <= n; side += n)
+            for (int a = 0; a < n; a++)
+                for (int b = 0; b < n; b++) {
+                    uint32_t c[4];
+                    int s[4][2] = {{a, b}, {a + 1, b}, {a + 1, b + 1}, {a, b + 1}};
+                    for (int m = 0; m < 4; m++) {
+                        int p[3];
+                        p[d] = side, p[(d + 1) % 3] = s[m][0], p[(d + 2) % 3] = s[m][1];
+                        c[m] = ID(p[0], p[1], p[2]);
+                    }
+                    if (!side) { /* outward: -e_d */
+                        uint32_t x = c[1];
+                        c[1] = c[3], c[3] = x;
+                    }
+                    uint32_t tri[6] = {c[0], c[1], c[2], c[0], c[2], c[3]};
+                    memcpy(t + 3 * k, tri, sizeof tri);
+                    k += 2;
+                }
+#undef ID
+    coons_mesh *m = NULL;
+    coons_error err = COONS_ERROR_INIT;
+    assert_coons_ok(coons_mesh_new(&m, &err), &err);
+    assert_coons_ok(coons_mesh_add_part(m, "cube", v, nv, t, nt, &err), &err);
+    free(v);
+    free(t);
+    assert_true(coons_mesh_volume(m) > 0.999 && coons_mesh_volume(m) < 1.001);
+    return m;
+}
+
+static void assert_same_mesh(const coons_mesh *a, const coons_mesh *b)
+{
+    size_t nv = coons_mesh_vertex_count(a), nt = coons_mesh_triangle_count(a);
+    assert_int_equal(coons_mesh_vertex_count(b), nv);
+    assert_int_equal(coons_mesh_triangle_count(b), nt);
+    assert_memory_equal(coons_mesh_vertices(a), coons_mesh_vertices(b), nv * 3 * sizeof(double));
+    assert_memory_equal(coons_mesh_triangles(a), coons_mesh_triangles(b),
+                        nt * 3 * sizeof(uint32_t));
+}
+
+/* The error estimate (src/sample/deform.c) decides triangles without
+ * evaluating them; the mesh must still be the one of measuring every
+ * triangle (a triangle it accepts would have been accepted, an edge it
+ * leaves would not have been split), byte for byte, and the same on 1, 2
+ * and 5 threads. Bodies: body 2 of B-spline faces (smooth at its knots),
+ * the rational cylinder (C0 knots in u: no estimate across them; strongly
+ * curved, so refinement), the B-spline volume with inner knots, body 1 of
+ * curved edges. Exact images of random points of the input's faces lie
+ * within the tolerance of the result (brute-force distance). */
+static void test_estimate(void **state)
+{
+    (void)state;
+    static const int bodies[] = {9, 6, 5, 3};
+    coons_mesh *in = fine_cube(21);
+    size_t nin = coons_mesh_triangle_count(in);
+    const double *qv = coons_mesh_vertices(in);
+    const uint32_t *ti = coons_mesh_triangles(in);
+    for (size_t k = 0; k < 2 * sizeof bodies / sizeof bodies[0]; k++) {
+        int loose = k & 1; /* the input fine enough, or refined */
+        coons_error err = COONS_ERROR_INIT;
+        coons_body *b;
+        assert_coons_ok(tb_make_body(bodies[k / 2], &b, &err), &err);
+        double lo[3], hi[3];
+        coons_body_control_bbox(b, lo, hi);
+        double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        double tol = (loose ? 2e-2 : 4e-4) * diag;
+        coons_deform_options o = COONS_DEFORM_OPTIONS_INIT;
+        o.tolerance = tol;
+        coons_mesh *ref = NULL, *out = NULL;
+        coons_deform_report rep = COONS_DEFORM_REPORT_INIT;
+        coons__deform_estimates(2); /* every triangle measured */
+        assert_coons_ok(coons_body_deform(b, in, &o, &ref, NULL, &err), &err);
+        assert_int_equal(coons__deform_estimated(), 0);
+        coons__deform_estimates(1);
+        size_t decided = 0;
+        for (unsigned threads = 1; threads <= 5; threads += 1 + (threads == 2)) { /* 1, 2, 5 */
+            o.threads = threads;
+            assert_coons_ok(coons_body_deform(b, in, &o, &out, &rep, &err), &err);
+            if (threads == 1) decided = coons__deform_estimated();
+            assert_int_equal(coons__deform_estimated(), decided);
+            assert_same_mesh(out, ref);
+            if (threads < 5) coons_mesh_free(out);
+        }
+        coons__deform_estimates(0);
+        size_t nto = coons_mesh_triangle_count(out);
+        print_message("%s: %zu -> %zu triangles, %u rounds, %zu decided by the estimate, "
+                      "deviation %.3g of %.3g\n",
+                      tb_body_label(bodies[k / 2]), nin, nto, rep.rounds, decided, rep.deviation, tol);
+        if (loose) assert_true(decided > 0);
+        assert_true(rep.deviation <= 0.9 * tol * (1 + 1e-6));
+        assert_true(closed_oriented(out));
+        if (!loose) { /* split, measured where the estimate cannot decide */
+            assert_true(rep.rounds >= 1);
+            assert_true(decided < nto);
+        }
+        /* exact images of random points of the input's faces */
+        tb_rng r = {11};
+        const double *x = coons_mesh_vertices(out);
+        const uint32_t *to = coons_mesh_triangles(out);
+        double worst = 0;
+        for (int s = 0; s < 40; s++) {
+            size_t t = (size_t)(tb_rand(&r) * (double)nin);
+            double a = tb_rand(&r), bb = tb_rand(&r);
+            if (a + bb > 1) a = 1 - a, bb = 1 - bb;
+            double q[3], p[3], best = INFINITY;
+            for (int d = 0; d < 3; d++)
+                q[d] = (1 - a - bb) * qv[3 * ti[3 * t] + d] + a * qv[3 * ti[3 * t + 1] + d] +
+                       bb * qv[3 * ti[3 * t + 2] + d];
+            coons_body_eval(b, q[0], q[1], q[2], p);
+            for (size_t j = 0; j < nto; j++) {
+                const double *A = x + 3 * to[3 * j], *B = x + 3 * to[3 * j + 1],
+                             *C = x + 3 * to[3 * j + 2];
+                int far = 0; /* outside the triangle's box grown by the best so far */
+                for (int d = 0; d < 3 && !far; d++)
+                    far = p[d] < fmin(A[d], fmin(B[d], C[d])) - best ||
+                          p[d] > fmax(A[d], fmax(B[d], C[d])) + best;
+                if (!far) best = fmin(best, tri_dist(p, A, B, C));
+            }
+            worst = fmax(worst, best);
+        }
+        print_message("  worst distance of 40 exact image points %.3g\n", worst);
+        assert_true(worst <= tol);
+        coons_mesh_free(out);
+        coons_mesh_free(ref);
+        coons_body_free(b);
+    }
+    coons_mesh_free(in);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -376,6 +523,7 @@ int main(void)
         cmocka_unit_test(test_options_progress),
         cmocka_unit_test(test_outside_and_invalid),
         cmocka_unit_test(test_budget_and_alloc),
+        cmocka_unit_test(test_estimate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
