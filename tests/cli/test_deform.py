@@ -383,6 +383,119 @@ def test_bent_bar(t):
                 json.dumps(info) + err)
 
 
+def grid_box(lo, hi, n):
+    """A box with n x n squares per face, two triangles each, outward, its
+    vertices shared."""
+    idx, V, F = {}, [], []
+
+    def vid(k):
+        if k not in idx:
+            idx[k] = len(V)
+            V.append([lo[d] + (hi[d] - lo[d]) * k[d] / n for d in range(3)])
+        return idx[k]
+
+    for d in range(3):
+        a, b = (d + 1) % 3, (d + 2) % 3
+        for side in (0, n):
+            for i in range(n):
+                for j in range(n):
+                    c = []
+                    for (s, t) in ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)):
+                        k = [0, 0, 0]
+                        k[d], k[a], k[b] = side, s, t
+                        c.append(vid(tuple(k)))
+                    if side == 0:
+                        c = [c[0], c[3], c[2], c[1]]
+                    F += [(c[0], c[1], c[2]), (c[0], c[2], c[3])]
+    return np.array(V, float), np.array(F)
+
+
+def bend_np(Q):
+    """bend() of the rows of Q."""
+    u, v, w = Q[:, 0], Q[:, 1], Q[:, 2]
+    b = [(1 - u) ** 2, 2 * u * (1 - u), u * u]
+    s = sum(WARC[i] * b[i] for i in range(3))
+    c = [sum(WARC[i] * b[i] * ARC[i][k] for i in range(3)) / s for k in range(2)]
+    r = R0 + TH * w
+    return np.stack([r * c[0], r * c[1], H * v], axis=1)
+
+
+def unbend_np(X):
+    """The parameters of image points of bend() (u by bisection on the
+    angle, which grows with u)."""
+    w = (np.hypot(X[:, 0], X[:, 1]) - R0) / TH
+    th = np.arctan2(X[:, 1], X[:, 0])
+    lo, hi = np.zeros(len(X)), np.ones(len(X))
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        c = bend_np(np.stack([mid, np.zeros(len(X)), np.zeros(len(X))], axis=1))
+        below = np.arctan2(c[:, 1], c[:, 0]) < th
+        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+    return np.stack([(lo + hi) / 2, X[:, 2] / H, w], axis=1)
+
+
+def tri_dist_paired(P, A, B, C):
+    """|P_i - triangle A_i B_i C_i| for rows i."""
+    n = np.cross(B - A, C - A)
+    nn = np.einsum("ij,ij->i", n, n)
+    d = np.einsum("ij,ij->i", P - A, n) / nn
+    foot = P - d[:, None] * n
+    inside = np.ones(len(P), bool)
+    for X, Y in ((A, B), (B, C), (C, A)):
+        inside &= np.einsum("ij,ij->i", np.cross(X - foot, Y - foot), n) >= 0
+
+    def seg(X, Y):
+        xy = Y - X
+        t = np.clip(np.einsum("ij,ij->i", P - X, xy) / np.maximum(np.einsum("ij,ij->i", xy, xy),
+                                                                   1e-300), 0, 1)
+        return np.linalg.norm(X + t[:, None] * xy - P, axis=1)
+
+    edge = np.minimum(seg(A, B), np.minimum(seg(B, C), seg(C, A)))
+    return np.where(inside, np.abs(d) * np.sqrt(nn), edge)
+
+
+def test_fine_bar(t):
+    """A finely tessellated bar through the ring (enough triangles for the
+    error estimate to run): the same bytes on 1 and 3 threads (-j), closed
+    and oriented, and at 3 points of every output triangle the exact image of
+    their parameter point (the output's vertices mapped back to parameters by
+    the closed-form inverse, interpolated, mapped by F) within the tolerance
+    of that triangle."""
+    r = t.r
+    model = t.model("ring.json", ring_model())
+    V, F = grid_box([1.0, 0.5, 0.25], [9.0, 1.5, 0.75], 16)
+    stl = t.path("fine-bar.stl")
+    write_stl(stl, V, F)
+    for tol in (0.05, 0.004):
+        outs = []
+        for j in (1, 3):  # the same file name (an OFF file names its mesh after it)
+            os.makedirs(t.path(f"j{j}"), exist_ok=True)
+            out = t.path(f"j{j}/fine-bar-{tol}.off")
+            st, _, err = r.run([model, "--deform", stl, "--frame", "0,0,0,10,2,1", "-t", str(tol),
+                                "-j", str(j), "-o", out])
+            if not r.check(f"fine bar at {tol}, -j {j}: exit 0", st == 0, err):
+                return
+            with open(out, "rb") as fh:
+                outs.append(fh.read())
+        r.check(f"fine bar at {tol}: -j 1 and -j 3 write the same bytes", outs[0] == outs[1])
+        Vo, Fo = read_off(t.path(f"j1/fine-bar-{tol}.off"))
+        ok, euler = topology(Vo, Fo)
+        r.check(f"fine bar at {tol}: {len(F)} -> {len(Fo)} triangles, closed, 2-manifold, "
+                f"oriented, Euler 2", ok and euler == 2, f"{ok} {euler}")
+        Qv = unbend_np(Vo)
+        r.check(f"fine bar at {tol}: the output's vertices are exact images",
+                np.abs(bend_np(Qv) - Vo).max() <= 1e-9)
+        rng = np.random.default_rng(7)
+        worst = 0.0
+        for _ in range(3):
+            lam = rng.dirichlet([1, 1, 1], len(Fo))
+            Q = np.einsum("ik,ikd->id", lam, Qv[Fo])
+            d = tri_dist_paired(bend_np(Q), Vo[Fo[:, 0]], Vo[Fo[:, 1]], Vo[Fo[:, 2]])
+            worst = max(worst, float(d.max()))
+        r.check(f"fine bar at {tol}: exact images of 3 parameter points of each of the "
+                f"{len(Fo)} triangles within the tolerance (worst {worst:.3g})", worst <= tol)
+
+
 def run_tool(argv, timeout=300):
     return subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                           timeout=timeout)
@@ -565,6 +678,7 @@ def main():
         t = T(r, tmp)
         test_affine(t)
         test_bent_bar(t)
+        test_fine_bar(t)
         test_errors(t)
         test_spool(t)
     finally:
