@@ -22,11 +22,23 @@ extern "C" {
  * Free-form deformation (seed 000: Coons bodies as FFDs, after Sederberg
  * and Parry): a new mesh holding `in` mapped through body b, a point p
  * going to B((p - lo) / (hi - lo)). Triangles are split by edge bisection
- * until the image of every edge's parametric midpoint lies within 0.9 times
- * `tolerance` of the chord of its end images and the images of 4 inner
- * points of every triangle lie within 0.9 times `tolerance` of it (the
- * margin covers maxima between the samples); an edge is split
- * the same way in both its triangles, so a closed 2-manifold input stays
+ * until each triangle is accepted: measured, when the image of every edge's
+ * parametric midpoint lies within 0.9 times `tolerance` of the chord of its
+ * end images and the images of 4 inner points of the triangle lie within
+ * 0.9 times `tolerance` of it (the margin covers maxima between the
+ * samples); or estimated, without evaluating it, when an estimate of its
+ * interpolation error is at most 0.45 times `tolerance`. The estimate is
+ * second partials of the body per cell of a lattice (16 cells along each
+ * direction, the body's breakpoints added: differences of the Jacobian
+ * along the cell's edges, the largest over the cell and its neighbours plus
+ * their spread, times 2) in Taylor's bound for linear interpolation; it is
+ * measured, not proved, so a body with features smaller than a cell can
+ * defeat it. It is made only for inputs of at least half as many triangles
+ * as lattice points, for bodies that are C1 or whose C0 breakpoints are
+ * known (no estimate across those), and only accepts: a triangle it
+ * accepts has an estimate half the measured test's limit, so the mesh is
+ * the one measuring alone gives wherever the estimate holds. An edge is
+ * split the same way in both its triangles, so a closed 2-manifold input stays
  * closed and 2-manifold, with its winding (reversed when b is left-handed,
  * so that an outward input stays outward). An affine body splits nothing
  * and maps every vertex exactly. One part, named "deformed".
@@ -52,10 +64,13 @@ typedef struct coons_deform_report {
     /** The frame used (given, or the input's bounding box). */
     double lo[3], hi[3];
     /**
-     * Largest distance measured from exact image points (every edge's
-     * parametric midpoint and 4 inner points of every output triangle) to
-     * the output triangle they belong to; refinement keeps it within 0.9
-     * times the tolerance, the margin covering maxima between the samples.
+     * Largest over the output triangles of: the distance measured from
+     * exact image points (its edges' parametric midpoints and 4 inner
+     * points) to the triangle, for a triangle that was measured; its error
+     * estimate, for a triangle the estimate accepted (see
+     * coons_body_deform_mesh()). Refinement keeps it within 0.9 times the
+     * tolerance (estimates within 0.45 times), the margin covering maxima
+     * between the samples.
      */
     double deviation;
     size_t triangles_in, triangles_out, vertices_in, vertices_out;
@@ -114,10 +129,14 @@ typedef struct coons_deform_options {
     /** Passed to `progress`. */
     void *userdata;
     /** (version 2) Threads that map and measure: 0 or 1, the calling
-     *  thread only (the default); N > 1, N threads (at most 1024).
-     *  The mesh does not depend on it, byte for byte. Progress is reported
-     *  from the calling thread; an allocator set with coons_set_allocator()
-     *  must be thread-safe. */
+     *  thread only (the default); N > 1, N threads (at most 1024): the
+     *  input's vertices, the estimate's lattice and each round's measured
+     *  points are evaluated in batches (coons_body_eval_points()), each
+     *  thread on its own contiguous share, every result in a slot of its
+     *  own; marking and splitting walk the triangles in order on the
+     *  calling thread. The mesh does not depend on it, byte for byte.
+     *  Progress is reported from the calling thread; an allocator set with
+     *  coons_set_allocator() must be thread-safe. */
     unsigned int threads;
 } coons_deform_options;
 

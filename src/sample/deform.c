@@ -11,9 +11,22 @@
  * halfway between the centroid and its corners) lies farther than the
  * tolerance from the triangle of its corner images. "Farther than the
  * tolerance" is judged against 0.9 times it, as the sampler does: the margin
- * covers maxima between the samples. A triangle measured within it and left
- * whole is not measured again; the largest distance over the triangles of
- * the result is the measured deviation (coons_deform_report). Every marked edge gets
+ * covers maxima between the samples. Before measuring, a triangle whose
+ * error estimate (below, "deciding without evaluating") is at most half
+ * that is left whole unmeasured, and its edges are left to its neighbours:
+ * the estimate only accepts what measuring would accept where it holds, so
+ * the mesh is the same. A triangle measured (or estimated) within it and
+ * left whole is not measured again; the largest distance or estimate over
+ * the triangles of the result is the deviation (coons_deform_report).
+ *
+ * Evaluation is batched and threaded (coons_deform_options.threads): the
+ * input's vertices, the estimate's lattice, each round's inner points and
+ * edge midpoints and the new vertices go through coons_body_eval_points()
+ * in contiguous shares of coons__parallel_for(), each result in a slot of
+ * its own; the edge table, the marking and the splitting walk the
+ * triangles in order on the calling thread, creating the midpoints in the
+ * order the serial method did, so the bytes are the same for every thread
+ * count (and as before the batching). Every marked edge gets
  * one midpoint, shared by both its triangles, and each triangle is split
  * by the template of its marked edges (1: two triangles, 2: three, 3:
  * four), keeping its winding; this repeats until nothing is marked. The
