@@ -262,8 +262,8 @@ static const double BARY[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
 /* At most this many Jacobians on the lattice, and then only for inputs of
  * at least as many triangles (else measuring is cheaper). */
 #define ESTIMATE_MAX_NODES 20000
-/* Breakpoints are evaluated at both sides, this far apart. */
-#define ESTIMATE_SIDE 1e-9
+/* Nodes closer than this are one. */
+#define ESTIMATE_GAP 1e-7
 
 /* Test hook (coons_test_hooks.h): 0, estimates on, nothing counted; 1,
  * on, and the triangles they decided counted; 2, off (every triangle
@@ -324,13 +324,13 @@ static int estimate_nodes(const coons_body *b, int d, estimate *E, coons_error *
     qsort(x, n, sizeof *x, cmp_double);
     size_t m = 0;
     for (size_t i = 0; i < n; i++)
-        if (m == 0 || x[i] - x[m - 1] > 64 * ESTIMATE_SIDE) x[m++] = x[i];
+        if (m == 0 || x[i] - x[m - 1] > ESTIMATE_GAP) x[m++] = x[i];
     x[m - 1] = 1.0;
     /* the breakpoints among the nodes: where the map may be only C0 */
     if (S.cont < 1)
         for (size_t i = 1; i + 1 < m; i++)
             for (size_t j = 0; j < nb; j++)
-                if (fabs(br[j] - x[i]) <= 64 * ESTIMATE_SIDE) c0[i] = 1;
+                if (fabs(br[j] - x[i]) <= ESTIMATE_GAP) c0[i] = 1;
     coons__free(br);
     E->node[d] = x;
     E->c0[d] = c0;
@@ -341,7 +341,7 @@ static int estimate_nodes(const coons_body *b, int d, estimate *E, coons_error *
 typedef struct ejob {
     const coons_body *b;
     const double *uvw;
-    double *xyz, *jac;
+    double *xyz;
 } ejob;
 
 static void estimate_eval_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
@@ -350,13 +350,40 @@ static void estimate_eval_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
     const ejob *j = ctx;
     for (size_t s = lo; s < hi; s += BATCH) {
         size_t n = hi - s < BATCH ? hi - s : BATCH;
-        coons_body_eval_points(j->b, n, j->uvw + 3 * s, j->xyz + 3 * s, j->jac + 9 * s, NULL,
-                               NULL);
+        coons_body_eval_points(j->b, n, j->uvw + 3 * s, j->xyz + 3 * s, NULL, NULL, NULL);
     }
 }
 
+/* |second divided difference| of the lattice points along d through nodes
+ * c - 1, c, c + 1 (c moved inside at the ends), the others at g. */
+static double second_diff(const estimate *E, const double *xyz, const size_t g[3], int d,
+                          size_t c)
+{
+    size_t m = E->m[d];
+    if (c < 1) c = 1;
+    if (c > m - 1) c = m - 1;
+    const double *x = E->node[d];
+    double h0 = x[c] - x[c - 1], h1 = x[c + 1] - x[c], s2 = 0;
+    size_t i[3] = {g[0], g[1], g[2]}, id[3];
+    const double *p[3];
+    for (int k = 0; k < 3; k++) {
+        i[d] = c - 1 + (size_t)k;
+        id[k] = (i[0] * (E->m[1] + 1) + i[1]) * (E->m[2] + 1) + i[2];
+        p[k] = xyz + 3 * id[k];
+    }
+    for (int r = 0; r < 3; r++) {
+        double v = 2 * ((p[2][r] - p[1][r]) / h1 - (p[1][r] - p[0][r]) / h0) / (h0 + h1);
+        s2 += v * v;
+    }
+    return sqrt(s2);
+}
+
 /* Builds the estimate's lattice (E->on stays 0 when the body or the input
- * does not suit it). Only COONS_E_NOMEM fails. */
+ * does not suit it). Only COONS_E_NOMEM fails. The second partials of a
+ * cell: along d, the second divided differences along its 4 edges in d
+ * centred at both their ends (inside the unit cube); mixed, the twist
+ * (F11 - F10 - F01 + F00) / (h_a h_b) of its 2 faces spanning a and b:
+ * averages of the partial near the cell. */
 static coons_status estimate_build(work *w, size_t nt)
 {
     estimate *E = &w->est;
@@ -368,97 +395,76 @@ static coons_status estimate_build(work *w, size_t nt)
             estimate_free(E);
             return coons__error_nomem(w->err);
         }
-        if (r == 0) {
+        if (r == 0 || E->m[d] < 2) {
             estimate_free(E);
             return COONS_OK;
         }
     }
-    /* the evaluation points: each node, an inner breakpoint at both sides;
-     * lo[d][i] and hi[d][i] index the lower and upper ends of cell i */
-    size_t np[3], total = 1;
-    double *par[3] = {NULL, NULL, NULL};
-    size_t *lo[3] = {NULL, NULL, NULL}, *hi[3] = {NULL, NULL, NULL};
-    double *uvw = NULL, *xyz = NULL, *jac = NULL;
-    coons_status st = COONS_OK;
-    for (int d = 0; d < 3 && !st; d++) {
-        size_t m = E->m[d];
-        par[d] = coons__malloc_array(2 * (m + 1), sizeof *par[d]);
-        lo[d] = coons__malloc_array(m, sizeof *lo[d]);
-        hi[d] = coons__malloc_array(m, sizeof *hi[d]);
-        if (!par[d] || !lo[d] || !hi[d]) {
-            st = coons__error_nomem(w->err);
-            break;
-        }
-        size_t n = 0;
-        for (size_t i = 0; i <= m; i++) {
-            double x = E->node[d][i];
-            if (i > 0 && i < m && E->c0[d][i]) {
-                par[d][n] = x - ESTIMATE_SIDE;
-                hi[d][i - 1] = n++;
-                par[d][n] = x + ESTIMATE_SIDE;
-                lo[d][i] = n++;
-            } else {
-                par[d][n] = x;
-                if (i > 0) hi[d][i - 1] = n;
-                if (i < m) lo[d][i] = n;
-                n++;
-            }
-        }
-        np[d] = n;
-        total *= n;
+    size_t n0 = E->m[0] + 1, n1 = E->m[1] + 1, n2 = E->m[2] + 1, total = n0 * n1 * n2;
+    if (total > ESTIMATE_MAX_NODES || 2 * nt < total) {
+        estimate_free(E);
+        return COONS_OK;
     }
-    if (!st && (total > ESTIMATE_MAX_NODES || 2 * nt < total)) goto done;
-    if (!st && (!(uvw = coons__malloc_array(total, 3 * sizeof *uvw)) ||
-                !(xyz = coons__malloc_array(total, 3 * sizeof *xyz)) ||
-                !(jac = coons__malloc_array(total, 9 * sizeof *jac))))
-        st = coons__error_nomem(w->err);
-    if (st) goto done;
-    for (size_t i = 0, p = 0; i < np[0]; i++)
-        for (size_t j = 0; j < np[1]; j++)
-            for (size_t k = 0; k < np[2]; k++, p++) {
-                uvw[3 * p] = par[0][i];
-                uvw[3 * p + 1] = par[1][j];
-                uvw[3 * p + 2] = par[2][k];
-            }
-    ejob job = {w->b, uvw, xyz, jac};
-    coons__parallel_for(total, w->threads, estimate_eval_chunk, &job);
-    for (size_t p = 0; p < 9 * total; p++)
-        if (!isfinite(jac[p])) goto done;
+    coons_status st = COONS_OK;
+    double *uvw = coons__malloc_array(total, 3 * sizeof *uvw);
+    double *xyz = coons__malloc_array(total, 3 * sizeof *xyz);
     size_t m0 = E->m[0], m1 = E->m[1], m2 = E->m[2], nc = m0 * m1 * m2;
     double *rho = coons__malloc_array(nc, sizeof *rho);
     E->k = coons__malloc_array(nc, sizeof *E->k);
-    if (!rho || !E->k) {
-        coons__free(rho);
+    if (!uvw || !xyz || !rho || !E->k) {
         st = coons__error_nomem(w->err);
         goto done;
     }
+    for (size_t i = 0, p = 0; i < n0; i++)
+        for (size_t j = 0; j < n1; j++)
+            for (size_t k = 0; k < n2; k++, p++) {
+                uvw[3 * p] = E->node[0][i];
+                uvw[3 * p + 1] = E->node[1][j];
+                uvw[3 * p + 2] = E->node[2][k];
+            }
+    ejob job = {w->b, uvw, xyz};
+    coons__parallel_for(total, w->threads, estimate_eval_chunk, &job);
+    for (size_t p = 0; p < 3 * total; p++)
+        if (!isfinite(xyz[p])) goto done;
     for (size_t i = 0; i < m0; i++)
         for (size_t j = 0; j < m1; j++)
             for (size_t k = 0; k < m2; k++) {
                 size_t cell[3] = {i, j, k};
                 double M[3][3] = {{0}};
-                /* the 8 corners: bit d set, the upper end along d */
-                for (int c = 0; c < 8; c++)
-                    for (int bd = 0; bd < 3; bd++) {
-                        if (c >> (2 - bd) & 1) continue; /* each edge from its lower end */
-                        size_t a_ix[3], b_ix[3];
-                        for (int d = 0; d < 3; d++) {
-                            int up = c >> (2 - d) & 1;
-                            a_ix[d] = up ? hi[d][cell[d]] : lo[d][cell[d]];
-                            b_ix[d] = d == bd ? hi[d][cell[d]] : a_ix[d];
-                        }
-                        size_t pa = (a_ix[0] * np[1] + a_ix[1]) * np[2] + a_ix[2];
-                        size_t pb = (b_ix[0] * np[1] + b_ix[1]) * np[2] + b_ix[2];
-                        double len = par[bd][b_ix[bd]] - par[bd][a_ix[bd]];
-                        for (int a = 0; a < 3; a++) {
+                /* pure: the 4 edges along d, at both ends */
+                for (int d = 0; d < 3; d++)
+                    for (int e = 0; e < 4; e++) {
+                        size_t g[3];
+                        int o1 = (d + 1) % 3, o2 = (d + 2) % 3;
+                        g[o1] = cell[o1] + (size_t)(e & 1);
+                        g[o2] = cell[o2] + (size_t)(e >> 1);
+                        g[d] = 0;
+                        for (size_t c = cell[d]; c <= cell[d] + 1; c++)
+                            M[d][d] = fmax(M[d][d], second_diff(E, xyz, g, d, c));
+                    }
+                /* mixed: the 2 faces spanning a and b */
+                for (int a = 0; a < 3; a++)
+                    for (int bb = a + 1; bb < 3; bb++) {
+                        int c = 3 - a - bb;
+                        double ha = E->node[a][cell[a] + 1] - E->node[a][cell[a]];
+                        double hb = E->node[bb][cell[bb] + 1] - E->node[bb][cell[bb]];
+                        for (size_t lc = cell[c]; lc <= cell[c] + 1; lc++) {
+                            const double *p[4];
+                            for (int q = 0; q < 4; q++) {
+                                size_t g[3];
+                                g[a] = cell[a] + (size_t)(q & 1);
+                                g[bb] = cell[bb] + (size_t)(q >> 1);
+                                g[c] = lc;
+                                p[q] = xyz + 3 * ((g[0] * n1 + g[1]) * n2 + g[2]);
+                            }
                             double s2 = 0;
                             for (int r = 0; r < 3; r++) {
-                                double dj = jac[9 * pb + 3 * r + a] - jac[9 * pa + 3 * r + a];
-                                s2 += dj * dj;
+                                double v = (p[3][r] - p[1][r] - p[2][r] + p[0][r]) / (ha * hb);
+                                s2 += v * v;
                             }
-                            double g = sqrt(s2) / len;
-                            if (g > M[a][bd]) M[a][bd] = g;
-                            if (g > M[bd][a]) M[bd][a] = g;
+                            double v = sqrt(s2);
+                            M[a][bb] = fmax(M[a][bb], v);
+                            M[bb][a] = fmax(M[bb][a], v);
                         }
                     }
                 double r = 0;
@@ -480,18 +486,11 @@ static coons_status estimate_build(work *w, size_t nt)
                         }
                 E->k[(i * m1 + j) * m2 + k] = 0.5 * ESTIMATE_SAFETY * (2 * hi_ - lo_);
             }
-    coons__free(rho);
     E->on = 1;
-
 done:
-    for (int d = 0; d < 3; d++) {
-        coons__free(par[d]);
-        coons__free(lo[d]);
-        coons__free(hi[d]);
-    }
     coons__free(uvw);
     coons__free(xyz);
-    coons__free(jac);
+    coons__free(rho);
     if (!E->on) estimate_free(E);
     return st;
 }
