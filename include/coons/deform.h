@@ -29,9 +29,9 @@ extern "C" {
  * samples); or estimated, without evaluating it, when an estimate of its
  * interpolation error is at most 0.45 times `tolerance`. The estimate is
  * second partials of the body per cell of a lattice (16 cells along each
- * direction, the body's breakpoints added: differences of the Jacobian
- * along the cell's edges, the largest over the cell and its neighbours plus
- * their spread, times 2) in Taylor's bound for linear interpolation; it is
+ * direction, the body's breakpoints added: second differences of the
+ * body's points at the nodes, the largest over the cell and its neighbours
+ * plus their spread, times 2) in Taylor's bound for linear interpolation; it is
  * measured, not proved, so a body with features smaller than a cell can
  * defeat it. It is made only for inputs of at least half as many triangles
  * as lattice points, for bodies that are C1 or whose C0 breakpoints are

@@ -249,18 +249,20 @@ static const double BARY[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
  * squared circumradius of an acute triangle, else a quarter of its longest
  * side squared. The distance from F(x) to the triangle of images is at most
  * that. rho is estimated, not proved: per cell of a lattice (ESTIMATE_CELLS
- * along each direction, the body's breakpoints added), the largest change
- * of each column of the Jacobian along each edge of the cell over its
- * length (an average of a second partial over the edge) gives M_ab, and
+ * along each direction, the body's breakpoints added; the body evaluated
+ * once at each node), second differences of the nodes' images (averages
+ * of the second partials near the cell, estimate_build()) give M_ab, and
  * rho = max_a sum_b M_ab; that is taken over the cell and its neighbours,
- * plus the spread between them, times ESTIMATE_SAFETY. A triangle whose
+ * plus the spread between them, times ESTIMATE_SAFETY. Next to a C0
+ * breakpoint the differences are large (no estimate), and a triangle
+ * across one is not estimated. A triangle whose
  * estimate is at most half the limit (0.45 times the tolerance, where
  * measuring accepts 0.9) is left whole unmeasured; any other is measured
  * as before. */
 #define ESTIMATE_CELLS 16
 #define ESTIMATE_SAFETY 2.0
-/* At most this many Jacobians on the lattice, and then only for inputs of
- * at least as many triangles (else measuring is cheaper). */
+/* At most this many nodes, and then only for inputs of at least half as
+ * many triangles (else measuring them is cheaper). */
 #define ESTIMATE_MAX_NODES 20000
 /* Nodes closer than this are one. */
 #define ESTIMATE_GAP 1e-7
