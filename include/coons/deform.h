@@ -101,8 +101,9 @@ COONS_EXPORT coons_status coons_body_deform_mesh_report(const coons_body *b, con
                                                         coons_error *err);
 
 /** Version of ::coons_deform_options this header describes. Version 2:
- *  `threads`; records of version 1 are still accepted (as one thread). */
-#define COONS_DEFORM_OPTIONS_VERSION 2
+ *  `threads`; version 3: `relative_tolerance`. Records of versions 1 and 2
+ *  are still accepted (version 1 as one thread). */
+#define COONS_DEFORM_OPTIONS_VERSION 3
 
 /** How coons_body_deform() deforms a mesh. */
 typedef struct coons_deform_options {
@@ -110,7 +111,8 @@ typedef struct coons_deform_options {
      *  ::COONS_DEFORM_OPTIONS_INIT or coons_deform_options_init()). */
     unsigned int version;
     /** Largest distance of the result from the exact image; must be > 0
-     *  (the initialiser leaves it 0: the caller chooses). */
+     *  unless `relative_tolerance` is (the initialiser leaves it 0: the
+     *  caller chooses). */
     double tolerance;
     /** The budget of output triangles; 0: ::COONS_MESH_MAX_TRIANGLES. */
     size_t max_triangles;
@@ -138,6 +140,12 @@ typedef struct coons_deform_options {
      *  Progress is reported from the calling thread; an allocator set with
      *  coons_set_allocator() must be thread-safe. */
     unsigned int threads;
+    /** (version 3) With `tolerance` 0 and this > 0: the tolerance is this
+     *  times the diagonal of the bounding box of the images of the input's
+     *  vertices (which the call maps anyway: vertices 0 to vertices_in - 1
+     *  of the result are those images, in order), or this itself when that
+     *  diagonal is 0 or not finite. coons2stl's default is 1e-3. */
+    double relative_tolerance;
 } coons_deform_options;
 
 #ifndef __cplusplus
@@ -159,7 +167,7 @@ COONS_EXPORT void coons_deform_options_init(coons_deform_options *o);
  *                   ::COONS_DEFORM_REPORT_VERSION
  * @return ::COONS_OK, ::COONS_E_INVALID (NULL body, mesh, options or out;
  *         an options record or report of another version; tolerance not
- *         > 0; a flat frame),
+ *         > 0 and no relative tolerance > 0; a flat frame),
  *         ::COONS_E_DOMAIN (vertices outside the frame), ::COONS_E_LIMIT
  *         (more than max_triangles needed), ::COONS_E_NOMEM.
  */

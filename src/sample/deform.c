@@ -887,7 +887,7 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     if (report && COONS__RECORD_CHECK(err, "deform report", report->version, COONS_DEFORM_REPORT))
         return COONS_E_INVALID;
     if (!opts) return coons__error_set(err, COONS_E_INVALID, "deform: options is NULL");
-    /* version 1 has no `threads` */
+    /* version 1 has no `threads`, version 2 no `relative_tolerance` */
     if (coons__record_version_check("deform options", opts->version, 1,
                                     COONS_DEFORM_OPTIONS_VERSION, "COONS_DEFORM_OPTIONS_INIT", err))
         return COONS_E_INVALID;
@@ -895,8 +895,10 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
     if (!b || !in) return coons__error_set(err, COONS_E_INVALID, "deform: NULL body or mesh");
     const double *lo = opts->lo, *hi = opts->hi;
     double tolerance = opts->tolerance;
+    double relative = opts->version >= 3 && tolerance == 0 ? opts->relative_tolerance : 0;
     size_t max_triangles = opts->max_triangles;
-    if (!(tolerance > 0) || !isfinite(tolerance))
+    if (relative != 0 ? !(relative > 0) || !isfinite(relative)
+                      : !(tolerance > 0) || !isfinite(tolerance))
         return coons__error_set(err, COONS_E_INVALID, "deform: the tolerance must be > 0");
     if (!max_triangles) max_triangles = COONS_MESH_MAX_TRIANGLES;
     size_t nv = coons_mesh_vertex_count(in), nt = coons_mesh_triangle_count(in);
@@ -957,6 +959,19 @@ coons_status coons_body_deform(const coons_body *b, const coons_mesh *in,
                 w.q[3 * i + d] = clamp01((xyz[3 * i + d] - L[d]) / (H[d] - L[d]));
         vjob j = {&w, NULL};
         coons__parallel_for(nv, threads, eval_vertices_chunk, &j);
+        if (relative != 0) { /* the box of the vertices' images */
+            double blo[3] = {INFINITY, INFINITY, INFINITY};
+            double bhi[3] = {-INFINITY, -INFINITY, -INFINITY}, diag = 0;
+            for (size_t i = 0; i < nv; i++)
+                for (int d = 0; d < 3; d++) {
+                    blo[d] = fmin(blo[d], w.x[3 * i + d]);
+                    bhi[d] = fmax(bhi[d], w.x[3 * i + d]);
+                }
+            for (int d = 0; d < 3 && nv; d++) diag += (bhi[d] - blo[d]) * (bhi[d] - blo[d]);
+            diag = sqrt(diag);
+            w.tol = diag > 0 && isfinite(diag) ? relative * diag : relative;
+            w.limit = 0.9 * w.tol;
+        }
     }
     if (!st && (!(w.tri = coons__malloc_array(nt ? nt : 1, 3 * sizeof *w.tri)) ||
                 !(w.dev = coons__malloc_array(nt ? nt : 1, sizeof *w.dev))))

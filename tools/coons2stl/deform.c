@@ -77,30 +77,24 @@ static void json_check(const char *key, const coons_mesh_report *r)
            r->shells, r->euler, r->volume, r->area);
 }
 
-/* The tolerance: -t, else 1/1000 of the box diagonal of the images of IN's
- * vertices. */
-static double default_tolerance(const coons_body *b, const coons_mesh *in, const double lo[3],
-                                const double hi[3])
+/* The default tolerance (-t not given): 1/1000 of the box diagonal of the
+ * images of IN's vertices, which the library computes from its own mapping
+ * of them (coons_deform_options.relative_tolerance); for --info, the same
+ * from the result, whose first vertices are those images. */
+#define RELATIVE_TOLERANCE 1e-3
+static double default_tolerance(const coons_mesh *out, size_t nv)
 {
-    size_t nv = coons_mesh_vertex_count(in);
-    const double *x = coons_mesh_vertices(in);
+    const double *y = coons_mesh_vertices(out);
     double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < nv; i++) {
-        double q[3], y[3];
+    for (size_t i = 0; i < nv; i++)
         for (int d = 0; d < 3; d++) {
-            q[d] = (x[3 * i + d] - lo[d]) / (hi[d] - lo[d]);
-            q[d] = q[d] < 0 ? 0 : q[d] > 1 ? 1 : q[d];
+            blo[d] = fmin(blo[d], y[3 * i + d]);
+            bhi[d] = fmax(bhi[d], y[3 * i + d]);
         }
-        coons_body_eval(b, q[0], q[1], q[2], y);
-        for (int d = 0; d < 3; d++) {
-            blo[d] = fmin(blo[d], y[d]);
-            bhi[d] = fmax(bhi[d], y[d]);
-        }
-    }
     double diag = 0;
     for (int d = 0; d < 3 && nv; d++) diag += (bhi[d] - blo[d]) * (bhi[d] - blo[d]);
     diag = sqrt(diag);
-    return diag > 0 && isfinite(diag) ? diag / 1000 : 1e-3;
+    return diag > 0 && isfinite(diag) ? RELATIVE_TOLERANCE * diag : RELATIVE_TOLERANCE;
 }
 
 static void input_box(const coons_mesh *in, double lo[3], double hi[3])
@@ -197,10 +191,11 @@ int cli_deform(const coons_model *m, long body, const options *o)
             coons_mesh_free(in);
             return EXIT_INPUT;
         }
-    double tol = o->tolerance > 0 ? o->tolerance : default_tolerance(b, in, lo, hi);
+    double tol = o->tolerance > 0 ? o->tolerance : 0;
     coons_deform_report rep = COONS_DEFORM_REPORT_INIT;
     coons_deform_options dopts = COONS_DEFORM_OPTIONS_INIT;
     dopts.tolerance = tol;
+    dopts.relative_tolerance = RELATIVE_TOLERANCE;
     dopts.max_triangles = o->max_triangles;
     dopts.lo = lo;
     dopts.hi = hi;
@@ -216,6 +211,7 @@ int cli_deform(const coons_model *m, long body, const options *o)
     }
     if (o->info) {
         cli_progress_end();
+        if (!(tol > 0)) tol = default_tolerance(out, coons_mesh_vertex_count(in));
         int st = print_info(o, m, bi, in, out, &rep, tol);
         coons_mesh_free(in);
         coons_mesh_free(out);

@@ -59,6 +59,8 @@ static int closed_oriented(const coons_mesh *m)
     return ok;
 }
 
+static void assert_same_mesh(const coons_mesh *a, const coons_mesh *b);
+
 static double seg2(const double p[3], const double a[3], const double b[3])
 {
     double ab[3], ap[3], l2 = 0, s = 0, d2 = 0;
@@ -309,8 +311,43 @@ static void test_options_progress(void **state)
     assert_int_equal(coons_body_deform(b, in, &o, &out, NULL, &err), COONS_E_INVALID);
     assert_null(out);
     assert_string_equal(err.message,
-                        "deform options version 7, expected 2 (use COONS_DEFORM_OPTIONS_INIT)");
+                        "deform options version 7, expected 3 (use COONS_DEFORM_OPTIONS_INIT)");
     assert_int_equal(coons_body_deform(b, in, NULL, &out, NULL, &err), COONS_E_INVALID);
+    /* relative_tolerance: the tolerance from the box of the vertices'
+     * images, computed here; the same mesh as that tolerance given */
+    double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    const double *p = coons_mesh_vertices(in);
+    for (size_t i = 0; i < coons_mesh_vertex_count(in); i++) {
+        double q[3], y[3];
+        for (int d = 0; d < 3; d++) q[d] = (p[3 * i + d] - lo[d]) / (hi[d] - lo[d]);
+        coons_body_eval(b, q[0], q[1], q[2], y);
+        for (int d = 0; d < 3; d++) blo[d] = fmin(blo[d], y[d]), bhi[d] = fmax(bhi[d], y[d]);
+    }
+    double diag = sqrt((bhi[0] - blo[0]) * (bhi[0] - blo[0]) + (bhi[1] - blo[1]) * (bhi[1] - blo[1]) +
+                       (bhi[2] - blo[2]) * (bhi[2] - blo[2]));
+    coons_mesh *rel = NULL;
+    coons_deform_options_init(&o);
+    o.lo = lo;
+    o.hi = hi;
+    o.relative_tolerance = 4e-3;
+    assert_coons_ok(coons_body_deform(b, in, &o, &rel, NULL, &err), &err);
+    o.relative_tolerance = 0;
+    o.tolerance = 4e-3 * diag;
+    assert_coons_ok(coons_body_deform(b, in, &o, &out, NULL, &err), &err);
+    assert_true(coons_mesh_triangle_count(out) > 12);
+    assert_same_mesh(rel, out);
+    coons_mesh_free(out);
+    coons_mesh_free(rel);
+    out = NULL;
+    /* ignored in a record of version 2, where the tolerance must be given */
+    o.version = 2;
+    o.tolerance = 0;
+    o.relative_tolerance = 4e-3;
+    assert_int_equal(coons_body_deform(b, in, &o, &out, NULL, &err), COONS_E_INVALID);
+    o.version = 3;
+    o.relative_tolerance = -1;
+    assert_int_equal(coons_body_deform(b, in, &o, &out, NULL, &err), COONS_E_INVALID);
+    assert_null(out);
     coons_mesh_free(old);
     coons_mesh_free(in);
     coons_body_free(b);
