@@ -592,7 +592,7 @@ static void measure_faces_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
                                              BARY[s][2] * w->q[3 * v[2] + d];
             id[n++] = t;
         }
-        coons_body_eval_points(w->b, 4 * n, q, x, NULL, NULL, NULL);
+        if (n) coons_body_eval_points(w->b, 4 * n, q, x, NULL, NULL, NULL);
         for (size_t i = 0; i < n; i++) {
             const uint32_t *v = w->tri + 3 * id[i];
             double worst = 0;
@@ -660,6 +660,14 @@ static void put(uint32_t *t, size_t *n, uint32_t a, uint32_t b, uint32_t c)
 {
     t[3 * *n] = a, t[3 * *n + 1] = b, t[3 * *n + 2] = c;
     ++*n;
+}
+
+static coons_status limit_error(work *w, size_t max_triangles)
+{
+    return coons__error_set(w->err, COONS_E_LIMIT,
+                            "deform: reaching the tolerance %g needs more than %zu triangles "
+                            "(the limit)",
+                            w->tol, max_triangles);
 }
 
 /* One round: measure, mark, then split. *changed: whether anything was
@@ -766,7 +774,8 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
     eval_pending(w);
     report_round(w, 0.5);
     *changed = 0;
-    if (w->nv == nv0) return COONS_OK; /* nothing split */
+    if (w->nv == nv0) /* nothing split */
+        return w->nt > max_triangles ? limit_error(w, max_triangles) : COONS_OK;
     cap = 4 * w->nt;
     size_t n = 0;
     uint32_t *out = coons__malloc_array(cap ? cap : 1, 3 * sizeof *out);
@@ -822,12 +831,7 @@ static coons_status round_once(work *w, size_t max_triangles, int *changed)
     w->dev = dev;
     w->nt = n;
     w->cap_t = cap;
-    if (n > max_triangles)
-        return coons__error_set(w->err, COONS_E_LIMIT,
-                                "deform: reaching the tolerance %g needs more than %zu triangles "
-                                "(the limit)",
-                                w->tol, max_triangles);
-    return COONS_OK;
+    return n > max_triangles ? limit_error(w, max_triangles) : COONS_OK;
 }
 
 /* Largest squared distance of a triangle's measured points (4 inner points,
