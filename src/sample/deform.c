@@ -55,7 +55,9 @@ enum { T_WHOLE = 0, T_FAIL = 1, T_PASS = 2, T_EST = 3 };
  * along d between the nodes node[d][0] = 0 < ... < node[d][m[d]] = 1 (the
  * body's breakpoints among them); c0[d][i] set where node i is a
  * breakpoint at which the map may be only C0 (a triangle across it is not
- * estimated); per cell K, the triangle's error estimate being K f. */
+ * estimated); per cell and direction a, k[3 c + a] = R_a / 2 (with the
+ * safety factor), the triangle's estimate its squared circumradius (or a
+ * quarter of its longest side squared) with lengths scaled by sqrt(k). */
 typedef struct estimate {
     int on;
     size_t m[3];
@@ -245,15 +247,18 @@ static const double BARY[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
  * images, Taylor's theorem at x gives
  *   |F(x) - I(x)| <= rho/2 sum_i l_i |x_i - x|^2 = rho/2 sum_{i<j} l_i l_j |x_i - x_j|^2
  * (l: barycentric coordinates of x), rho a bound of |d^2/dt^2 F(x + t e)|
- * over unit directions e; the right side is at most rho/2 f with f the
- * squared circumradius of an acute triangle, else a quarter of its longest
- * side squared. The distance from F(x) to the triangle of images is at most
+ * over unit directions e. Sharper, with M_ab bounds of |d^2 F / dx_a dx_b|
+ * and R_a = sum_b M_ab (as |y|^T M |y| <= sum_a R_a y_a^2): the error is at
+ * most 1/2 sum_{i<j} l_i l_j |S (x_i - x_j)|^2, S = diag(sqrt(R_a)), whose
+ * largest value over the triangle is the squared circumradius of the
+ * triangle scaled by S if it is acute, else a quarter of its longest side
+ * squared. The distance from F(x) to the triangle of images is at most
  * that. rho is estimated, not proved: per cell of a lattice (ESTIMATE_CELLS
  * along each direction, the body's breakpoints added; the body evaluated
  * once at each node), second differences of the nodes' images (averages
  * of the second partials near the cell, estimate_build()) give M_ab, and
- * rho = max_a sum_b M_ab; that is taken over the cell and its neighbours,
- * plus the spread between them, times ESTIMATE_SAFETY. Next to a C0
+ * R_a; each is taken over the cell and its neighbours, plus the spread
+ * between them, times ESTIMATE_SAFETY. Next to a C0
  * breakpoint the differences are large (no estimate), and a triangle
  * across one is not estimated. A triangle whose
  * estimate is at most half the limit (0.45 times the tolerance, where
@@ -411,8 +416,8 @@ static coons_status estimate_build(work *w, size_t nt)
     double *uvw = coons__malloc_array(total, 3 * sizeof *uvw);
     double *xyz = coons__malloc_array(total, 3 * sizeof *xyz);
     size_t m0 = E->m[0], m1 = E->m[1], m2 = E->m[2], nc = m0 * m1 * m2;
-    double *rho = coons__malloc_array(nc, sizeof *rho);
-    E->k = coons__malloc_array(nc, sizeof *E->k);
+    double *rho = coons__malloc_array(nc, 3 * sizeof *rho);
+    E->k = coons__malloc_array(nc, 3 * sizeof *E->k);
     if (!uvw || !xyz || !rho || !E->k) {
         st = coons__error_nomem(w->err);
         goto done;
@@ -469,25 +474,26 @@ static coons_status estimate_build(work *w, size_t nt)
                             M[bb][a] = fmax(M[bb][a], v);
                         }
                     }
-                double r = 0;
-                for (int a = 0; a < 3; a++) r = fmax(r, M[a][0] + M[a][1] + M[a][2]);
-                rho[(i * m1 + j) * m2 + k] = r;
+                for (int a = 0; a < 3; a++)
+                    rho[3 * ((i * m1 + j) * m2 + k) + a] = M[a][0] + M[a][1] + M[a][2];
             }
     /* over the neighbours, plus their spread, times the safety factor, and
      * the 1/2 of the remainder */
     for (size_t i = 0; i < m0; i++)
         for (size_t j = 0; j < m1; j++)
-            for (size_t k = 0; k < m2; k++) {
-                double hi_ = 0, lo_ = INFINITY;
-                for (size_t a = i ? i - 1 : 0; a <= i + 1 && a < m0; a++)
-                    for (size_t b = j ? j - 1 : 0; b <= j + 1 && b < m1; b++)
-                        for (size_t c = k ? k - 1 : 0; c <= k + 1 && c < m2; c++) {
-                            double r = rho[(a * m1 + b) * m2 + c];
-                            hi_ = fmax(hi_, r);
-                            lo_ = fmin(lo_, r);
-                        }
-                E->k[(i * m1 + j) * m2 + k] = 0.5 * ESTIMATE_SAFETY * (2 * hi_ - lo_);
-            }
+            for (size_t k = 0; k < m2; k++)
+                for (int d = 0; d < 3; d++) {
+                    double hi_ = 0, lo_ = INFINITY;
+                    for (size_t a = i ? i - 1 : 0; a <= i + 1 && a < m0; a++)
+                        for (size_t b = j ? j - 1 : 0; b <= j + 1 && b < m1; b++)
+                            for (size_t c = k ? k - 1 : 0; c <= k + 1 && c < m2; c++) {
+                                double r = rho[3 * ((a * m1 + b) * m2 + c) + d];
+                                hi_ = fmax(hi_, r);
+                                lo_ = fmin(lo_, r);
+                            }
+                    E->k[3 * ((i * m1 + j) * m2 + k) + d] =
+                        0.5 * ESTIMATE_SAFETY * (2 * hi_ - lo_);
+                }
     E->on = 1;
 done:
     coons__free(uvw);
@@ -529,17 +535,19 @@ static double estimate_triangle(const estimate *E, const double *p0, const doubl
         cells *= i1[d] - i0[d] + 1;
     }
     if (cells > 8) return -1;
-    double k = 0;
+    double k[3] = {0, 0, 0};
     for (size_t i = i0[0]; i <= i1[0]; i++)
         for (size_t j = i0[1]; j <= i1[1]; j++)
             for (size_t l = i0[2]; l <= i1[2]; l++)
-                k = fmax(k, E->k[(i * E->m[1] + j) * E->m[2] + l]);
-    /* f: the largest sum_{i<j} l_i l_j |x_i - x_j|^2 over the triangle */
+                for (int d = 0; d < 3; d++)
+                    k[d] = fmax(k[d], E->k[3 * ((i * E->m[1] + j) * E->m[2] + l) + d]);
+    /* the largest sum_{i<j} l_i l_j |x_i - x_j|^2 over the triangle, lengths
+     * scaled by k */
     double s[3] = {0, 0, 0};
     for (int d = 0; d < 3; d++) {
-        s[0] += (p1[d] - p0[d]) * (p1[d] - p0[d]);
-        s[1] += (p2[d] - p1[d]) * (p2[d] - p1[d]);
-        s[2] += (p0[d] - p2[d]) * (p0[d] - p2[d]);
+        s[0] += k[d] * (p1[d] - p0[d]) * (p1[d] - p0[d]);
+        s[1] += k[d] * (p2[d] - p1[d]) * (p2[d] - p1[d]);
+        s[2] += k[d] * (p0[d] - p2[d]) * (p0[d] - p2[d]);
     }
     double c2 = fmax(s[0], fmax(s[1], s[2])), f = c2 / 4;
     if (s[0] + s[1] + s[2] > 2 * c2) { /* acute: the circumradius squared */
@@ -548,7 +556,7 @@ static double estimate_triangle(const estimate *E, const double *p0, const doubl
         double r2 = den > 0 ? s[0] * s[1] * s[2] / den : c2 / 3;
         f = fmax(f, fmin(r2, c2 / 3));
     }
-    return k * f;
+    return f;
 }
 
 /* Triangles [lo, hi) of the block starting at t0 that are not yet measured:
@@ -559,6 +567,16 @@ typedef struct tjob {
     size_t t0;
 } tjob;
 
+static void inner_point(const work *w, const uint32_t v[3], int s, double q[3])
+{
+    for (int d = 0; d < 3; d++)
+        q[d] = BARY[s][0] * w->q[3 * v[0] + d] + BARY[s][1] * w->q[3 * v[1] + d] +
+               BARY[s][2] * w->q[3 * v[2] + d];
+}
+
+/* The centroids of a batch first, then the 3 other inner points of the
+ * triangles whose centroid is within the limit: a triangle fails at its
+ * first point beyond it, as measured one by one. */
 static void measure_faces_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
 {
     (void)chunk;
@@ -567,9 +585,9 @@ static void measure_faces_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
     double lim2 = w->limit * w->limit;
     enum { PER = BATCH / 4 };
     double q[3 * BATCH], x[3 * BATCH];
-    size_t id[PER];
+    size_t id[PER], pass[PER];
     for (size_t t = j->t0 + lo, end = j->t0 + hi; t < end;) {
-        size_t n = 0;
+        size_t n = 0, np = 0;
         for (; t < end && n < PER; t++) {
             if (w->dev[t] >= 0) {
                 w->state[t] = T_WHOLE;
@@ -585,22 +603,32 @@ static void measure_faces_chunk(void *ctx, unsigned chunk, size_t lo, size_t hi)
                     continue;
                 }
             }
-            for (int s = 0; s < 4; s++)
-                for (int d = 0; d < 3; d++)
-                    q[3 * (4 * n + s) + d] = BARY[s][0] * w->q[3 * v[0] + d] +
-                                             BARY[s][1] * w->q[3 * v[1] + d] +
-                                             BARY[s][2] * w->q[3 * v[2] + d];
+            inner_point(w, v, 0, q + 3 * n);
             id[n++] = t;
         }
-        if (n) coons_body_eval_points(w->b, 4 * n, q, x, NULL, NULL, NULL);
+        if (!n) continue;
+        coons_body_eval_points(w->b, n, q, x, NULL, NULL, NULL);
         for (size_t i = 0; i < n; i++) {
             const uint32_t *v = w->tri + 3 * id[i];
-            double worst = 0;
-            for (int s = 0; s < 4; s++)
-                worst = fmax(worst, coons__tri_dist2(x + 3 * (4 * i + s), w->x + 3 * v[0],
+            double d2 = fmax(0.0, coons__tri_dist2(x + 3 * i, w->x + 3 * v[0], w->x + 3 * v[1],
+                                                   w->x + 3 * v[2]));
+            w->fdev[id[i]] = d2;
+            if (d2 > lim2)
+                w->state[id[i]] = T_FAIL;
+            else
+                pass[np++] = id[i];
+        }
+        for (size_t i = 0; i < np; i++)
+            for (int s = 1; s < 4; s++) inner_point(w, w->tri + 3 * pass[i], s, q + 3 * (3 * i + s - 1));
+        if (np) coons_body_eval_points(w->b, 3 * np, q, x, NULL, NULL, NULL);
+        for (size_t i = 0; i < np; i++) {
+            const uint32_t *v = w->tri + 3 * pass[i];
+            double worst = w->fdev[pass[i]];
+            for (int s = 0; s < 3; s++)
+                worst = fmax(worst, coons__tri_dist2(x + 3 * (3 * i + s), w->x + 3 * v[0],
                                                      w->x + 3 * v[1], w->x + 3 * v[2]));
-            w->state[id[i]] = worst > lim2 ? T_FAIL : T_PASS;
-            w->fdev[id[i]] = worst;
+            w->state[pass[i]] = worst > lim2 ? T_FAIL : T_PASS;
+            w->fdev[pass[i]] = worst;
         }
     }
 }
