@@ -26,8 +26,10 @@
  * its own; the edge table, the marking and the splitting walk the
  * triangles in order on the calling thread, creating the midpoints in the
  * order the serial method did, so the bytes are the same for every thread
- * count (and as before the batching). Every marked edge gets
- * one midpoint, shared by both its triangles, and each triangle is split
+ * count (and as before the batching).
+ *
+ * Every marked edge gets one midpoint, shared by both its triangles, and
+ * each triangle is split
  * by the template of its marked edges (1: two triangles, 2: three, 3:
  * four), keeping its winding; this repeats until nothing is marked. The
  * split depends on the edge alone, so a closed 2-manifold input stays
