@@ -444,6 +444,7 @@ def _sample_options(tolerance, resolution, max_triangles):
     so.tolerance = tolerance
     so.resolution = resolution
     so.max_triangles = max_triangles
+    so.threads = min(os.cpu_count() or 1, 1024)  # the same mesh on any count
     if resolution:
         so.flags |= lib.COONS_SAMPLE_UNMEASURED  # as coons2stl: nothing to measure
     return so
@@ -587,6 +588,7 @@ def volume_mesh(m, b, name, element, resolution, tolerance, max_cells):
         vo.resolution[d] = resolution[d]
     vo.tolerance = tolerance
     vo.max_cells = max_cells
+    vo.threads = min(os.cpu_count() or 1, 1024)  # the same mesh on any count
     out = ffi.new("coons_volume_mesh **")
     err = new_error()
     if b is None:
