@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "agree.h"
+#include "bspline.h"
 #include "body_impl.h"
 #include "patch_impl.h"
 
@@ -230,10 +231,26 @@ typedef struct fast_face {
     double pmax;                 /* the largest homogeneous coordinate's size */
 } fast_face;
 
+/* The batch of points on the value path (points_spec below): every face
+ * of the same dim (3 or 4) and both degrees the same (2 or 3), every edge
+ * source a kept row or column. */
+typedef struct spec_src {
+    const double *arr; /* the kept column (run along s) or row (along t), 4 per index */
+    int slot;          /* the basis it is summed with (roots below) */
+    int addzero;       /* a column: eval_tcol's +0 */
+} spec_src;
+
 struct coons__body2_fast {
     fast_face f[6];
     int src[12][2][3]; /* edge_source of edge e, source m: face, run, fixed */
     double *mem;
+    int spec_dim, spec_deg; /* 0: no batch path */
+    int nroot;              /* the distinct bases of a point (same[][] roots) */
+    const coons_patch *root_p[12];
+    int root_dir[12], root_par[12];
+    int fslot[6][2];        /* face f's basis along dir: its root's slot */
+    spec_src esrc[12][2];
+    double corner4[8][4];   /* the corners, lane 3 zero */
 };
 
 /* The (s,t) of face f: X_i (v,w), Y_j (u,w), Z_k (u,v); 0 = u, 1 = v, 2 = w. */
@@ -287,6 +304,52 @@ static size_t pick_column(const coons_patch *p, const double *N)
     return j;
 }
 
+/* The batch path's tables, where it applies (spec_dim 0 otherwise). */
+static void spec_build(const coons_body *b, struct coons__body2_fast *F)
+{
+    F->spec_dim = F->spec_deg = 0;
+    const int dim = F->f[0].p->pw ? 4 : 3, deg = F->f[0].p->ps;
+    if (deg != 2 && deg != 3) return;
+    for (int f = 0; f < 6; f++) {
+        const coons_patch *p = F->f[f].p;
+        if ((p->pw ? 4 : 3) != dim || p->ps != deg || p->pt != deg) return;
+        /* Bezier faces have no knots along either parameter (basis()) */
+        if (!p->ks != !p->kt) return;
+    }
+    int slot[6][2] = {{0}};
+    F->nroot = 0;
+    for (int f = 0; f < 6; f++)
+        for (int dir = 0; dir < 2; dir++) {
+            const int *same = F->f[f].same[dir];
+            if (same[0] == f && same[1] == dir) {
+                int r = F->nroot++;
+                F->root_p[r] = F->f[f].p;
+                F->root_dir[r] = dir;
+                F->root_par[r] = face_par[f][dir];
+                slot[f][dir] = r;
+            } else {
+                slot[f][dir] = slot[same[0]][same[1]];
+            }
+            F->fslot[f][dir] = slot[f][dir];
+        }
+    for (int e = 0; e < 12; e++)
+        for (int m = 0; m < 2; m++) {
+            const int f = F->src[e][m][0], run = F->src[e][m][1], fixed = F->src[e][m][2];
+            const fast_face *ff = &F->f[f];
+            spec_src *S = &F->esrc[e][m];
+            if (run == 0 && !ff->tcol[fixed]) return;
+            S->arr = run == 0 ? ff->tcol[fixed] : ff->srow[fixed];
+            S->slot = slot[f][run];
+            S->addzero = run == 0;
+        }
+    for (int c = 0; c < 8; c++) {
+        for (int r = 0; r < 3; r++) F->corner4[c][r] = b->corner[c][r];
+        F->corner4[c][3] = 0.0;
+    }
+    F->spec_dim = dim;
+    F->spec_deg = deg;
+}
+
 static coons_status fast_build(coons_body *b, coons_error *err)
 {
     b->fast = NULL;
@@ -312,6 +375,7 @@ static coons_status fast_build(coons_body *b, coons_error *err)
         coons__free(F);
         return coons__error_nomem(err);
     }
+    memset(F->mem, 0, total * sizeof(double)); /* lane 3 of the dim-3 rows */
     double *m = F->mem;
     for (int e = 0; e < 12; e++)
         for (int k = 0; k < 2; k++)
@@ -348,6 +412,7 @@ static coons_status fast_build(coons_body *b, coons_error *err)
             }
         }
     }
+    spec_build(b, F);
     b->fast = F;
     return COONS_OK;
 }
@@ -430,6 +495,189 @@ static void eval(const coons_body *b, double u, double v, double w, double out[3
         eval_fast(b, u, v, w, out, d);
     else
         eval_rows(b, u, v, w, out, d);
+}
+
+#if defined(__GNUC__)
+/*
+ * The batch of points on the value path (coons_body_eval_points without
+ * Jacobians) of a body whose tables spec_build made: eval_fast's sums
+ * written out for a constant dim and degree, with no call per point, and
+ * the coordinates of each sum (x, y, z and the weight) as lanes of one
+ * vector: per lane the same IEEE operations in the same order as
+ * eval_fast (sum_rows, the quotient, point_from), so the same bits; lane 3
+ * of a Cartesian sum is a spare (the weight's quotient, or 0) never stored.
+ */
+#define SPEC_INLINE inline __attribute__((always_inline))
+typedef double v4d __attribute__((vector_size(32)));
+
+static SPEC_INLINE void spec_load(int dim, const double *q, v4d *r)
+{
+    if (dim == 4)
+        memcpy(r, q, sizeof *r);
+    else
+        *r = (v4d){q[0], q[1], q[2], 0.0};
+}
+
+/* The values of a root basis at x (basis() with nd = 0). */
+static SPEC_INLINE size_t spec_basis(const coons_patch *p, int dir, int deg, double x, double *N)
+{
+    if (!p->ks) {
+        coons__bernstein_vals(deg, x, N);
+        return 0;
+    }
+    /* coons__bspline_basis01 */
+    const double *k = dir ? p->kt : p->ks;
+    const size_t ncp = dir ? p->nt : p->ns;
+    double lo = k[deg], hi = k[ncp], len = hi - lo;
+    double t = clamp01(x);
+    double y = lo + t * len;
+    if (t >= 1.0) y = hi;
+    size_t span = coons__bspline_span_inl(k, ncp, deg, y);
+    coons__bspline_vals(k, span, deg, y, N);
+    return span - (size_t)deg;
+}
+
+/* The quotient of a homogeneous sum (dim 4), or the sum (dim 3). */
+static SPEC_INLINE void spec_point(int dim, const v4d *A, v4d *out)
+{
+    if (dim == 3) {
+        *out = *A;
+        return;
+    }
+    const double W = (*A)[3];
+    *out = *A / (v4d){W, W, W, W};
+}
+
+static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_t n,
+                                    const double *uvw, double *xyz)
+{
+    const struct coons__body2_fast *F = b->fast;
+    const int nroot = F->nroot;
+    const v4d zero = {0.0, 0.0, 0.0, 0.0};
+    for (size_t i = 0; i < n; i++) {
+        const double x[3] = {clamp01(uvw[3 * i]), clamp01(uvw[3 * i + 1]),
+                             clamp01(uvw[3 * i + 2])};
+        double bl[3][2];
+        for (int d = 0; d < 3; d++) {
+            if (b->blend == COONS_BLEND_CUBIC) { /* coons__blend */
+                const double t = x[d];
+                double f = 1.0 - 3.0 * t * t + 2.0 * t * t * t;
+                bl[d][0] = f;
+                bl[d][1] = 1.0 - f;
+            } else {
+                bl[d][0] = 1.0 - x[d];
+                bl[d][1] = x[d];
+            }
+        }
+        double N[12][4];
+        size_t first[12];
+        for (int r = 0; r < nroot; r++)
+            first[r] = spec_basis(F->root_p[r], F->root_dir[r], deg, x[F->root_par[r]], N[r]);
+        /* the edges: each the average of its two sources */
+        v4d E[12];
+        for (int e = 0; e < 12; e++) {
+            v4d pv[2];
+            for (int m = 0; m < 2; m++) {
+                const spec_src *S = &F->esrc[e][m];
+                const double *Ns = N[S->slot], *T = S->arr + 4 * first[S->slot];
+                v4d acc = zero;
+                for (int k = 0; k <= deg; k++) {
+                    v4d q;
+                    memcpy(&q, T + 4 * k, sizeof q);
+                    acc = acc + Ns[k] * q;
+                }
+                if (S->addzero) acc = 0.0 + acc;
+                spec_point(dim, &acc, &pv[m]);
+            }
+            E[e] = 0.5 * (pv[0] + pv[1]);
+        }
+        /* the faces */
+        v4d Fv[6];
+        for (int f = 0; f < 6; f++) {
+            const coons_patch *p = F->f[f].p;
+            const double *P = dim == 4 ? p->pw : p->pts;
+            const int s0 = F->fslot[f][0], s1 = F->fslot[f][1];
+            const double *Ns = N[s0], *Nt = N[s1];
+            const size_t fs = first[s0], ft = first[s1], nt = p->nt;
+            v4d A = zero;
+            v4d R[4];
+            for (int l = 0; l <= deg; l++) {
+                v4d acc = zero;
+                for (int k = 0; k <= deg; k++) {
+                    v4d q;
+                    spec_load(dim, P + ((fs + (size_t)k) * nt + ft + (size_t)l) * (size_t)dim, &q);
+                    acc = acc + Ns[k] * q;
+                }
+                R[l] = acc;
+            }
+            for (int l = 0; l <= deg; l++) A = A + Nt[l] * R[l];
+            spec_point(dim, &A, &Fv[f]);
+        }
+        /* point_from */
+        const double a0 = bl[0][0], a1 = bl[0][1], b0 = bl[1][0], b1 = bl[1][1],
+                     w1 = bl[2][1];
+        const v4d *c = (const v4d *)(const void *)F->corner4;
+        const v4d *Cu = E, *Cv = E + 4, *Cw = E + 8;
+        v4d G[2], Pk[2];
+        for (int j = 0; j < 2; j++) G[j] = Fv[2 + j] - (a0 * Cw[j] + a1 * Cw[2 + j]);
+        for (int k = 0; k < 2; k++) {
+            v4d tk = a0 * c[k] + a1 * c[4 + k];
+            v4d t2k = a0 * c[2 + k] + a1 * c[6 + k];
+            Pk[k] = Fv[4 + k] - (a0 * Cv[k] + a1 * Cv[2 + k] + b0 * (Cu[k] - tk) +
+                                 b1 * (Cu[2 + k] - t2k));
+        }
+        v4d o = (Fv[0] + a1 * (Fv[1] - Fv[0])) + (G[0] + b1 * (G[1] - G[0])) +
+                (Pk[0] + w1 * (Pk[1] - Pk[0]));
+        xyz[3 * i] = o[0];
+        xyz[3 * i + 1] = o[1];
+        xyz[3 * i + 2] = o[2];
+    }
+}
+
+COONS__SIMD_CLONES
+static void spec_points_4_2(const coons_body *b, size_t n, const double *uvw, double *xyz)
+{
+    spec_points(b, 4, 2, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_3_2(const coons_body *b, size_t n, const double *uvw, double *xyz)
+{
+    spec_points(b, 3, 2, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_4_3(const coons_body *b, size_t n, const double *uvw, double *xyz)
+{
+    spec_points(b, 4, 3, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_3_3(const coons_body *b, size_t n, const double *uvw, double *xyz)
+{
+    spec_points(b, 3, 3, n, uvw, xyz);
+}
+#endif
+
+/* The row's points: the batch path where the body has its tables, else
+ * point by point. */
+static void points(const coons_body *b, size_t n, const double *uvw, double *xyz)
+{
+#if defined(__GNUC__)
+    const struct coons__body2_fast *F = b->fast;
+    const int spec = F ? 10 * F->spec_dim + F->spec_deg : 0;
+    switch (spec) {
+    case 42: spec_points_4_2(b, n, uvw, xyz); return;
+    case 32: spec_points_3_2(b, n, uvw, xyz); return;
+    case 43: spec_points_4_3(b, n, uvw, xyz); return;
+    case 33: spec_points_3_3(b, n, uvw, xyz); return;
+    default: break;
+    }
+#endif
+    for (size_t i = 0; i < n; i++) {
+        const double *q = uvw + 3 * i;
+        eval(b, clamp01(q[0]), clamp01(q[1]), clamp01(q[2]), xyz + 3 * i, NULL);
+    }
 }
 
 /*
@@ -885,4 +1133,5 @@ static void free_data(coons_body *b)
 
 const coons__body_kind coons__body2_kind = {
     .type = COONS_BODY_BODY2, .eval = eval, .grid = grid, .det_grid = det_grid,
-    .breaks = breaks, .copy = copy_data, .free = free_data, .space = space};
+    .breaks = breaks, .copy = copy_data, .free = free_data, .space = space,
+    .points = points};
