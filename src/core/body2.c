@@ -488,13 +488,20 @@ static void eval_fast(const coons_body *b, double u, double v, double w, double 
     point_from(b, bu, bv, bw, X, Y, Z, E, out);
 }
 
+static void points(const coons_body *b, size_t n, const double *uvw, double *xyz);
+
 static void eval(const coons_body *b, double u, double v, double w, double out[3],
                  double d[3][3])
 {
-    if (b->fast)
+    if (b->fast && !d && b->fast->spec_dim) {
+        /* the batch path for one point (clamping again changes nothing) */
+        const double q[3] = {u, v, w};
+        points(b, 1, q, out);
+    } else if (b->fast) {
         eval_fast(b, u, v, w, out, d);
-    else
+    } else {
         eval_rows(b, u, v, w, out, d);
+    }
 }
 
 #if defined(__GNUC__)
