@@ -244,10 +244,11 @@ struct coons__body2_fast {
     fast_face f[6];
     int src[12][2][3]; /* edge_source of edge e, source m: face, run, fixed */
     double *mem;
-    int spec_dim, spec_deg; /* 0: no batch path */
+    int spec_dim;           /* 0: no batch path */
+    int spec_deg;           /* every face's degrees (2 or 3), else 0 */
     int nroot;              /* the distinct bases of a point (same[][] roots) */
     const coons_patch *root_p[12];
-    int root_dir[12], root_par[12];
+    int root_dir[12], root_par[12], root_deg[12];
     int fslot[6][2];        /* face f's basis along dir: its root's slot */
     spec_src esrc[12][2];
     double corner4[8][4];   /* the corners, lane 3 zero */
@@ -308,14 +309,17 @@ static size_t pick_column(const coons_patch *p, const double *N)
 static void spec_build(const coons_body *b, struct coons__body2_fast *F)
 {
     F->spec_dim = F->spec_deg = 0;
-    const int dim = F->f[0].p->pw ? 4 : 3, deg = F->f[0].p->ps;
-    if (deg != 2 && deg != 3) return;
+    const int dim = F->f[0].p->pw ? 4 : 3;
+    /* one degree 2 or 3 throughout (unrolled), else the degrees at run time */
+    int deg = F->f[0].p->ps;
     for (int f = 0; f < 6; f++) {
         const coons_patch *p = F->f[f].p;
-        if ((p->pw ? 4 : 3) != dim || p->ps != deg || p->pt != deg) return;
+        if ((p->pw ? 4 : 3) != dim) return;
         /* Bezier faces have no knots along either parameter (basis()) */
         if (!p->ks != !p->kt) return;
+        if (p->ps != deg || p->pt != deg) deg = 0;
     }
+    if (deg != 2 && deg != 3) deg = 0;
     int slot[6][2] = {{0}};
     F->nroot = 0;
     for (int f = 0; f < 6; f++)
@@ -325,6 +329,7 @@ static void spec_build(const coons_body *b, struct coons__body2_fast *F)
                 int r = F->nroot++;
                 F->root_p[r] = F->f[f].p;
                 F->root_dir[r] = dir;
+                F->root_deg[r] = dir ? F->f[f].p->pt : F->f[f].p->ps;
                 F->root_par[r] = face_par[f][dir];
                 slot[f][dir] = r;
             } else {
@@ -555,6 +560,8 @@ static SPEC_INLINE void spec_point(int dim, const v4d *A, v4d *out)
     *out = *A / (v4d){W, W, W, W};
 }
 
+/* deg > 0: every degree is deg (a constant here); 0: each basis's own */
+#define SPEC_DEG(x) (deg > 0 ? deg : (x))
 static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_t n,
                                     const double *uvw, double *xyz)
 {
@@ -576,10 +583,11 @@ static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_
                 bl[d][1] = x[d];
             }
         }
-        double N[12][4];
+        double N[12][FAST_DEG + 1];
         size_t first[12];
         for (int r = 0; r < nroot; r++)
-            first[r] = spec_basis(F->root_p[r], F->root_dir[r], deg, x[F->root_par[r]], N[r]);
+            first[r] = spec_basis(F->root_p[r], F->root_dir[r], SPEC_DEG(F->root_deg[r]),
+                                  x[F->root_par[r]], N[r]);
         /* the edges: each the average of its two sources */
         v4d E[12];
         for (int e = 0; e < 12; e++) {
@@ -587,8 +595,9 @@ static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_
             for (int m = 0; m < 2; m++) {
                 const spec_src *S = &F->esrc[e][m];
                 const double *Ns = N[S->slot], *T = S->arr + 4 * first[S->slot];
+                const int dk = SPEC_DEG(F->root_deg[S->slot]);
                 v4d acc = zero;
-                for (int k = 0; k <= deg; k++) {
+                for (int k = 0; k <= dk; k++) {
                     v4d q;
                     memcpy(&q, T + 4 * k, sizeof q);
                     acc = acc + Ns[k] * q;
@@ -606,18 +615,19 @@ static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_
             const int s0 = F->fslot[f][0], s1 = F->fslot[f][1];
             const double *Ns = N[s0], *Nt = N[s1];
             const size_t fs = first[s0], ft = first[s1], nt = p->nt;
+            const int ps = SPEC_DEG(p->ps), pt = SPEC_DEG(p->pt);
             v4d A = zero;
-            v4d R[4];
-            for (int l = 0; l <= deg; l++) {
+            v4d R[FAST_DEG + 1];
+            for (int l = 0; l <= pt; l++) {
                 v4d acc = zero;
-                for (int k = 0; k <= deg; k++) {
+                for (int k = 0; k <= ps; k++) {
                     v4d q;
                     spec_load(dim, P + ((fs + (size_t)k) * nt + ft + (size_t)l) * (size_t)dim, &q);
                     acc = acc + Ns[k] * q;
                 }
                 R[l] = acc;
             }
-            for (int l = 0; l <= deg; l++) A = A + Nt[l] * R[l];
+            for (int l = 0; l <= pt; l++) A = A + Nt[l] * R[l];
             spec_point(dim, &A, &Fv[f]);
         }
         /* point_from */
@@ -664,6 +674,19 @@ static void spec_points_3_3(const coons_body *b, size_t n, const double *uvw, do
 {
     spec_points(b, 3, 3, n, uvw, xyz);
 }
+
+COONS__SIMD_CLONES
+static void spec_points_4_any(const coons_body *b, size_t n, const double *uvw, double *xyz)
+{
+    spec_points(b, 4, 0, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_3_any(const coons_body *b, size_t n, const double *uvw, double *xyz)
+{
+    spec_points(b, 3, 0, n, uvw, xyz);
+}
+#undef SPEC_DEG
 #endif
 
 /* The row's points: the batch path where the body has its tables, else
@@ -678,6 +701,8 @@ static void points(const coons_body *b, size_t n, const double *uvw, double *xyz
     case 32: spec_points_3_2(b, n, uvw, xyz); return;
     case 43: spec_points_4_3(b, n, uvw, xyz); return;
     case 33: spec_points_3_3(b, n, uvw, xyz); return;
+    case 40: spec_points_4_any(b, n, uvw, xyz); return;
+    case 30: spec_points_3_any(b, n, uvw, xyz); return;
     default: break;
     }
 #endif

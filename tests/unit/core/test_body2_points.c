@@ -242,8 +242,10 @@ static void lattice(int i, int j, int k, double p[3], double *wt)
  * bspline degree 2 (Bezier-like knots); 8: bspline degree 3 on all rows,
  * not rational; 9: as 0 but rational with all weights 0.75 (the same
  * surface to rounding; beside faces of kind 0, faces of two kinds of sums:
- * the batch path does not apply). */
-#define LATTICE_KINDS 10
+ * the batch path does not apply); 10: bspline of degree 3 along u
+ * (knots k3 below) and 2 along v and w, rational; 11: as 10, not rational
+ * (faces of several degrees: the batch path's degrees at run time). */
+#define LATTICE_KINDS 12
 static coons_patch *lattice_face(int f, int kind)
 {
     double pts[L * L * 3], wts[L * L];
@@ -291,7 +293,13 @@ static coons_patch *lattice_face(int f, int kind)
         assert_coons_ok(coons_patch_new_bezier(pts, L, L, &p, &err), &err);
     else if (kind == 8)
         assert_coons_ok(coons_patch_new_bspline(3, 3, pts, L, L, k3, k3, NULL, &p, &err), &err);
-    else if (kind == 9) {
+    else if (kind == 10 || kind == 11) {
+        /* face f's (s,t): X (v,w), Y (u,w), Z (u,v); u of degree 3 */
+        const int su = f >= 2;
+        assert_coons_ok(coons_patch_new_bspline(su ? 3 : 2, 2, pts, L, L, su ? k3 : NULL, NULL,
+                                                kind == 10 ? wts : NULL, &p, &err),
+                        &err);
+    } else if (kind == 9) {
         for (int i = 0; i < L * L; i++) wts[i] = 0.75;
         assert_coons_ok(coons_patch_new_bspline(2, 2, pts, L, L, NULL, NULL, wts, &p, &err),
                         &err);
