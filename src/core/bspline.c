@@ -97,6 +97,10 @@ size_t coons__bspline_span(const double *k, size_t ncp, int p, double x)
 
 void coons__bspline_basis(const double *k, size_t span, int p, double x, int nd, double *ders)
 {
+    if (nd <= 0) { /* the values alone: A2.2, the same operations (bspline.h) */
+        coons__bspline_vals(k, span, p, x, ders);
+        return;
+    }
     /* A2.3 with fixed-size scratch: p <= COONS_SPLINE_MAX_DEGREE. */
     double ndu[COONS_SPLINE_MAX_DEGREE + 1][COONS_SPLINE_MAX_DEGREE + 1];
     double left[COONS_SPLINE_MAX_DEGREE + 1], right[COONS_SPLINE_MAX_DEGREE + 1];
