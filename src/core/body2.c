@@ -493,7 +493,8 @@ static void eval_fast(const coons_body *b, double u, double v, double w, double 
     point_from(b, bu, bv, bw, X, Y, Z, E, out);
 }
 
-static void points(const coons_body *b, size_t n, const double *uvw, double *xyz);
+static void points(const coons_body *b, size_t n, const double *uvw, double *xyz, double *jac,
+                   double *det);
 
 static void eval(const coons_body *b, double u, double v, double w, double out[3],
                  double d[3][3])
@@ -501,7 +502,7 @@ static void eval(const coons_body *b, double u, double v, double w, double out[3
     if (b->fast && !d && b->fast->spec_dim) {
         /* the batch path for one point (clamping again changes nothing) */
         const double q[3] = {u, v, w};
-        points(b, 1, q, out);
+        points(b, 1, q, out, NULL, NULL);
     } else if (b->fast) {
         eval_fast(b, u, v, w, out, d);
     } else {
@@ -651,64 +652,258 @@ static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_
     }
 }
 
-COONS__SIMD_CLONES
-static void spec_points_4_2(const coons_body *b, size_t n, const double *uvw, double *xyz)
+/* v3 of the three lanes of a vector. */
+static SPEC_INLINE void spec_v3(double o[3], const v4d *a)
 {
-    spec_points(b, 4, 2, n, uvw, xyz);
+    o[0] = (*a)[0];
+    o[1] = (*a)[1];
+    o[2] = (*a)[2];
+}
+
+/* A value and its derivative from the homogeneous sums A (value) and D
+ * (derivative): eval_tcol_dim / eval_srow_dim / eval_basis_dim's quotient. */
+static SPEC_INLINE void spec_quot1(int dim, const v4d *A, const v4d *D, v4d *val, v4d *der)
+{
+    if (dim == 3) {
+        *val = *A;
+        *der = *D;
+        return;
+    }
+    const double W = (*A)[3];
+    const v4d Wv = {W, W, W, W};
+    const v4d S00 = *A / Wv;
+    *val = S00;
+    *der = (*D - (*D)[3] * S00) / Wv;
+}
+
+/* The same points with their Jacobians and determinants (eval_fast's
+ * sums, partials() and point_from, then coons_body_eval_jacobian's
+ * transpose and determinant). */
+static SPEC_INLINE void spec_points_jac(const coons_body *b, int dim, int deg, size_t n,
+                                        const double *uvw, double *xyz, double *jac,
+                                        double *det)
+{
+    const struct coons__body2_fast *F = b->fast;
+    const int nroot = F->nroot;
+    const v4d zero = {0.0, 0.0, 0.0, 0.0};
+    for (size_t i = 0; i < n; i++) {
+        const double x[3] = {clamp01(uvw[3 * i]), clamp01(uvw[3 * i + 1]),
+                             clamp01(uvw[3 * i + 2])};
+        double bu[5], bv[5], bw[5];
+        coons__blends_at(b->blend, x[0], x[1], x[2], bu, bv, bw);
+        double N[12][2 * (FAST_DEG + 1)];
+        size_t first[12];
+        for (int r = 0; r < nroot; r++)
+            first[r] = coons__tensor_basis(F->root_p[r], F->root_dir[r], x[F->root_par[r]], 1,
+                                           N[r]);
+        /* the column shortcut where eval's s-derivative terms are bounded */
+        int tcol_ok[6];
+        for (int f = 0; f < 6; f++) {
+            const int ps = SPEC_DEG(F->f[f].p->ps);
+            const double *Nd = N[F->fslot[f][0]] + ps + 1;
+            double S = 0.0;
+            for (int k = 0; k <= ps; k++) S += fabs(Nd[k]);
+            tcol_ok[f] = S * F->f[f].pmax <= 1e300;
+        }
+        v4d E[12];
+        double Ed[12][3], dEd[12][3];
+        for (int e = 0; e < 12; e++) {
+            v4d pv[2] = {zero, zero}, pd[2] = {zero, zero};
+            for (int m = 0; m < 2; m++) {
+                const spec_src *S = &F->esrc[e][m];
+                const int f = F->src[e][m][0];
+                if (S->addzero && !tcol_ok[f]) {
+                    const fast_face *ff = &F->f[f];
+                    const int fixed = F->src[e][m][2], s0 = F->fslot[f][0];
+                    double r[3][3];
+                    coons__tensor_eval_basis(ff->p, first[s0], N[s0], ff->first[1][fixed],
+                                             ff->N[1][fixed], 1, r);
+                    pv[m] = (v4d){r[0][0], r[0][1], r[0][2], 0.0};
+                    pd[m] = (v4d){r[1][0], r[1][1], r[1][2], 0.0};
+                    continue;
+                }
+                const int dk = SPEC_DEG(F->root_deg[S->slot]);
+                const double *Nv = N[S->slot], *T = S->arr + 4 * first[S->slot];
+                v4d A0 = zero, A1 = zero;
+                for (int k = 0; k <= dk; k++) {
+                    v4d q;
+                    memcpy(&q, T + 4 * k, sizeof q);
+                    A0 = A0 + Nv[k] * q;
+                }
+                for (int k = 0; k <= dk; k++) {
+                    v4d q;
+                    memcpy(&q, T + 4 * k, sizeof q);
+                    A1 = A1 + Nv[dk + 1 + k] * q;
+                }
+                if (S->addzero) {
+                    A0 = 0.0 + A0;
+                    A1 = 0.0 + A1;
+                }
+                spec_quot1(dim, &A0, &A1, &pv[m], &pd[m]);
+            }
+            E[e] = 0.5 * (pv[0] + pv[1]);
+            const v4d dE = 0.5 * (pd[0] + pd[1]);
+            spec_v3(Ed[e], &E[e]);
+            spec_v3(dEd[e], &dE);
+        }
+        v4d Fv[6];
+        double Fd[6][3][3];
+        for (int f = 0; f < 6; f++) {
+            const coons_patch *p = F->f[f].p;
+            const double *P = dim == 4 ? p->pw : p->pts;
+            const int s0 = F->fslot[f][0], s1 = F->fslot[f][1];
+            const double *Ns = N[s0], *Nt = N[s1];
+            const size_t fs = first[s0], ft = first[s1], nt = p->nt;
+            const int ps = SPEC_DEG(p->ps), pt = SPEC_DEG(p->pt);
+            v4d R[2][FAST_DEG + 1];
+            for (int a = 0; a <= 1; a++)
+                for (int l = 0; l <= pt; l++) {
+                    v4d acc = zero;
+                    for (int k = 0; k <= ps; k++) {
+                        v4d q;
+                        spec_load(dim,
+                                  P + ((fs + (size_t)k) * nt + ft + (size_t)l) * (size_t)dim,
+                                  &q);
+                        acc = acc + Ns[a * (ps + 1) + k] * q;
+                    }
+                    R[a][l] = acc;
+                }
+            v4d A00 = zero, A01 = zero, A10 = zero;
+            for (int l = 0; l <= pt; l++) A00 = A00 + Nt[l] * R[0][l];
+            for (int l = 0; l <= pt; l++) A01 = A01 + Nt[pt + 1 + l] * R[0][l];
+            for (int l = 0; l <= pt; l++) A10 = A10 + Nt[l] * R[1][l];
+            v4d d10, d01;
+            spec_quot1(dim, &A00, &A10, &Fv[f], &d10);
+            if (dim == 4) {
+                const double W = A00[3];
+                d01 = (A01 - A01[3] * Fv[f]) / (v4d){W, W, W, W};
+            } else {
+                d01 = A01;
+            }
+            spec_v3(Fd[f][0], &Fv[f]);
+            spec_v3(Fd[f][1], &d10);
+            spec_v3(Fd[f][2], &d01);
+        }
+        double d[3][3];
+        partials(b, bu, bv, bw, Fd, Fd + 2, Fd + 4, Ed, dEd, d);
+        /* point_from */
+        const double a0 = bu[0], a1 = bu[1], b0 = bv[0], b1 = bv[1], w1 = bw[1];
+        const v4d *c = (const v4d *)(const void *)F->corner4;
+        const v4d *Cu = E, *Cv = E + 4, *Cw = E + 8;
+        v4d G[2], Pk[2];
+        for (int j = 0; j < 2; j++) G[j] = Fv[2 + j] - (a0 * Cw[j] + a1 * Cw[2 + j]);
+        for (int k = 0; k < 2; k++) {
+            v4d tk = a0 * c[k] + a1 * c[4 + k];
+            v4d t2k = a0 * c[2 + k] + a1 * c[6 + k];
+            Pk[k] = Fv[4 + k] - (a0 * Cv[k] + a1 * Cv[2 + k] + b0 * (Cu[k] - tk) +
+                                 b1 * (Cu[2 + k] - t2k));
+        }
+        v4d o = (Fv[0] + a1 * (Fv[1] - Fv[0])) + (G[0] + b1 * (G[1] - G[0])) +
+                (Pk[0] + w1 * (Pk[1] - Pk[0]));
+        spec_v3(xyz + 3 * i, &o);
+        /* coons_body_eval_jacobian */
+        if (jac)
+            for (int r = 0; r < 3; r++)
+                for (int q = 0; q < 3; q++) jac[9 * i + 3 * (size_t)r + (size_t)q] = d[q][r];
+        if (det) {
+            double cr[3];
+            v3_cross(cr, d[1], d[2]);
+            det[i] = v3_dot(d[0], cr);
+        }
+    }
 }
 
 COONS__SIMD_CLONES
-static void spec_points_3_2(const coons_body *b, size_t n, const double *uvw, double *xyz)
+static void spec_points_4_2(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
 {
-    spec_points(b, 3, 2, n, uvw, xyz);
+    if (jac || det)
+        spec_points_jac(b, 4, 2, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 4, 2, n, uvw, xyz);
 }
 
 COONS__SIMD_CLONES
-static void spec_points_4_3(const coons_body *b, size_t n, const double *uvw, double *xyz)
+static void spec_points_3_2(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
 {
-    spec_points(b, 4, 3, n, uvw, xyz);
+    if (jac || det)
+        spec_points_jac(b, 3, 2, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 3, 2, n, uvw, xyz);
 }
 
 COONS__SIMD_CLONES
-static void spec_points_3_3(const coons_body *b, size_t n, const double *uvw, double *xyz)
+static void spec_points_4_3(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
 {
-    spec_points(b, 3, 3, n, uvw, xyz);
+    if (jac || det)
+        spec_points_jac(b, 4, 3, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 4, 3, n, uvw, xyz);
 }
 
 COONS__SIMD_CLONES
-static void spec_points_4_any(const coons_body *b, size_t n, const double *uvw, double *xyz)
+static void spec_points_3_3(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
 {
-    spec_points(b, 4, 0, n, uvw, xyz);
+    if (jac || det)
+        spec_points_jac(b, 3, 3, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 3, 3, n, uvw, xyz);
 }
 
 COONS__SIMD_CLONES
-static void spec_points_3_any(const coons_body *b, size_t n, const double *uvw, double *xyz)
+static void spec_points_4_any(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
 {
-    spec_points(b, 3, 0, n, uvw, xyz);
+    if (jac || det)
+        spec_points_jac(b, 4, 0, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 4, 0, n, uvw, xyz);
 }
+
+COONS__SIMD_CLONES
+static void spec_points_3_any(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
+{
+    if (jac || det)
+        spec_points_jac(b, 3, 0, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 3, 0, n, uvw, xyz);
+}
+
 #undef SPEC_DEG
 #endif
 
 /* The row's points: the batch path where the body has its tables, else
  * point by point. */
-static void points(const coons_body *b, size_t n, const double *uvw, double *xyz)
+static void points(const coons_body *b, size_t n, const double *uvw, double *xyz, double *jac,
+                   double *det)
 {
 #if defined(__GNUC__)
     const struct coons__body2_fast *F = b->fast;
     const int spec = F ? 10 * F->spec_dim + F->spec_deg : 0;
     switch (spec) {
-    case 42: spec_points_4_2(b, n, uvw, xyz); return;
-    case 32: spec_points_3_2(b, n, uvw, xyz); return;
-    case 43: spec_points_4_3(b, n, uvw, xyz); return;
-    case 33: spec_points_3_3(b, n, uvw, xyz); return;
-    case 40: spec_points_4_any(b, n, uvw, xyz); return;
-    case 30: spec_points_3_any(b, n, uvw, xyz); return;
+    case 42: spec_points_4_2(b, n, uvw, xyz, jac, det); return;
+    case 32: spec_points_3_2(b, n, uvw, xyz, jac, det); return;
+    case 43: spec_points_4_3(b, n, uvw, xyz, jac, det); return;
+    case 33: spec_points_3_3(b, n, uvw, xyz, jac, det); return;
+    case 40: spec_points_4_any(b, n, uvw, xyz, jac, det); return;
+    case 30: spec_points_3_any(b, n, uvw, xyz, jac, det); return;
     default: break;
     }
 #endif
     for (size_t i = 0; i < n; i++) {
         const double *q = uvw + 3 * i;
-        eval(b, clamp01(q[0]), clamp01(q[1]), clamp01(q[2]), xyz + 3 * i, NULL);
+        if (!jac && !det) {
+            eval(b, clamp01(q[0]), clamp01(q[1]), clamp01(q[2]), xyz + 3 * i, NULL);
+            continue;
+        }
+        double J[3][3];
+        double d = coons_body_eval_jacobian(b, q[0], q[1], q[2], xyz + 3 * i, J);
+        if (jac) memcpy(jac + 9 * i, J, sizeof J);
+        if (det) det[i] = d;
     }
 }
 

@@ -434,8 +434,9 @@ static void test_general_path_bitwise(void **state)
  * from a kept row or column) bit for bit against the general path (the
  * same faces wrapped), point by point: batches of 1..9 points at every
  * offset of a mixed array (inside, on the faces, edges and corners,
- * outside, NaN and infinities, which are clamped), and single points
- * through coons_body_eval() (which takes the batch path for one point).
+ * outside, NaN and infinities, which are clamped), values alone and with
+ * Jacobians and determinants, and single points through coons_body_eval()
+ * (which takes the batch path for one point).
  */
 static void test_batch_against_general(void **state)
 {
@@ -458,9 +459,13 @@ static void test_batch_against_general(void **state)
             }
             coons_blend bl = blend ? COONS_BLEND_CUBIC : COONS_BLEND_LINEAR;
             coons_body *b = make_body(f, bl), *c = make_body(g, bl);
-            double want[3 * N];
-            for (size_t i = 0; i < N; i++)
-                coons_body_eval(c, uvw[3 * i], uvw[3 * i + 1], uvw[3 * i + 2], want + 3 * i);
+            double want[3 * N], wantj[3 * N], wantJ[9 * N], wantd[N];
+            for (size_t i = 0; i < N; i++) {
+                const double *q = uvw + 3 * i;
+                coons_body_eval(c, q[0], q[1], q[2], want + 3 * i);
+                wantd[i] = coons_body_eval_jacobian(c, q[0], q[1], q[2], wantj + 3 * i,
+                                                    (double(*)[3])(wantJ + 9 * i));
+            }
             for (size_t i = 0; i < N; i++) {
                 double got[3];
                 coons_body_eval(b, uvw[3 * i], uvw[3 * i + 1], uvw[3 * i + 2], got);
@@ -483,6 +488,24 @@ static void test_batch_against_general(void **state)
                                  "general path",
                                  kind, blend, n, off);
                     for (size_t k = 3 * n; k < 3 * 9 + 3; k++) assert_true(got[k] == 12345.0);
+                    /* with Jacobians, determinants, or both */
+                    double gj[9 * 9 + 9], gd[9 + 1];
+                    for (size_t k = 0; k < 9 * 9 + 9; k++) gj[k] = 12345.0;
+                    for (size_t k = 0; k < 9 + 1; k++) gd[k] = 12345.0;
+                    for (int mode = 0; mode < 3; mode++) {
+                        assert_coons_ok(coons_body_eval_points(b, n, uvw + 3 * off, got,
+                                                               mode != 1 ? gj : NULL,
+                                                               mode != 0 ? gd : NULL, &err),
+                                        &err);
+                        if (!same_bits(got, wantj + 3 * off, 3 * n) ||
+                            (mode != 1 && !same_bits(gj, wantJ + 9 * off, 9 * n)) ||
+                            (mode != 0 && !same_bits(gd, wantd + off, n)))
+                            fail_msg("kind %d blend %d batch of %zu at %zu (mode %d) with "
+                                     "Jacobians differs from the general path",
+                                     kind, blend, n, off, mode);
+                    }
+                    for (size_t k = 9 * n; k < 9 * 9 + 9; k++) assert_true(gj[k] == 12345.0);
+                    for (size_t k = n; k < 9 + 1; k++) assert_true(gd[k] == 12345.0);
                 }
             /* the whole array at once, and through the general path's batch */
             double x1[3 * N], x2[3 * N];
