@@ -244,8 +244,11 @@ static void lattice(int i, int j, int k, double p[3], double *wt)
  * surface to rounding; beside faces of kind 0, faces of two kinds of sums:
  * the batch path does not apply); 10: bspline of degree 3 along u
  * (knots k3 below) and 2 along v and w, rational; 11: as 10, not rational
- * (faces of several degrees: the batch path's degrees at run time). */
-#define LATTICE_KINDS 12
+ * (faces of several degrees: the batch path's degrees at run time);
+ * 12: as 1 with every point scaled by 2.5e299 (the net at most 1e300 in
+ * size, so the ends keep their columns, but the s-derivative sums of the
+ * Jacobian path are not bounded: its columns are not used there). */
+#define LATTICE_KINDS 13
 static coons_patch *lattice_face(int f, int kind)
 {
     double pts[L * L * 3], wts[L * L];
@@ -298,6 +301,10 @@ static coons_patch *lattice_face(int f, int kind)
         const int su = f >= 2;
         assert_coons_ok(coons_patch_new_bspline(su ? 3 : 2, 2, pts, L, L, su ? k3 : NULL, NULL,
                                                 kind == 10 ? wts : NULL, &p, &err),
+                        &err);
+    } else if (kind == 12) {
+        for (int i = 0; i < 3 * L * L; i++) pts[i] *= 2.5e299;
+        assert_coons_ok(coons_patch_new_bspline(2, 2, pts, L, L, NULL, NULL, wts, &p, &err),
                         &err);
     } else if (kind == 9) {
         for (int i = 0; i < L * L; i++) wts[i] = 0.75;
