@@ -231,9 +231,9 @@ typedef struct fast_face {
     double pmax;                 /* the largest homogeneous coordinate's size */
 } fast_face;
 
-/* The batch of points on the value path (points_spec below): every face
- * of the same dim (3 or 4) and both degrees the same (2 or 3), every edge
- * source a kept row or column. */
+/* The batch of points (spec_points below), where every face has the same
+ * dim (3: polynomial, 4: homogeneous) and every edge source a kept row or
+ * column (spec_build): per edge source, the kept array and its basis. */
 typedef struct spec_src {
     const double *arr; /* the kept column (run along s) or row (along t), 4 per index */
     int slot;          /* the basis it is summed with (roots below) */
@@ -514,7 +514,8 @@ static void eval(const coons_body *b, double u, double v, double w, double out[3
 /*
  * The batch of points on the value path (coons_body_eval_points without
  * Jacobians) of a body whose tables spec_build made: eval_fast's sums
- * written out for a constant dim and degree, with no call per point, and
+ * written out for a constant dim (and a constant degree where every face
+ * is of degrees 2, 2 or 3, 3), with no call per point, and
  * the coordinates of each sum (x, y, z and the weight) as lanes of one
  * vector: per lane the same IEEE operations in the same order as
  * eval_fast (sum_rows, the quotient, point_from), so the same bits; lane 3
