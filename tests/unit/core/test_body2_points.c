@@ -439,8 +439,8 @@ static void test_general_path_bitwise(void **state)
  * The batch of points (coons_body_eval_points without Jacobians; body2.c's
  * spec_points where the faces are of one dim and degree 2 or 3, each edge
  * from a kept row or column) bit for bit against the general path (the
- * same faces wrapped), point by point: batches of 1..9 points at every
- * offset of a mixed array (inside, on the faces, edges and corners,
+ * same faces wrapped), point by point: batches of 1..9 points at the first
+ * 25 offsets of a mixed array (inside, on the faces, edges and corners,
  * outside, NaN and infinities, which are clamped), values alone and with
  * Jacobians and determinants, and single points through coons_body_eval()
  * (which takes the batch path for one point).
@@ -483,7 +483,7 @@ static void test_batch_against_general(void **state)
                              want[3 * i + 1], want[3 * i + 2]);
             }
             for (size_t n = 1; n <= 9; n++)
-                for (size_t off = 0; off + n <= N; off++) {
+                for (size_t off = 0; off + n <= N && off <= 24; off++) {
                     /* guards after the batch: nothing written past it */
                     double got[3 * 9 + 3];
                     for (size_t k = 0; k < 3 * 9 + 3; k++) got[k] = 12345.0;
