@@ -436,9 +436,9 @@ static void test_general_path_bitwise(void **state)
 }
 
 /*
- * The batch of points (coons_body_eval_points without Jacobians; body2.c's
- * spec_points where the faces are of one dim and degree 2 or 3, each edge
- * from a kept row or column) bit for bit against the general path (the
+ * The batch of points (coons_body_eval_points; body2.c's spec_points and
+ * spec_points_jac where the faces are of one dim, each edge from a kept
+ * row or column; lattice kinds 0-8 and 10-12) bit for bit against the general path (the
  * same faces wrapped), point by point: batches of 1..9 points at the first
  * 25 offsets of a mixed array (inside, on the faces, edges and corners,
  * outside, NaN and infinities, which are clamped), values alone and with
