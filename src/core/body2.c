@@ -551,6 +551,28 @@ static SPEC_INLINE size_t spec_basis(const coons_patch *p, int dir, int deg, dou
     return span - (size_t)deg;
 }
 
+/* The values and first derivatives of a root basis at x (basis() with
+ * nd = 1). */
+static SPEC_INLINE size_t spec_basis1(const coons_patch *p, int dir, int deg, double x,
+                                      double *N)
+{
+    if (!p->ks) {
+        coons__bernstein(deg, x, 1, N);
+        return 0;
+    }
+    /* coons__bspline_basis01 */
+    const double *k = dir ? p->kt : p->ks;
+    const size_t ncp = dir ? p->nt : p->ns;
+    double lo = k[deg], hi = k[ncp], len = hi - lo;
+    double t = clamp01(x);
+    double y = lo + t * len;
+    if (t >= 1.0) y = hi;
+    size_t span = coons__bspline_span_inl(k, ncp, deg, y);
+    coons__bspline_vals1(k, span, deg, y, N);
+    for (int j = 0; j <= deg; j++) N[deg + 1 + j] *= len;
+    return span - (size_t)deg;
+}
+
 /* The quotient of a homogeneous sum (dim 4), or the sum (dim 3). */
 static SPEC_INLINE void spec_point(int dim, const v4d *A, v4d *out)
 {
@@ -695,8 +717,8 @@ static SPEC_INLINE void spec_points_jac(const coons_body *b, int dim, int deg, s
         double N[12][2 * (FAST_DEG + 1)];
         size_t first[12];
         for (int r = 0; r < nroot; r++)
-            first[r] = coons__tensor_basis(F->root_p[r], F->root_dir[r], x[F->root_par[r]], 1,
-                                           N[r]);
+            first[r] = spec_basis1(F->root_p[r], F->root_dir[r], SPEC_DEG(F->root_deg[r]),
+                                   x[F->root_par[r]], N[r]);
         /* the column shortcut where eval's s-derivative terms are bounded */
         int tcol_ok[6];
         for (int f = 0; f < 6; f++) {

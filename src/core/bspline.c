@@ -101,6 +101,10 @@ void coons__bspline_basis(const double *k, size_t span, int p, double x, int nd,
         coons__bspline_vals(k, span, p, x, ders);
         return;
     }
+    if (nd == 1 && p >= 1) { /* with first derivatives: the same operations (bspline.h) */
+        coons__bspline_vals1(k, span, p, x, ders);
+        return;
+    }
     /* A2.3 with fixed-size scratch: p <= COONS_SPLINE_MAX_DEGREE. */
     double ndu[COONS_SPLINE_MAX_DEGREE + 1][COONS_SPLINE_MAX_DEGREE + 1];
     double left[COONS_SPLINE_MAX_DEGREE + 1], right[COONS_SPLINE_MAX_DEGREE + 1];

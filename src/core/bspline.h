@@ -83,6 +83,47 @@ static inline void coons__bspline_vals(const double *k, size_t span, int p, doub
     }
 }
 
+/* The values and first derivatives, ders[j] and ders[p+1+j] (p >= 1):
+ * A2.2 for the levels below p, then the last level with A2.3's
+ * derivative terms for nd = 1 written out (a_0 = 1/ndu[p][r-1] times
+ * ndu[r-1][p-1], plus -1/ndu[p][r] times ndu[r][p-1], then times p), so
+ * bitwise coons__bspline_basis(..., 1, ders); inline for a constant p. */
+static inline void coons__bspline_vals1(const double *k, size_t span, int p, double x,
+                                        double *ders)
+{
+    double left[COONS_SPLINE_MAX_DEGREE + 1], right[COONS_SPLINE_MAX_DEGREE + 1];
+    double N[COONS_SPLINE_MAX_DEGREE + 1], den[COONS_SPLINE_MAX_DEGREE + 1];
+    N[0] = 1.0;
+    for (int j = 1; j <= p; j++) {
+        left[j] = x - k[span + 1 - (size_t)j];
+        right[j] = k[span + (size_t)j] - x;
+        if (j == p) break;
+        double saved = 0.0;
+        for (int r = 0; r < j; r++) {
+            double temp = N[r] / (right[r + 1] + left[j - r]);
+            N[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        N[j] = saved;
+    }
+    /* level p: N holds level p-1 (A2.3's ndu[r][p-1]) */
+    double saved = 0.0;
+    for (int r = 0; r < p; r++) {
+        den[r] = right[r + 1] + left[p - r];
+        double temp = N[r] / den[r];
+        ders[r] = saved + right[r + 1] * temp;
+        saved = left[p - r] * temp;
+    }
+    ders[p] = saved;
+    const double f = (double)p;
+    for (int r = 0; r <= p; r++) {
+        double dv = 0.0;
+        if (r >= 1) dv = (1.0 / den[r - 1]) * N[r - 1];
+        if (r <= p - 1) dv += (-1.0 / den[r]) * N[r];
+        ders[p + 1 + r] = dv * f;
+    }
+}
+
 /* Bernstein values B_{j,n}(t) alone, in place with coons__bernstein()'s
  * operations (b[m][j] = s b[m-1][j] + t b[m-1][j-1]), so bitwise the same. */
 static inline void coons__bernstein_vals(int n, double t, double *N)
