@@ -248,6 +248,9 @@ COONS_EXPORT coons_status coons_body_eval_grid_threads(const coons_body *b, cons
  * ends and its net combined there; a point then computes each face's two
  * bases once for the face and the edges it carries (tools/bench/bench_points
  * times it), with the same floating-point operations, so the same bits.
+ * Without Jacobians, where its faces are all polynomial or all rational,
+ * such a body evaluates the whole batch in one loop with no call per point
+ * (coons_body_eval() takes that loop for one point: the same bits).
  * @param[in]  uvw  3 n parameters
  * @param[out] xyz  3 n coordinates
  * @param[out] jac  NULL or 9 n partials (row-major 3 x 3 per point)

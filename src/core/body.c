@@ -82,6 +82,10 @@ coons_status coons_body_eval_points(const coons_body *b, size_t n, const double 
     if (!b) return coons__error_set(err, COONS_E_INVALID, "body points: NULL body");
     if (n && (!uvw || !xyz))
         return coons__error_set(err, COONS_E_INVALID, "body points: NULL parameters or output");
+    if (b->kind->points) {
+        b->kind->points(b, n, uvw, xyz, jac, det);
+        return COONS_OK;
+    }
     if (!jac && !det) {
         for (size_t i = 0; i < n; i++) {
             const double *q = uvw + 3 * i;

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "agree.h"
+#include "bspline.h"
 #include "body_impl.h"
 #include "patch_impl.h"
 
@@ -230,10 +231,27 @@ typedef struct fast_face {
     double pmax;                 /* the largest homogeneous coordinate's size */
 } fast_face;
 
+/* The batch of points (spec_points below), where every face has the same
+ * dim (3: polynomial, 4: homogeneous) and every edge source a kept row or
+ * column (spec_build): per edge source, the kept array and its basis. */
+typedef struct spec_src {
+    const double *arr; /* the kept column (run along s) or row (along t), 4 per index */
+    int slot;          /* the basis it is summed with (roots below) */
+    int addzero;       /* a column: eval_tcol's +0 */
+} spec_src;
+
 struct coons__body2_fast {
     fast_face f[6];
     int src[12][2][3]; /* edge_source of edge e, source m: face, run, fixed */
     double *mem;
+    int spec_dim;           /* 0: no batch path */
+    int spec_deg;           /* every face's degrees (2 or 3), else 0 */
+    int nroot;              /* the distinct bases of a point (same[][] roots) */
+    const coons_patch *root_p[12];
+    int root_dir[12], root_par[12], root_deg[12];
+    int fslot[6][2];        /* face f's basis along dir: its root's slot */
+    spec_src esrc[12][2];
+    double corner4[8][4];   /* the corners, lane 3 zero */
 };
 
 /* The (s,t) of face f: X_i (v,w), Y_j (u,w), Z_k (u,v); 0 = u, 1 = v, 2 = w. */
@@ -287,6 +305,56 @@ static size_t pick_column(const coons_patch *p, const double *N)
     return j;
 }
 
+/* The batch path's tables, where it applies (spec_dim 0 otherwise). */
+static void spec_build(const coons_body *b, struct coons__body2_fast *F)
+{
+    F->spec_dim = F->spec_deg = 0;
+    const int dim = F->f[0].p->pw ? 4 : 3;
+    /* one degree 2 or 3 throughout (unrolled), else the degrees at run time */
+    int deg = F->f[0].p->ps;
+    for (int f = 0; f < 6; f++) {
+        const coons_patch *p = F->f[f].p;
+        if ((p->pw ? 4 : 3) != dim) return;
+        /* Bezier faces have no knots along either parameter (basis()) */
+        if (!p->ks != !p->kt) return;
+        if (p->ps != deg || p->pt != deg) deg = 0;
+    }
+    if (deg != 2 && deg != 3) deg = 0;
+    int slot[6][2] = {{0}};
+    F->nroot = 0;
+    for (int f = 0; f < 6; f++)
+        for (int dir = 0; dir < 2; dir++) {
+            const int *same = F->f[f].same[dir];
+            if (same[0] == f && same[1] == dir) {
+                int r = F->nroot++;
+                F->root_p[r] = F->f[f].p;
+                F->root_dir[r] = dir;
+                F->root_deg[r] = dir ? F->f[f].p->pt : F->f[f].p->ps;
+                F->root_par[r] = face_par[f][dir];
+                slot[f][dir] = r;
+            } else {
+                slot[f][dir] = slot[same[0]][same[1]];
+            }
+            F->fslot[f][dir] = slot[f][dir];
+        }
+    for (int e = 0; e < 12; e++)
+        for (int m = 0; m < 2; m++) {
+            const int f = F->src[e][m][0], run = F->src[e][m][1], fixed = F->src[e][m][2];
+            const fast_face *ff = &F->f[f];
+            spec_src *S = &F->esrc[e][m];
+            if (run == 0 && !ff->tcol[fixed]) return;
+            S->arr = run == 0 ? ff->tcol[fixed] : ff->srow[fixed];
+            S->slot = slot[f][run];
+            S->addzero = run == 0;
+        }
+    for (int c = 0; c < 8; c++) {
+        for (int r = 0; r < 3; r++) F->corner4[c][r] = b->corner[c][r];
+        F->corner4[c][3] = 0.0;
+    }
+    F->spec_dim = dim;
+    F->spec_deg = deg;
+}
+
 static coons_status fast_build(coons_body *b, coons_error *err)
 {
     b->fast = NULL;
@@ -312,6 +380,7 @@ static coons_status fast_build(coons_body *b, coons_error *err)
         coons__free(F);
         return coons__error_nomem(err);
     }
+    memset(F->mem, 0, total * sizeof(double)); /* lane 3 of the dim-3 rows */
     double *m = F->mem;
     for (int e = 0; e < 12; e++)
         for (int k = 0; k < 2; k++)
@@ -348,6 +417,7 @@ static coons_status fast_build(coons_body *b, coons_error *err)
             }
         }
     }
+    spec_build(b, F);
     b->fast = F;
     return COONS_OK;
 }
@@ -423,13 +493,441 @@ static void eval_fast(const coons_body *b, double u, double v, double w, double 
     point_from(b, bu, bv, bw, X, Y, Z, E, out);
 }
 
+static void points(const coons_body *b, size_t n, const double *uvw, double *xyz, double *jac,
+                   double *det);
+
 static void eval(const coons_body *b, double u, double v, double w, double out[3],
                  double d[3][3])
 {
-    if (b->fast)
+    if (b->fast && !d && b->fast->spec_dim) {
+        /* the batch path for one point (clamping again changes nothing) */
+        const double q[3] = {u, v, w};
+        points(b, 1, q, out, NULL, NULL);
+    } else if (b->fast) {
         eval_fast(b, u, v, w, out, d);
-    else
+    } else {
         eval_rows(b, u, v, w, out, d);
+    }
+}
+
+#if defined(__GNUC__)
+/*
+ * The batch of points on the value path (coons_body_eval_points without
+ * Jacobians) of a body whose tables spec_build made: eval_fast's sums
+ * written out for a constant dim (and a constant degree where every face
+ * is of degrees 2, 2 or 3, 3), with no call per point, and
+ * the coordinates of each sum (x, y, z and the weight) as lanes of one
+ * vector: per lane the same IEEE operations in the same order as
+ * eval_fast (sum_rows, the quotient, point_from), so the same bits; lane 3
+ * of a Cartesian sum is a spare (the weight's quotient, or 0) never stored.
+ */
+#define SPEC_INLINE inline __attribute__((always_inline))
+typedef double v4d __attribute__((vector_size(32)));
+
+static SPEC_INLINE void spec_load(int dim, const double *q, v4d *r)
+{
+    if (dim == 4)
+        memcpy(r, q, sizeof *r);
+    else
+        *r = (v4d){q[0], q[1], q[2], 0.0};
+}
+
+/* The values of a root basis at x (basis() with nd = 0). */
+static SPEC_INLINE size_t spec_basis(const coons_patch *p, int dir, int deg, double x, double *N)
+{
+    if (!p->ks) {
+        coons__bernstein_vals(deg, x, N);
+        return 0;
+    }
+    /* coons__bspline_basis01 */
+    const double *k = dir ? p->kt : p->ks;
+    const size_t ncp = dir ? p->nt : p->ns;
+    double lo = k[deg], hi = k[ncp], len = hi - lo;
+    double t = clamp01(x);
+    double y = lo + t * len;
+    if (t >= 1.0) y = hi;
+    size_t span = coons__bspline_span_inl(k, ncp, deg, y);
+    coons__bspline_vals(k, span, deg, y, N);
+    return span - (size_t)deg;
+}
+
+/* The values and first derivatives of a root basis at x (basis() with
+ * nd = 1). */
+static SPEC_INLINE size_t spec_basis1(const coons_patch *p, int dir, int deg, double x,
+                                      double *N)
+{
+    if (!p->ks) {
+        coons__bernstein(deg, x, 1, N);
+        return 0;
+    }
+    /* coons__bspline_basis01 */
+    const double *k = dir ? p->kt : p->ks;
+    const size_t ncp = dir ? p->nt : p->ns;
+    double lo = k[deg], hi = k[ncp], len = hi - lo;
+    double t = clamp01(x);
+    double y = lo + t * len;
+    if (t >= 1.0) y = hi;
+    size_t span = coons__bspline_span_inl(k, ncp, deg, y);
+    coons__bspline_vals1(k, span, deg, y, N);
+    for (int j = 0; j <= deg; j++) N[deg + 1 + j] *= len;
+    return span - (size_t)deg;
+}
+
+/* The quotient of a homogeneous sum (dim 4), or the sum (dim 3). */
+static SPEC_INLINE void spec_point(int dim, const v4d *A, v4d *out)
+{
+    if (dim == 3) {
+        *out = *A;
+        return;
+    }
+    const double W = (*A)[3];
+    *out = *A / (v4d){W, W, W, W};
+}
+
+/* deg > 0: every degree is deg (a constant here); 0: each basis's own */
+#define SPEC_DEG(x) (deg > 0 ? deg : (x))
+static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_t n,
+                                    const double *uvw, double *xyz)
+{
+    const struct coons__body2_fast *F = b->fast;
+    const int nroot = F->nroot;
+    const v4d zero = {0.0, 0.0, 0.0, 0.0};
+    for (size_t i = 0; i < n; i++) {
+        const double x[3] = {clamp01(uvw[3 * i]), clamp01(uvw[3 * i + 1]),
+                             clamp01(uvw[3 * i + 2])};
+        double bl[3][2];
+        for (int d = 0; d < 3; d++) {
+            if (b->blend == COONS_BLEND_CUBIC) { /* coons__blend */
+                const double t = x[d];
+                double f = 1.0 - 3.0 * t * t + 2.0 * t * t * t;
+                bl[d][0] = f;
+                bl[d][1] = 1.0 - f;
+            } else {
+                bl[d][0] = 1.0 - x[d];
+                bl[d][1] = x[d];
+            }
+        }
+        double N[12][FAST_DEG + 1];
+        size_t first[12];
+        for (int r = 0; r < nroot; r++)
+            first[r] = spec_basis(F->root_p[r], F->root_dir[r], SPEC_DEG(F->root_deg[r]),
+                                  x[F->root_par[r]], N[r]);
+        /* the edges: each the average of its two sources */
+        v4d E[12];
+        for (int e = 0; e < 12; e++) {
+            v4d pv[2];
+            for (int m = 0; m < 2; m++) {
+                const spec_src *S = &F->esrc[e][m];
+                const double *Ns = N[S->slot], *T = S->arr + 4 * first[S->slot];
+                const int dk = SPEC_DEG(F->root_deg[S->slot]);
+                v4d acc = zero;
+                for (int k = 0; k <= dk; k++) {
+                    v4d q;
+                    memcpy(&q, T + 4 * k, sizeof q);
+                    acc = acc + Ns[k] * q;
+                }
+                if (S->addzero) acc = 0.0 + acc;
+                spec_point(dim, &acc, &pv[m]);
+            }
+            E[e] = 0.5 * (pv[0] + pv[1]);
+        }
+        /* the faces */
+        v4d Fv[6];
+        for (int f = 0; f < 6; f++) {
+            const coons_patch *p = F->f[f].p;
+            const double *P = dim == 4 ? p->pw : p->pts;
+            const int s0 = F->fslot[f][0], s1 = F->fslot[f][1];
+            const double *Ns = N[s0], *Nt = N[s1];
+            const size_t fs = first[s0], ft = first[s1], nt = p->nt;
+            const int ps = SPEC_DEG(p->ps), pt = SPEC_DEG(p->pt);
+            v4d A = zero;
+            v4d R[FAST_DEG + 1];
+            for (int l = 0; l <= pt; l++) {
+                v4d acc = zero;
+                for (int k = 0; k <= ps; k++) {
+                    v4d q;
+                    spec_load(dim, P + ((fs + (size_t)k) * nt + ft + (size_t)l) * (size_t)dim, &q);
+                    acc = acc + Ns[k] * q;
+                }
+                R[l] = acc;
+            }
+            for (int l = 0; l <= pt; l++) A = A + Nt[l] * R[l];
+            spec_point(dim, &A, &Fv[f]);
+        }
+        /* point_from */
+        const double a0 = bl[0][0], a1 = bl[0][1], b0 = bl[1][0], b1 = bl[1][1],
+                     w1 = bl[2][1];
+        const v4d *c = (const v4d *)(const void *)F->corner4;
+        const v4d *Cu = E, *Cv = E + 4, *Cw = E + 8;
+        v4d G[2], Pk[2];
+        for (int j = 0; j < 2; j++) G[j] = Fv[2 + j] - (a0 * Cw[j] + a1 * Cw[2 + j]);
+        for (int k = 0; k < 2; k++) {
+            v4d tk = a0 * c[k] + a1 * c[4 + k];
+            v4d t2k = a0 * c[2 + k] + a1 * c[6 + k];
+            Pk[k] = Fv[4 + k] - (a0 * Cv[k] + a1 * Cv[2 + k] + b0 * (Cu[k] - tk) +
+                                 b1 * (Cu[2 + k] - t2k));
+        }
+        v4d o = (Fv[0] + a1 * (Fv[1] - Fv[0])) + (G[0] + b1 * (G[1] - G[0])) +
+                (Pk[0] + w1 * (Pk[1] - Pk[0]));
+        xyz[3 * i] = o[0];
+        xyz[3 * i + 1] = o[1];
+        xyz[3 * i + 2] = o[2];
+    }
+}
+
+/* v3 of the three lanes of a vector. */
+static SPEC_INLINE void spec_v3(double o[3], const v4d *a)
+{
+    o[0] = (*a)[0];
+    o[1] = (*a)[1];
+    o[2] = (*a)[2];
+}
+
+/* A value and its derivative from the homogeneous sums A (value) and D
+ * (derivative): eval_tcol_dim / eval_srow_dim / eval_basis_dim's quotient. */
+static SPEC_INLINE void spec_quot1(int dim, const v4d *A, const v4d *D, v4d *val, v4d *der)
+{
+    if (dim == 3) {
+        *val = *A;
+        *der = *D;
+        return;
+    }
+    const double W = (*A)[3];
+    const v4d Wv = {W, W, W, W};
+    const v4d S00 = *A / Wv;
+    *val = S00;
+    *der = (*D - (*D)[3] * S00) / Wv;
+}
+
+/* The same points with their Jacobians and determinants (eval_fast's
+ * sums, partials() and point_from, then coons_body_eval_jacobian's
+ * transpose and determinant). */
+static SPEC_INLINE void spec_points_jac(const coons_body *b, int dim, int deg, size_t n,
+                                        const double *uvw, double *xyz, double *jac,
+                                        double *det)
+{
+    const struct coons__body2_fast *F = b->fast;
+    const int nroot = F->nroot;
+    const v4d zero = {0.0, 0.0, 0.0, 0.0};
+    for (size_t i = 0; i < n; i++) {
+        const double x[3] = {clamp01(uvw[3 * i]), clamp01(uvw[3 * i + 1]),
+                             clamp01(uvw[3 * i + 2])};
+        double bu[5], bv[5], bw[5];
+        coons__blends_at(b->blend, x[0], x[1], x[2], bu, bv, bw);
+        double N[12][2 * (FAST_DEG + 1)];
+        size_t first[12];
+        for (int r = 0; r < nroot; r++)
+            first[r] = spec_basis1(F->root_p[r], F->root_dir[r], SPEC_DEG(F->root_deg[r]),
+                                   x[F->root_par[r]], N[r]);
+        /* the column shortcut where eval's s-derivative terms are bounded */
+        int tcol_ok[6];
+        for (int f = 0; f < 6; f++) {
+            const int ps = SPEC_DEG(F->f[f].p->ps);
+            const double *Nd = N[F->fslot[f][0]] + ps + 1;
+            double S = 0.0;
+            for (int k = 0; k <= ps; k++) S += fabs(Nd[k]);
+            tcol_ok[f] = S * F->f[f].pmax <= 1e300;
+        }
+        v4d E[12];
+        double Ed[12][3], dEd[12][3];
+        for (int e = 0; e < 12; e++) {
+            v4d pv[2] = {zero, zero}, pd[2] = {zero, zero};
+            for (int m = 0; m < 2; m++) {
+                const spec_src *S = &F->esrc[e][m];
+                const int f = F->src[e][m][0];
+                if (S->addzero && !tcol_ok[f]) {
+                    const fast_face *ff = &F->f[f];
+                    const int fixed = F->src[e][m][2], s0 = F->fslot[f][0];
+                    double r[3][3];
+                    coons__tensor_eval_basis(ff->p, first[s0], N[s0], ff->first[1][fixed],
+                                             ff->N[1][fixed], 1, r);
+                    pv[m] = (v4d){r[0][0], r[0][1], r[0][2], 0.0};
+                    pd[m] = (v4d){r[1][0], r[1][1], r[1][2], 0.0};
+                    continue;
+                }
+                const int dk = SPEC_DEG(F->root_deg[S->slot]);
+                const double *Nv = N[S->slot], *T = S->arr + 4 * first[S->slot];
+                v4d A0 = zero, A1 = zero;
+                for (int k = 0; k <= dk; k++) {
+                    v4d q;
+                    memcpy(&q, T + 4 * k, sizeof q);
+                    A0 = A0 + Nv[k] * q;
+                }
+                for (int k = 0; k <= dk; k++) {
+                    v4d q;
+                    memcpy(&q, T + 4 * k, sizeof q);
+                    A1 = A1 + Nv[dk + 1 + k] * q;
+                }
+                if (S->addzero) {
+                    A0 = 0.0 + A0;
+                    A1 = 0.0 + A1;
+                }
+                spec_quot1(dim, &A0, &A1, &pv[m], &pd[m]);
+            }
+            E[e] = 0.5 * (pv[0] + pv[1]);
+            const v4d dE = 0.5 * (pd[0] + pd[1]);
+            spec_v3(Ed[e], &E[e]);
+            spec_v3(dEd[e], &dE);
+        }
+        v4d Fv[6];
+        double Fd[6][3][3];
+        for (int f = 0; f < 6; f++) {
+            const coons_patch *p = F->f[f].p;
+            const double *P = dim == 4 ? p->pw : p->pts;
+            const int s0 = F->fslot[f][0], s1 = F->fslot[f][1];
+            const double *Ns = N[s0], *Nt = N[s1];
+            const size_t fs = first[s0], ft = first[s1], nt = p->nt;
+            const int ps = SPEC_DEG(p->ps), pt = SPEC_DEG(p->pt);
+            v4d R[2][FAST_DEG + 1];
+            for (int a = 0; a <= 1; a++)
+                for (int l = 0; l <= pt; l++) {
+                    v4d acc = zero;
+                    for (int k = 0; k <= ps; k++) {
+                        v4d q;
+                        spec_load(dim,
+                                  P + ((fs + (size_t)k) * nt + ft + (size_t)l) * (size_t)dim,
+                                  &q);
+                        acc = acc + Ns[a * (ps + 1) + k] * q;
+                    }
+                    R[a][l] = acc;
+                }
+            v4d A00 = zero, A01 = zero, A10 = zero;
+            for (int l = 0; l <= pt; l++) A00 = A00 + Nt[l] * R[0][l];
+            for (int l = 0; l <= pt; l++) A01 = A01 + Nt[pt + 1 + l] * R[0][l];
+            for (int l = 0; l <= pt; l++) A10 = A10 + Nt[l] * R[1][l];
+            v4d d10, d01;
+            spec_quot1(dim, &A00, &A10, &Fv[f], &d10);
+            if (dim == 4) {
+                const double W = A00[3];
+                d01 = (A01 - A01[3] * Fv[f]) / (v4d){W, W, W, W};
+            } else {
+                d01 = A01;
+            }
+            spec_v3(Fd[f][0], &Fv[f]);
+            spec_v3(Fd[f][1], &d10);
+            spec_v3(Fd[f][2], &d01);
+        }
+        double d[3][3];
+        partials(b, bu, bv, bw, Fd, Fd + 2, Fd + 4, Ed, dEd, d);
+        /* point_from */
+        const double a0 = bu[0], a1 = bu[1], b0 = bv[0], b1 = bv[1], w1 = bw[1];
+        const v4d *c = (const v4d *)(const void *)F->corner4;
+        const v4d *Cu = E, *Cv = E + 4, *Cw = E + 8;
+        v4d G[2], Pk[2];
+        for (int j = 0; j < 2; j++) G[j] = Fv[2 + j] - (a0 * Cw[j] + a1 * Cw[2 + j]);
+        for (int k = 0; k < 2; k++) {
+            v4d tk = a0 * c[k] + a1 * c[4 + k];
+            v4d t2k = a0 * c[2 + k] + a1 * c[6 + k];
+            Pk[k] = Fv[4 + k] - (a0 * Cv[k] + a1 * Cv[2 + k] + b0 * (Cu[k] - tk) +
+                                 b1 * (Cu[2 + k] - t2k));
+        }
+        v4d o = (Fv[0] + a1 * (Fv[1] - Fv[0])) + (G[0] + b1 * (G[1] - G[0])) +
+                (Pk[0] + w1 * (Pk[1] - Pk[0]));
+        spec_v3(xyz + 3 * i, &o);
+        /* coons_body_eval_jacobian */
+        if (jac)
+            for (int r = 0; r < 3; r++)
+                for (int q = 0; q < 3; q++) jac[9 * i + 3 * (size_t)r + (size_t)q] = d[q][r];
+        if (det) {
+            double cr[3];
+            v3_cross(cr, d[1], d[2]);
+            det[i] = v3_dot(d[0], cr);
+        }
+    }
+}
+
+COONS__SIMD_CLONES
+static void spec_points_4_2(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
+{
+    if (jac || det)
+        spec_points_jac(b, 4, 2, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 4, 2, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_3_2(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
+{
+    if (jac || det)
+        spec_points_jac(b, 3, 2, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 3, 2, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_4_3(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
+{
+    if (jac || det)
+        spec_points_jac(b, 4, 3, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 4, 3, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_3_3(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
+{
+    if (jac || det)
+        spec_points_jac(b, 3, 3, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 3, 3, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_4_any(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
+{
+    if (jac || det)
+        spec_points_jac(b, 4, 0, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 4, 0, n, uvw, xyz);
+}
+
+COONS__SIMD_CLONES
+static void spec_points_3_any(const coons_body *b, size_t n, const double *uvw, double *xyz,
+                             double *jac, double *det)
+{
+    if (jac || det)
+        spec_points_jac(b, 3, 0, n, uvw, xyz, jac, det);
+    else
+        spec_points(b, 3, 0, n, uvw, xyz);
+}
+
+#undef SPEC_DEG
+#endif
+
+/* The row's points: the batch path where the body has its tables, else
+ * point by point. */
+static void points(const coons_body *b, size_t n, const double *uvw, double *xyz, double *jac,
+                   double *det)
+{
+#if defined(__GNUC__)
+    const struct coons__body2_fast *F = b->fast;
+    const int spec = F ? 10 * F->spec_dim + F->spec_deg : 0;
+    switch (spec) {
+    case 42: spec_points_4_2(b, n, uvw, xyz, jac, det); return;
+    case 32: spec_points_3_2(b, n, uvw, xyz, jac, det); return;
+    case 43: spec_points_4_3(b, n, uvw, xyz, jac, det); return;
+    case 33: spec_points_3_3(b, n, uvw, xyz, jac, det); return;
+    case 40: spec_points_4_any(b, n, uvw, xyz, jac, det); return;
+    case 30: spec_points_3_any(b, n, uvw, xyz, jac, det); return;
+    default: break;
+    }
+#endif
+    for (size_t i = 0; i < n; i++) {
+        const double *q = uvw + 3 * i;
+        if (!jac && !det) {
+            eval(b, clamp01(q[0]), clamp01(q[1]), clamp01(q[2]), xyz + 3 * i, NULL);
+            continue;
+        }
+        double J[3][3];
+        double d = coons_body_eval_jacobian(b, q[0], q[1], q[2], xyz + 3 * i, J);
+        if (jac) memcpy(jac + 9 * i, J, sizeof J);
+        if (det) det[i] = d;
+    }
 }
 
 /*
@@ -885,4 +1383,5 @@ static void free_data(coons_body *b)
 
 const coons__body_kind coons__body2_kind = {
     .type = COONS_BODY_BODY2, .eval = eval, .grid = grid, .det_grid = det_grid,
-    .breaks = breaks, .copy = copy_data, .free = free_data, .space = space};
+    .breaks = breaks, .copy = copy_data, .free = free_data, .space = space,
+    .points = points};

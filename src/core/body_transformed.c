@@ -68,7 +68,7 @@ static void space(const coons_body *b, int d, coons__space *S)
 
 const coons__body_kind coons__body_transformed_kind = {
     COONS_BODY_BODY0, /* unused: coons_body_kind() reports the inner type */
-    eval, grid, det_grid, breaks, copy, release, space,
+    eval, grid, det_grid, breaks, copy, release, space, NULL,
 };
 
 coons_status coons_body_new_transformed(const coons_body *b, const double *m,

@@ -92,32 +92,19 @@ coons_status coons__knots_make(int p, size_t ncp, const double *given, const cha
 
 size_t coons__bspline_span(const double *k, size_t ncp, int p, double x)
 {
-    size_t lo = (size_t)p, hi = ncp; /* domain [k[lo], k[hi]] */
-    if (x >= k[hi]) {
-        /* right end: the last non-empty span */
-        size_t i = hi - 1;
-        while (i > lo && k[i] == k[hi]) i--;
-        return i;
-    }
-    if (x <= k[lo]) {
-        size_t i = lo;
-        while (i + 1 < hi && k[i + 1] == k[lo]) i++;
-        return i;
-    }
-    /* binary search for k[i] <= x < k[i+1] */
-    size_t a = lo, b = hi;
-    while (b - a > 1) {
-        size_t m = (a + b) / 2;
-        if (x < k[m])
-            b = m;
-        else
-            a = m;
-    }
-    return a;
+    return coons__bspline_span_inl(k, ncp, p, x);
 }
 
 void coons__bspline_basis(const double *k, size_t span, int p, double x, int nd, double *ders)
 {
+    if (nd <= 0) { /* the values alone: A2.2, the same operations (bspline.h) */
+        coons__bspline_vals(k, span, p, x, ders);
+        return;
+    }
+    if (nd == 1 && p >= 1) { /* with first derivatives: the same operations (bspline.h) */
+        coons__bspline_vals1(k, span, p, x, ders);
+        return;
+    }
     /* A2.3 with fixed-size scratch: p <= COONS_SPLINE_MAX_DEGREE. */
     double ndu[COONS_SPLINE_MAX_DEGREE + 1][COONS_SPLINE_MAX_DEGREE + 1];
     double left[COONS_SPLINE_MAX_DEGREE + 1], right[COONS_SPLINE_MAX_DEGREE + 1];

@@ -146,6 +146,11 @@ typedef struct coons__body_kind {
     void (*free)(coons_body *b);
     /* The spline space along direction d; NULL: NONE. */
     void (*space)(const coons_body *b, int d, coons__space *S);
+    /* coons_body_eval_points: n points (clamped here) bitwise as eval
+     * gives them, with jac or det not NULL the Jacobians and determinants
+     * as coons_body_eval_jacobian() gives them; NULL: point by point. */
+    void (*points)(const coons_body *b, size_t n, const double *uvw, double *xyz, double *jac,
+                   double *det);
 } coons__body_kind;
 
 /* Breakpoints of c in (0,1) into B through its row (nothing if c is NULL;

@@ -256,7 +256,7 @@ static void space(const coons_body *b, int d, coons__space *S)
 }
 
 const coons__body_kind coons__morph_kind = {
-    COONS_BODY_MORPH, eval, grid, det_grid, breaks, copy, release, space,
+    COONS_BODY_MORPH, eval, grid, det_grid, breaks, copy, release, space, NULL,
 };
 
 coons_status coons_body_new_morph(coons_body *const *keys, size_t nkeys, const double *at,

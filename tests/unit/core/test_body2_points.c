@@ -237,11 +237,46 @@ static void lattice(int i, int j, int k, double p[3], double *wt)
 /* kind 0: bspline degree 2, 1: rational bspline degree 2, 2: bezier
  * (degree L-1), 3: rational bspline degree 3 with repeated interior knots,
  * 4: as 0 with the knots scaled by 0.3 (another basis object, the same
- * surface up to rounding). */
+ * surface up to rounding); on the lattice's rows 0, 2, 3, 5 (L = 6):
+ * 5: bezier degree 3; on rows 0, 2, 5: 6: bezier degree 2, 7: rational
+ * bspline degree 2 (Bezier-like knots); 8: bspline degree 3 on all rows,
+ * not rational; 9: as 0 but rational with all weights 0.75 (the same
+ * surface to rounding; beside faces of kind 0, faces of two kinds of sums:
+ * the batch path does not apply); 10: bspline of degree 3 along u
+ * (knots k3 below) and 2 along v and w, rational; 11: as 10, not rational
+ * (faces of several degrees: the batch path's degrees at run time);
+ * 12: as 1 with every point scaled by 2.5e299 (the net at most 1e300 in
+ * size, so the ends keep their columns, but the s-derivative sums of the
+ * Jacobian path are not bounded: its columns are not used there). */
+#define LATTICE_KINDS 13
 static coons_patch *lattice_face(int f, int kind)
 {
     double pts[L * L * 3], wts[L * L];
     int fixed = (f & 1) ? L - 1 : 0;
+    static const int rows4[4] = {0, 2, 3, 5}, rows3[3] = {0, 2, 5};
+    if (kind >= 5 && kind <= 7) {
+        const int n = kind == 5 ? 4 : 3;
+        const int *rows = kind == 5 ? rows4 : rows3;
+        for (int a = 0; a < n; a++)
+            for (int b = 0; b < n; b++) {
+                int ijk[3];
+                if (f < 2)
+                    ijk[0] = fixed, ijk[1] = rows[a], ijk[2] = rows[b];
+                else if (f < 4)
+                    ijk[0] = rows[a], ijk[1] = fixed, ijk[2] = rows[b];
+                else
+                    ijk[0] = rows[a], ijk[1] = rows[b], ijk[2] = fixed;
+                lattice(ijk[0], ijk[1], ijk[2], pts + (a * n + b) * 3, wts + a * n + b);
+            }
+        coons_patch *p = NULL;
+        coons_error err;
+        if (kind == 7)
+            assert_coons_ok(coons_patch_new_bspline(2, 2, pts, 3, 3, NULL, NULL, wts, &p, &err),
+                            &err);
+        else
+            assert_coons_ok(coons_patch_new_bezier(pts, (size_t)n, (size_t)n, &p, &err), &err);
+        return p;
+    }
     for (int a = 0; a < L; a++)
         for (int b = 0; b < L; b++) {
             int ijk[3];
@@ -259,6 +294,23 @@ static coons_patch *lattice_face(int f, int kind)
     static const double k2[L + 3] = {0, 0, 0, 0.3, 0.6, 0.9, 1.2, 1.2, 1.2};
     if (kind == 2)
         assert_coons_ok(coons_patch_new_bezier(pts, L, L, &p, &err), &err);
+    else if (kind == 8)
+        assert_coons_ok(coons_patch_new_bspline(3, 3, pts, L, L, k3, k3, NULL, &p, &err), &err);
+    else if (kind == 10 || kind == 11) {
+        /* face f's (s,t): X (v,w), Y (u,w), Z (u,v); u of degree 3 */
+        const int su = f >= 2;
+        assert_coons_ok(coons_patch_new_bspline(su ? 3 : 2, 2, pts, L, L, su ? k3 : NULL, NULL,
+                                                kind == 10 ? wts : NULL, &p, &err),
+                        &err);
+    } else if (kind == 12) {
+        for (int i = 0; i < 3 * L * L; i++) pts[i] *= 2.5e299;
+        assert_coons_ok(coons_patch_new_bspline(2, 2, pts, L, L, NULL, NULL, wts, &p, &err),
+                        &err);
+    } else if (kind == 9) {
+        for (int i = 0; i < L * L; i++) wts[i] = 0.75;
+        assert_coons_ok(coons_patch_new_bspline(2, 2, pts, L, L, NULL, NULL, wts, &p, &err),
+                        &err);
+    }
     else if (kind == 4)
         assert_coons_ok(coons_patch_new_bspline(2, 2, pts, L, L, k2, k2, NULL, &p, &err), &err);
     else if (kind == 3)
@@ -383,6 +435,98 @@ static void test_general_path_bitwise(void **state)
         }
 }
 
+/*
+ * The batch of points (coons_body_eval_points; body2.c's spec_points and
+ * spec_points_jac where the faces are of one dim, each edge from a kept
+ * row or column; lattice kinds 0-8 and 10-12) bit for bit against the general path (the
+ * same faces wrapped), point by point: batches of 1..9 points at the first
+ * 25 offsets of a mixed array (inside, on the faces, edges and corners,
+ * outside, NaN and infinities, which are clamped), values alone and with
+ * Jacobians and determinants, and single points through coons_body_eval()
+ * (which takes the batch path for one point).
+ */
+static void test_batch_against_general(void **state)
+{
+    (void)state;
+    enum { N = 61 };
+    double uvw[3 * N];
+    tb_rng rng = {4242};
+    random_points(&rng, N, uvw);
+    uvw[3 * 5] = NAN, uvw[3 * 9 + 1] = INFINITY, uvw[3 * 17 + 2] = -INFINITY;
+    uvw[3 * 23] = -0.0, uvw[3 * 23 + 1] = 0.5, uvw[3 * 23 + 2] = 1.0;
+    for (int kind = 0; kind < LATTICE_KINDS; kind++)
+        for (int blend = 0; blend < 2; blend++) {
+            coons_patch *f[6], *g[6];
+            coons_error err;
+            for (int i = 0; i < 6; i++) {
+                /* kinds 4 and 9: faces X_i of that kind, the others of kind 0 */
+                f[i] = lattice_face(i, kind == 4 || kind == 9 ? (i < 2 ? kind : 0) : kind);
+                assert_coons_ok(coons_patch_new_reparametrized(f[i], 0, 0, 0, &g[i], &err),
+                                &err);
+            }
+            coons_blend bl = blend ? COONS_BLEND_CUBIC : COONS_BLEND_LINEAR;
+            coons_body *b = make_body(f, bl), *c = make_body(g, bl);
+            double want[3 * N], wantj[3 * N], wantJ[9 * N], wantd[N];
+            for (size_t i = 0; i < N; i++) {
+                const double *q = uvw + 3 * i;
+                coons_body_eval(c, q[0], q[1], q[2], want + 3 * i);
+                wantd[i] = coons_body_eval_jacobian(c, q[0], q[1], q[2], wantj + 3 * i,
+                                                    (double(*)[3])(wantJ + 9 * i));
+            }
+            for (size_t i = 0; i < N; i++) {
+                double got[3];
+                coons_body_eval(b, uvw[3 * i], uvw[3 * i + 1], uvw[3 * i + 2], got);
+                if (!same_bits(got, want + 3 * i, 3))
+                    fail_msg("kind %d blend %d single point %zu: %.17g %.17g %.17g, general "
+                             "path %.17g %.17g %.17g",
+                             kind, blend, i, got[0], got[1], got[2], want[3 * i],
+                             want[3 * i + 1], want[3 * i + 2]);
+            }
+            for (size_t n = 1; n <= 9; n++)
+                for (size_t off = 0; off + n <= N && off <= 24; off++) {
+                    /* guards after the batch: nothing written past it */
+                    double got[3 * 9 + 3];
+                    for (size_t k = 0; k < 3 * 9 + 3; k++) got[k] = 12345.0;
+                    assert_coons_ok(
+                        coons_body_eval_points(b, n, uvw + 3 * off, got, NULL, NULL, &err),
+                        &err);
+                    if (!same_bits(got, want + 3 * off, 3 * n))
+                        fail_msg("kind %d blend %d batch of %zu at %zu differs from the "
+                                 "general path",
+                                 kind, blend, n, off);
+                    for (size_t k = 3 * n; k < 3 * 9 + 3; k++) assert_true(got[k] == 12345.0);
+                    /* with Jacobians, determinants, or both */
+                    double gj[9 * 9 + 9], gd[9 + 1];
+                    for (size_t k = 0; k < 9 * 9 + 9; k++) gj[k] = 12345.0;
+                    for (size_t k = 0; k < 9 + 1; k++) gd[k] = 12345.0;
+                    for (int mode = 0; mode < 3; mode++) {
+                        assert_coons_ok(coons_body_eval_points(b, n, uvw + 3 * off, got,
+                                                               mode != 1 ? gj : NULL,
+                                                               mode != 0 ? gd : NULL, &err),
+                                        &err);
+                        if (!same_bits(got, wantj + 3 * off, 3 * n) ||
+                            (mode != 1 && !same_bits(gj, wantJ + 9 * off, 9 * n)) ||
+                            (mode != 0 && !same_bits(gd, wantd + off, n)))
+                            fail_msg("kind %d blend %d batch of %zu at %zu (mode %d) with "
+                                     "Jacobians differs from the general path",
+                                     kind, blend, n, off, mode);
+                    }
+                    for (size_t k = 9 * n; k < 9 * 9 + 9; k++) assert_true(gj[k] == 12345.0);
+                    for (size_t k = n; k < 9 + 1; k++) assert_true(gd[k] == 12345.0);
+                }
+            /* the whole array at once, and through the general path's batch */
+            double x1[3 * N], x2[3 * N];
+            assert_coons_ok(coons_body_eval_points(b, N, uvw, x1, NULL, NULL, &err), &err);
+            assert_coons_ok(coons_body_eval_points(c, N, uvw, x2, NULL, NULL, &err), &err);
+            assert_true(same_bits(x1, want, 3 * N));
+            assert_true(same_bits(x2, want, 3 * N));
+            coons_body_free(b);
+            coons_body_free(c);
+            free_faces(f);
+            free_faces(g);
+        }
+}
+
 /* The Jacobian of the lattice bodies against central differences. */
 static void test_jacobian_differences(void **state)
 {
@@ -419,6 +563,7 @@ int main(void)
         cmocka_unit_test(test_closed_form),
         cmocka_unit_test(test_formula_bitwise),
         cmocka_unit_test(test_general_path_bitwise),
+        cmocka_unit_test(test_batch_against_general),
         cmocka_unit_test(test_jacobian_differences),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
