@@ -78,6 +78,14 @@ static coons_status call_self_float(fixture *f, int *empty, coons_error *err)
     return st;
 }
 
+static coons_status call_self_threads(fixture *f, int *empty, coons_error *err)
+{
+    size_t pairs = 99;
+    coons_status st = coons_mesh_count_self_intersections_threads(f->mesh, 1, 2, &pairs, err);
+    *empty = pairs == 0;
+    return st;
+}
+
 static coons_status call_pairs(fixture *f, int *empty, coons_error *err)
 {
     size_t pairs = 99, degenerate = 99;
@@ -98,6 +106,7 @@ static const entry ENTRIES[] = {
     {"coons_mesh_solidify", "src/csg/cgal_solid.cpp", call_solidify},
     {"coons_mesh_count_self_intersections", "src/csg/cgal_solid.cpp", call_self},
     {"coons_mesh_count_self_intersections_float", "src/csg/cgal_solid.cpp", call_self_float},
+    {"coons_mesh_count_self_intersections_threads", "src/csg/cgal_solid.cpp", call_self_threads},
     {"coons__csg_count_pairs", "src/csg/cgal_solid.cpp", call_pairs},
 };
 #define N_ENTRIES (sizeof ENTRIES / sizeof ENTRIES[0])
