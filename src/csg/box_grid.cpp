@@ -6,32 +6,49 @@
 #include "box_grid.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "cgal_common.hpp"
 
 namespace coons_csg {
 
-BoxGrid::BoxGrid(const std::vector<GridBox> &boxes, PairTest test, const void *ctx)
+BoxGrid::BoxGrid(const std::vector<GridBox> &boxes, PairTest test, const void *ctx, unsigned threads)
     : test_(test), ctx_(ctx), n_(boxes.size())
 {
-    bx_.reserve(n_);
-    for (const GridBox &b : boxes) {
-        BB q;
-        for (int c = 0; c < 3; c++) q.lo[c] = b.lo[c], q.hi[c] = b.hi[c];
-        q.t = b.t;
-        q.old = b.old;
-        bx_.push_back(q);
-    }
+    // Every pass below runs by chunks of boxes on the threads; what a pass
+    // gathers (extremes, counts) is combined over the chunks in order, and
+    // the entries are written where the serial loop would put them.
+    const size_t nch = chunks(n_);
+    const unsigned th = threads > 1 ? threads : 1;
+    bx_.resize(n_);
+    std::vector<std::array<double, 7>> ext(nch); // per chunk: org, top, emin
+    parallel_for(th, nch, [&](size_t k) {
+        std::array<double, 7> &x = ext[k];
+        for (int c = 0; c < 3; c++) x[c] = HUGE_VAL, x[3 + c] = -HUGE_VAL;
+        x[6] = HUGE_VAL;
+        for (size_t i = k * kChunk, i1 = std::min(n_, i + kChunk); i < i1; i++) {
+            const GridBox &b = boxes[i];
+            BB &q = bx_[i];
+            for (int c = 0; c < 3; c++) q.lo[c] = b.lo[c], q.hi[c] = b.hi[c];
+            q.t = b.t;
+            q.old = b.old;
+            for (int c = 0; c < 3; c++) {
+                x[c] = std::min(x[c], q.lo[c]);
+                x[3 + c] = std::max(x[3 + c], q.hi[c]);
+            }
+            double e = extent(q);
+            if (e > 0) x[6] = std::min(x[6], e);
+        }
+    });
     double emin = HUGE_VAL, span = 0, top[3];
     for (int c = 0; c < 3; c++) org_[c] = HUGE_VAL, top[c] = -HUGE_VAL;
-    for (const BB &q : bx_) {
+    for (const std::array<double, 7> &x : ext) {
         for (int c = 0; c < 3; c++) {
-            org_[c] = std::min(org_[c], q.lo[c]);
-            top[c] = std::max(top[c], q.hi[c]);
+            org_[c] = std::min(org_[c], x[c]);
+            top[c] = std::max(top[c], x[3 + c]);
         }
-        double e = extent(q);
-        if (e > 0) emin = std::min(emin, e);
+        emin = std::min(emin, x[6]);
     }
     for (int c = 0; c < 3; c++) span = std::max(span, top[c] - org_[c]);
     ok_ = std::isfinite(span);
@@ -40,38 +57,60 @@ BoxGrid::BoxGrid(const std::vector<GridBox> &boxes, PairTest test, const void *c
     // along an axis (keys pack 21 bits per axis)
     double h = std::max(0.5 * emin, span / 1048576.0);
     if (!(h > 0) || !std::isfinite(h)) h = 1.0;
-    int nlev = 1;
-    for (BB &q : bx_) {
-        double e = extent(q), hl = h;
-        int L = 0;
-        while (e > 2 * hl && L < 15) {
-            hl *= 4;
-            L++;
+    std::vector<int> top_level(nch, 0);
+    parallel_for(th, nch, [&](size_t k) {
+        for (size_t i = k * kChunk, i1 = std::min(n_, i + kChunk); i < i1; i++) {
+            BB &q = bx_[i];
+            double e = extent(q), hl = h;
+            int L = 0;
+            while (e > 2 * hl && L < 15) {
+                hl *= 4;
+                L++;
+            }
+            q.level = (unsigned char)L;
+            top_level[k] = std::max(top_level[k], L);
         }
-        q.level = (unsigned char)L;
-        nlev = std::max(nlev, L + 1);
-    }
+    });
+    int nlev = 1;
+    for (int L : top_level) nlev = std::max(nlev, L + 1);
     inv_.assign(nlev, 1.0 / h);
     for (int L = 1; L < nlev; L++) inv_[L] = 0.25 * inv_[L - 1];
     cells_.resize(nlev);
-    std::vector<size_t> per(nlev, 0);
-    for (BB &q : bx_) {
-        uint32_t hi[3];
-        range(q, q.level, q.cell, hi);
-        per[q.level] += (size_t)(hi[0] - q.cell[0] + 1) * (hi[1] - q.cell[1] + 1) * (hi[2] - q.cell[2] + 1);
+    // per chunk and level: the entries, then where the chunk's start
+    std::vector<size_t> per(nch * (size_t)nlev, 0);
+    parallel_for(th, nch, [&](size_t k) {
+        for (size_t i = k * kChunk, i1 = std::min(n_, i + kChunk); i < i1; i++) {
+            BB &q = bx_[i];
+            uint32_t hi[3];
+            range(q, q.level, q.cell, hi);
+            per[k * nlev + q.level] +=
+                (size_t)(hi[0] - q.cell[0] + 1) * (hi[1] - q.cell[1] + 1) * (hi[2] - q.cell[2] + 1);
+        }
+    });
+    for (int L = 0; L < nlev; L++) {
+        size_t sum = 0;
+        for (size_t k = 0; k < nch; k++) {
+            size_t c = per[k * nlev + L];
+            per[k * nlev + L] = sum;
+            sum += c;
+        }
+        cells_[L].resize(sum);
     }
-    for (int L = 0; L < nlev; L++) cells_[L].reserve(per[L]);
-    for (size_t i = 0; i < n_; i++) {
-        const BB &q = bx_[i];
-        uint32_t hi[3];
-        range(q, q.level, nullptr, hi);
-        for (uint64_t z = q.cell[2]; z <= hi[2]; z++)
-            for (uint64_t y = q.cell[1]; y <= hi[1]; y++)
-                for (uint64_t x = q.cell[0]; x <= hi[0]; x++)
-                    cells_[q.level].push_back({pack21(x, y, z), (uint32_t)i});
-    }
+    parallel_for(th, nch, [&](size_t k) {
+        size_t *at = &per[k * nlev];
+        for (size_t i = k * kChunk, i1 = std::min(n_, i + kChunk); i < i1; i++) {
+            const BB &q = bx_[i];
+            uint32_t hi[3];
+            range(q, q.level, nullptr, hi);
+            Entry *E = cells_[q.level].data();
+            size_t &a = at[q.level];
+            for (uint64_t z = q.cell[2]; z <= hi[2]; z++)
+                for (uint64_t y = q.cell[1]; y <= hi[1]; y++)
+                    for (uint64_t x = q.cell[0]; x <= hi[0]; x++) E[a++] = {pack21(x, y, z), (uint32_t)i};
+        }
+    });
     for (auto &E : cells_) {
-        radix_sort(E);
+        radix_sort(E, th);
         std::vector<size_t> g;
         for (size_t k = 0; k < E.size(); k++)
             if (k == 0 || E[k].key != E[k - 1].key) g.push_back(k);
@@ -151,27 +190,43 @@ void BoxGrid::range(const BB &q, int L, uint32_t *lo, uint32_t hi[3]) const
 
 // Keys sorted (the order inside a cell does not matter: every pair in
 // it is looked at): least significant 16 bits first, skipping the
-// digits all keys share; small sets by std::sort.
-void BoxGrid::radix_sort(std::vector<Entry> &E)
+// digits all keys share; small sets by std::sort. Each pass is stable and
+// runs on the threads by contiguous parts (counts per part, each part's
+// entries of a digit after the earlier parts'): the order the serial sort
+// gives, for every thread count.
+void BoxGrid::radix_sort(std::vector<Entry> &E, unsigned threads)
 {
     auto by_key = [](const Entry &a, const Entry &b) { return a.key < b.key; };
     if (E.size() < 4096) {
         std::sort(E.begin(), E.end(), by_key);
         return;
     }
-    std::vector<Entry> tmp(E.size());
-    std::vector<size_t> cnt(1u << 16);
+    const size_t D = 1u << 16;
+    const size_t np = threads > 1 && E.size() >= 65536 ? threads : 1;
+    const size_t n = E.size();
+    std::vector<Entry> tmp(n);
+    std::vector<size_t> cnt(np * D);
     for (int shift = 0; shift < 64; shift += 16) {
-        std::fill(cnt.begin(), cnt.end(), 0);
-        for (const Entry &e : E) cnt[(e.key >> shift) & 0xFFFF]++;
-        if (cnt[(E[0].key >> shift) & 0xFFFF] == E.size()) continue;
+        parallel_for((unsigned)np, np, [&](size_t p) {
+            size_t *c = &cnt[p * D];
+            std::fill(c, c + D, 0);
+            for (size_t i = n * p / np, i1 = n * (p + 1) / np; i < i1; i++) c[(E[i].key >> shift) & 0xFFFF]++;
+        });
+        size_t d0 = (E[0].key >> shift) & 0xFFFF, all = 0;
+        for (size_t p = 0; p < np; p++) all += cnt[p * D + d0];
+        if (all == n) continue;
         size_t sum = 0;
-        for (size_t &c : cnt) {
-            size_t k = c;
-            c = sum;
-            sum += k;
-        }
-        for (const Entry &e : E) tmp[cnt[(e.key >> shift) & 0xFFFF]++] = e;
+        for (size_t d = 0; d < D; d++)
+            for (size_t p = 0; p < np; p++) {
+                size_t k = cnt[p * D + d];
+                cnt[p * D + d] = sum;
+                sum += k;
+            }
+        parallel_for((unsigned)np, np, [&](size_t p) {
+            size_t *c = &cnt[p * D];
+            for (size_t i = n * p / np, i1 = n * (p + 1) / np; i < i1; i++)
+                tmp[c[(E[i].key >> shift) & 0xFFFF]++] = E[i];
+        });
         E.swap(tmp);
     }
 }

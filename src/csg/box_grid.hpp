@@ -42,7 +42,8 @@ typedef bool (*PairTest)(const void *ctx, uint32_t s, uint32_t t);
 // same pairs.
 class BoxGrid {
   public:
-    BoxGrid(const std::vector<GridBox> &boxes, PairTest test, const void *ctx);
+    // threads: how many build the grid (the same grid for every count).
+    BoxGrid(const std::vector<GridBox> &boxes, PairTest test, const void *ctx, unsigned threads = 1);
 
     // False when the boxes' extents are beyond doubles (the caller then
     // uses box_intersection_d).
@@ -86,7 +87,7 @@ class BoxGrid {
     size_t box_chunks() const { return used_.size() > 1 ? chunks(n_) : 0; }
     uint32_t index(double x, int c, int L) const;
     void range(const BB &q, int L, uint32_t *lo, uint32_t hi[3]) const;
-    static void radix_sort(std::vector<Entry> &E);
+    static void radix_sort(std::vector<Entry> &E, unsigned threads);
     size_t test(const BB &a, const BB &b, const uint32_t *acell, uint64_t key) const;
 };
 

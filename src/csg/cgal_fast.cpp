@@ -124,6 +124,27 @@ bool apart_in_projection(const IK::Point_3 *a, int shared, const int *si, const 
            beyond(v, t1, t2, s1, s2, -1) || beyond(v, t2, t1, s1, s2, -1);
 }
 
+// Triangles s and t share one vertex v (s[si[0]] == t[ti[0]]). Along some
+// axis, one triangle's other vertices strictly below v and the other's not
+// below it: they meet only at v (exact comparisons; this settles about half
+// the pairs of a flat fan, whose orientation tests are exact zeros and cost
+// an exact evaluation each).
+inline bool apart_along_axis(const std::vector<IK::Point_3> &P, const uint32_t *s, const uint32_t *t,
+                             const int *si, const int *ti)
+{
+    const IK::Point_3 &v = P[s[si[0]]];
+    const IK::Point_3 &s1 = P[s[(si[0] + 1) % 3]], &s2 = P[s[(si[0] + 2) % 3]];
+    const IK::Point_3 &t1 = P[t[(ti[0] + 1) % 3]], &t2 = P[t[(ti[0] + 2) % 3]];
+    for (int c = 0; c < 3; c++) {
+        double vc = v[c];
+        if (s1[c] < vc && s2[c] < vc && t1[c] >= vc && t2[c] >= vc) return true;
+        if (t1[c] < vc && t2[c] < vc && s1[c] >= vc && s2[c] >= vc) return true;
+        if (s1[c] > vc && s2[c] > vc && t1[c] <= vc && t2[c] <= vc) return true;
+        if (t1[c] > vc && t2[c] > vc && s1[c] <= vc && s2[c] <= vc) return true;
+    }
+    return false;
+}
+
 // Two triangles of a soup given by vertex indices intersect other than in
 // what their shared indices allow (a shared edge, a shared vertex)?
 bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const uint32_t *t,
@@ -141,6 +162,8 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
     const IK::Point_3 &d = P[t[0]], &e = P[t[1]], &f = P[t[2]];
     if (shared >= 3) return true;
     if (project) {
+        // the comparisons first: they cost less than the projection
+        if (shared == 1 && apart_along_axis(P, s, t, si, ti)) return false;
         const IK::Point_3 six[6] = {a, b, c, d, e, f};
         if (apart_in_projection(six, shared, si, ti)) return false;
     }
@@ -154,17 +177,7 @@ bool pair_intersects(const std::vector<IK::Point_3> &P, const uint32_t *s, const
     const IK::Point_3 &v = P[s[si[0]]];
     const IK::Point_3 &s1 = P[s[(si[0] + 1) % 3]], &s2 = P[s[(si[0] + 2) % 3]];
     const IK::Point_3 &t1 = P[t[(ti[0] + 1) % 3]], &t2 = P[t[(ti[0] + 2) % 3]];
-    // Along some axis, one triangle's other vertices strictly below v and
-    // the other's not below it: they meet only at v (exact comparisons;
-    // this settles about half the pairs of a flat fan, whose orientation
-    // tests below are exact zeros and cost an exact evaluation each).
-    for (int c = 0; c < 3; c++) {
-        double vc = v[c];
-        if (s1[c] < vc && s2[c] < vc && t1[c] >= vc && t2[c] >= vc) return false;
-        if (t1[c] < vc && t2[c] < vc && s1[c] >= vc && s2[c] >= vc) return false;
-        if (s1[c] > vc && s2[c] > vc && t1[c] <= vc && t2[c] <= vc) return false;
-        if (t1[c] > vc && t2[c] > vc && s1[c] <= vc && s2[c] <= vc) return false;
-    }
+    if (!project && apart_along_axis(P, s, t, si, ti)) return false;
     // One triangle strictly on one side of the other's plane (but for v):
     // they meet only at v. This settles almost every pair of a fan.
     CGAL::Orientation a1 = CGAL::orientation(v, s1, s2, t1), a2 = CGAL::orientation(v, s1, s2, t2);
@@ -309,22 +322,49 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
                                 size_t *degenerate, unsigned threads, const InputTriangles *old,
                                 bool reference)
 {
-    std::vector<IK::Point_3> P;
-    P.reserve(nv);
-    for (size_t i = 0; i < nv; i++) P.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    std::vector<Box> fresh, kept;
-    fresh.reserve(old ? nt / 4 : nt);
-    for (size_t t = 0; t < nt; t++) {
-        const uint32_t *q = tri + 3 * t;
-        bool is_old = old && old->count(tri_key(xyz + 3 * q[0], xyz + 3 * q[1], xyz + 3 * q[2]));
-        if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
-        if (!is_old && CGAL::collinear(P[q[0]], P[q[1]], P[q[2]])) {
-            // A zero-area triangle bounds nothing; it is counted, not tested.
-            if (degenerate) (*degenerate)++;
-            continue;
+    // The points, then the boxes by chunks of triangles on the threads (each
+    // chunk's boxes in triangle order, the chunks concatenated in order: the
+    // same boxes in the same order for every thread count).
+    const size_t chunk = 65536;
+    const unsigned bt = nt > chunk ? threads : 1;
+    std::vector<IK::Point_3> P(nv);
+    parallel_for(nv > chunk ? threads : 1, (nv + chunk - 1) / chunk, [&](size_t k) {
+        for (size_t i = k * chunk, i1 = std::min(nv, i + chunk); i < i1; i++)
+            P[i] = IK::Point_3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    });
+    size_t nchunk = (nt + chunk - 1) / chunk;
+    std::vector<std::vector<Box>> cfresh(nchunk), ckept(nchunk);
+    std::vector<size_t> cdeg(nchunk, 0);
+    parallel_for(bt, nchunk, [&](size_t k) {
+        std::vector<Box> &fr = cfresh[k], &kp = ckept[k];
+        size_t t1 = std::min(nt, (k + 1) * chunk);
+        fr.reserve(old ? 0 : t1 - k * chunk);
+        for (size_t t = k * chunk; t < t1; t++) {
+            const uint32_t *q = tri + 3 * t;
+            bool is_old = old && old->count(tri_key(xyz + 3 * q[0], xyz + 3 * q[1], xyz + 3 * q[2]));
+            if (q[0] == q[1] || q[1] == q[2] || q[0] == q[2]) continue;
+            if (!is_old && CGAL::collinear(P[q[0]], P[q[1]], P[q[2]])) {
+                // A zero-area triangle bounds nothing; it is counted, not tested.
+                cdeg[k]++;
+                continue;
+            }
+            CGAL::Bbox_3 bb = P[q[0]].bbox() + P[q[1]].bbox() + P[q[2]].bbox();
+            (is_old ? kp : fr).emplace_back(bb, t);
         }
-        CGAL::Bbox_3 bb = P[q[0]].bbox() + P[q[1]].bbox() + P[q[2]].bbox();
-        (is_old ? kept : fresh).emplace_back(bb, t);
+    });
+    std::vector<Box> fresh, kept;
+    {
+        size_t nf = 0, nk = 0;
+        for (size_t k = 0; k < nchunk; k++) nf += cfresh[k].size(), nk += ckept[k].size();
+        fresh.reserve(nf);
+        kept.reserve(nk);
+        for (size_t k = 0; k < nchunk; k++) {
+            fresh.insert(fresh.end(), cfresh[k].begin(), cfresh[k].end());
+            kept.insert(kept.end(), ckept[k].begin(), ckept[k].end());
+            if (degenerate) *degenerate += cdeg[k];
+            std::vector<Box>().swap(cfresh[k]);
+            std::vector<Box>().swap(ckept[k]);
+        }
     }
     if (fresh.empty()) return 0;
     if (reference) return count_boxes_cgal(P, tri, fresh, kept, threads);
@@ -332,14 +372,17 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
         // Only kept boxes near a fresh one can take part.
         keep_touching(fresh, kept);
     }
-    std::vector<GridBox> boxes;
-    boxes.reserve(fresh.size() + kept.size());
-    for (const std::vector<Box> *v : {&fresh, &kept})
-        for (const Box &b : *v)
-            boxes.push_back({{b.min_coord(0), b.min_coord(1), b.min_coord(2)},
-                             {b.max_coord(0), b.max_coord(1), b.max_coord(2)},
-                             (uint32_t)b.info(),
-                             v == &kept});
+    std::vector<GridBox> boxes(fresh.size() + kept.size());
+    parallel_for(boxes.size() > chunk ? threads : 1, (boxes.size() + chunk - 1) / chunk, [&](size_t k) {
+        for (size_t i = k * chunk, i1 = std::min(boxes.size(), i + chunk); i < i1; i++) {
+            bool k_ = i >= fresh.size();
+            const Box &b = k_ ? kept[i - fresh.size()] : fresh[i];
+            boxes[i] = {{b.min_coord(0), b.min_coord(1), b.min_coord(2)},
+                        {b.max_coord(0), b.max_coord(1), b.max_coord(2)},
+                        (uint32_t)b.info(),
+                        k_};
+        }
+    });
     struct Ctx {
         const std::vector<IK::Point_3> &P;
         const uint32_t *tri;
@@ -348,7 +391,7 @@ size_t count_self_intersections(const double *xyz, size_t nv, const uint32_t *tr
         const Ctx &x = *static_cast<const Ctx *>(c);
         return pair_intersects(x.P, x.tri + 3 * (size_t)s, x.tri + 3 * (size_t)t);
     };
-    BoxGrid grid(boxes, test, &ctx);
+    BoxGrid grid(boxes, test, &ctx, fresh.size() + kept.size() > 4096 ? threads : 1);
     if (!grid.ok()) return count_boxes_cgal(P, tri, fresh, kept, threads);
     size_t nt_ = grid.tasks();
     std::vector<size_t> counts(nt_, 0);

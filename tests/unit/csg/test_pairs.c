@@ -271,6 +271,58 @@ static void test_threads_api(void **state)
     free(tri);
 }
 
+/* Past the sizes from which the grid is built on the threads (chunks of
+ * 65536 triangles, parallel radix sort from 65536 entries): 70000 small
+ * triangles on a jittered 30 x 30 x 30 lattice, about seventy of them
+ * collinear, counted alike by the reference and the grids on 1 and 3
+ * threads (pairs and zero-area triangles), with and without kept ones. */
+static void test_large_soup(void **state)
+{
+    (void)state;
+    enum { N = 30, NT = 70000 };
+    size_t nv = (size_t)N * N * N;
+    double *xyz = malloc(3 * nv * sizeof *xyz);
+    uint32_t *tri = malloc(3 * (size_t)NT * sizeof *tri);
+    unsigned char *old = malloc(NT);
+    assert_non_null(xyz);
+    assert_non_null(tri);
+    assert_non_null(old);
+    for (size_t i = 0; i < nv; i++) {
+        xyz[3 * i] = (double)(i % N) + 0.25 * (double)next(3);
+        xyz[3 * i + 1] = (double)((i / N) % N);
+        xyz[3 * i + 2] = (double)(i / (N * N)) + 0.125 * (double)next(2);
+    }
+    for (size_t t = 0; t < NT; t++) {
+        uint32_t x = next(N - 2), y = next(N - 2), z = next(N - 2);
+        uint32_t c = (z * N + y) * N + x;
+        uint32_t c1 = c + 1 + (next(2) ? N : 0), c2 = c + N * N + (next(2) ? 1 : 0);
+        tri[3 * t] = c, tri[3 * t + 1] = c1, tri[3 * t + 2] = c2;
+        old[t] = next(3) == 0;
+    }
+    /* collinear: the three along x with no jitter in z and y */
+    for (size_t t = 0; t < NT; t += 997) {
+        uint32_t c = tri[3 * t];
+        tri[3 * t + 1] = c + 1, tri[3 * t + 2] = c + 2;
+        for (int k = 1; k <= 2; k++)
+            for (int d = 1; d <= 2; d++) xyz[3 * (c + k) + d] = xyz[3 * c + d];
+        xyz[3 * (c + 1)] = xyz[3 * c] + 1, xyz[3 * (c + 2)] = xyz[3 * c] + 2;
+    }
+    coons_mesh *m = soup(xyz, nv, tri, NT);
+    size_t n = agree(m, NULL);
+    assert_true(n > 1000);
+    agree(m, old);
+    size_t d1 = 0, d3 = 0, p1 = 0, p3 = 0;
+    coons_error err;
+    assert_coons_ok(coons__csg_count_pairs(m, NULL, 1, 1, &p1, &d1, &err), &err);
+    assert_coons_ok(coons__csg_count_pairs(m, NULL, 0, 3, &p3, &d3, &err), &err);
+    assert_true(d1 > 50);
+    assert_int_equal(d3, d1);
+    coons_mesh_free(m);
+    free(xyz);
+    free(tri);
+    free(old);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -278,6 +330,7 @@ int main(void)
         cmocka_unit_test(test_sampled_shells),
         cmocka_unit_test(test_known_counts),
         cmocka_unit_test(test_threads_api),
+        cmocka_unit_test(test_large_soup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
