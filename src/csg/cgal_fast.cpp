@@ -120,8 +120,36 @@ bool apart_in_projection(const IK::Point_3 *a, int shared, const int *si, const 
     // one shared vertex: s's is si[0], t's is ti[0]; q[3 + ti[0]] == q[si[0]]
     int v = si[0], s1 = (v + 1) % 3, s2 = (v + 2) % 3;
     int t1 = 3 + (ti[0] + 1) % 3, t2 = 3 + (ti[0] + 2) % 3;
-    return beyond(v, s1, s2, t1, t2, -1) || beyond(v, s2, s1, t1, t2, -1) ||
-           beyond(v, t1, t2, s1, s2, -1) || beyond(v, t2, t1, s1, s2, -1);
+    if (beyond(v, s1, s2, t1, t2, -1) || beyond(v, s2, s1, t1, t2, -1) ||
+        beyond(v, t1, t2, s1, s2, -1) || beyond(v, t2, t1, s1, s2, -1))
+        return true;
+    // Both projections with area (each an angle at v of less than 180
+    // degrees): they overlap exactly when a side of one enters the other's
+    // angle, so when none does they meet only at v. This settles the pairs
+    // of a flat fan whose sides through v lie on one line (two right angles
+    // facing each other across v, as on a grid's squares), which the tests
+    // above cannot (the others' vertices on the lines, not beyond them).
+    if (CGAL::orientation(q[v], q[s1], q[s2]) == CGAL::COLLINEAR ||
+        CGAL::orientation(q[v], q[t1], q[t2]) == CGAL::COLLINEAR)
+        return false;
+    // e (off v or on it) in the closed angle c-v-d (in_wedge in the plane)
+    auto wedge = [&](int c, int d, int e) {
+        CGAL::Orientation oc = CGAL::orientation(q[v], q[c], q[e]);
+        CGAL::Orientation od = CGAL::orientation(q[v], q[d], q[e]);
+        CGAL::Orientation dc = CGAL::orientation(q[v], q[c], q[d]); // d's side of vc, not collinear
+        if (oc != CGAL::COLLINEAR && oc != dc) return false;        // beyond vc
+        if (od != CGAL::COLLINEAR && od != -dc) return false;       // beyond vd
+        int on = oc == CGAL::COLLINEAR ? c : od == CGAL::COLLINEAR ? d : -1;
+        if (on < 0) return true;
+        // e on the line through v and `on`: in the angle when on its ray
+        // from v (exact signs of the differences; e == v: not off v)
+        for (int k = 0; k < 2; k++) {
+            double de = q[e][k] - q[v][k], dn = q[on][k] - q[v][k];
+            if (de != 0 && dn != 0) return (de > 0) == (dn > 0);
+        }
+        return false;
+    };
+    return !(wedge(t1, t2, s1) || wedge(t1, t2, s2) || wedge(s1, s2, t1) || wedge(s1, s2, t2));
 }
 
 // Triangles s and t share one vertex v (s[si[0]] == t[ti[0]]). Along some
