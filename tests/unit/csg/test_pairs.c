@@ -290,7 +290,7 @@ static void test_large_soup(void **state)
     for (size_t i = 0; i < nv; i++) {
         xyz[3 * i] = (double)(i % N) + 0.25 * (double)next(3);
         xyz[3 * i + 1] = (double)((i / N) % N);
-        xyz[3 * i + 2] = (double)(i / (N * N)) + 0.125 * (double)next(2);
+        xyz[3 * i + 2] = (double)(i / (N * N));
     }
     for (size_t t = 0; t < NT; t++) {
         uint32_t x = next(N - 2), y = next(N - 2), z = next(N - 2);
@@ -299,13 +299,11 @@ static void test_large_soup(void **state)
         tri[3 * t] = c, tri[3 * t + 1] = c1, tri[3 * t + 2] = c2;
         old[t] = next(3) == 0;
     }
-    /* collinear: the three along x with no jitter in z and y */
+    /* collinear: three of a row (the jitter is along x only); never kept
+     * (kept triangles come from checked inputs: not tested for area) */
     for (size_t t = 0; t < NT; t += 997) {
-        uint32_t c = tri[3 * t];
-        tri[3 * t + 1] = c + 1, tri[3 * t + 2] = c + 2;
-        for (int k = 1; k <= 2; k++)
-            for (int d = 1; d <= 2; d++) xyz[3 * (c + k) + d] = xyz[3 * c + d];
-        xyz[3 * (c + 1)] = xyz[3 * c] + 1, xyz[3 * (c + 2)] = xyz[3 * c] + 2;
+        tri[3 * t + 1] = tri[3 * t] + 1, tri[3 * t + 2] = tri[3 * t] + 2;
+        old[t] = 0;
     }
     coons_mesh *m = soup(xyz, nv, tri, NT);
     size_t n = agree(m, NULL);
