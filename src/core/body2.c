@@ -523,6 +523,9 @@ static void eval(const coons_body *b, double u, double v, double w, double out[3
  */
 #define SPEC_INLINE inline __attribute__((always_inline))
 typedef double v4d __attribute__((vector_size(32)));
+/* The same lanes read from memory aligned only as doubles are (the body's
+ * cached corners live in a malloc'ed block: 16-byte alignment at most). */
+typedef double v4d_unaligned __attribute__((vector_size(32), aligned(8)));
 
 static SPEC_INLINE void spec_load(int dim, const double *q, v4d *r)
 {
@@ -657,7 +660,7 @@ static SPEC_INLINE void spec_points(const coons_body *b, int dim, int deg, size_
         /* point_from */
         const double a0 = bl[0][0], a1 = bl[0][1], b0 = bl[1][0], b1 = bl[1][1],
                      w1 = bl[2][1];
-        const v4d *c = (const v4d *)(const void *)F->corner4;
+        const v4d_unaligned *c = (const v4d_unaligned *)(const void *)F->corner4;
         const v4d *Cu = E, *Cv = E + 4, *Cw = E + 8;
         v4d G[2], Pk[2];
         for (int j = 0; j < 2; j++) G[j] = Fv[2 + j] - (a0 * Cw[j] + a1 * Cw[2 + j]);
@@ -811,7 +814,7 @@ static SPEC_INLINE void spec_points_jac(const coons_body *b, int dim, int deg, s
         partials(b, bu, bv, bw, Fd, Fd + 2, Fd + 4, Ed, dEd, d);
         /* point_from */
         const double a0 = bu[0], a1 = bu[1], b0 = bv[0], b1 = bv[1], w1 = bw[1];
-        const v4d *c = (const v4d *)(const void *)F->corner4;
+        const v4d_unaligned *c = (const v4d_unaligned *)(const void *)F->corner4;
         const v4d *Cu = E, *Cv = E + 4, *Cw = E + 8;
         v4d G[2], Pk[2];
         for (int j = 0; j < 2; j++) G[j] = Fv[2 + j] - (a0 * Cw[j] + a1 * Cw[2 + j]);
