@@ -25,40 +25,7 @@
 
 #include <coons.h>
 
-#define M 8
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* bench_grid's lattice: an M^3 net of a deformed unit cube. */
-static void net_point(int i, int j, int k, double p[3])
-{
-    double x = (double)i / (M - 1), y = (double)j / (M - 1), z = (double)k / (M - 1);
-    p[0] = x + 0.08 * sin(3.0 * y + 1.0) * sin(2.0 * z);
-    p[1] = y + 0.06 * cos(2.0 * x + 0.5) * sin(3.0 * z + 0.3);
-    p[2] = z + 0.1 * sin(2.5 * x) * cos(1.5 * y) + 0.05 * x * y;
-}
-
-static void face_net(int f, double *pts)
-{
-    int fixed = (f & 1) ? M - 1 : 0;
-    for (int a = 0; a < M; a++)
-        for (int b = 0; b < M; b++) {
-            int i, j, k;
-            if (f < 2) {
-                i = fixed, j = a, k = b;
-            } else if (f < 4) {
-                i = a, j = fixed, k = b;
-            } else {
-                i = a, j = b, k = fixed;
-            }
-            net_point(i, j, k, pts + (a * M + b) * 3);
-        }
-}
+#include "bench_body.h"
 
 typedef struct timing {
     double values_us, jacobian_us;
